@@ -1,0 +1,102 @@
+#pragma once
+// One contact evaluated: normal law, tangential spring with Coulomb limit and
+// rolling resistance. Written once for particle-particle and particle-wall
+// contacts and for both dimensions; the normal law is a template parameter.
+//
+// Conventions: n is the unit normal from i towards j (or towards the wall),
+// overlap d = r_i + r_j - |x_j - x_i| > 0, arm_i = r_i - d/2 is the distance
+// from i's centre to the contact point. v_rel is the velocity of i's surface
+// relative to j's at the contact point, so vn = v_rel . n > 0 when closing.
+#include <cmath>
+
+#include "darcydem/contact/contact_laws.hpp"
+#include "darcydem/core/vec.hpp"
+
+namespace darcydem {
+
+template <int D>
+struct ContactHistory {
+  Vec<D> tangential = Vec<D>::Zero();   ///< elastic tangential displacement, m
+};
+
+template <int D>
+struct ContactForce {
+  Vec<D> force_on_i;    ///< N
+  AngVec<D> torque_i;   ///< N m
+  AngVec<D> torque_j;   ///< N m (about j's centre; zero for walls)
+  double normal_force;  ///< N, magnitude
+};
+
+/// Removes the normal part of a history vector and keeps its length, so the
+/// spring follows the rotating contact plane (as LAMMPS and YADE do).
+template <int D, int K>
+inline void rotate_into_plane(Eigen::Matrix<double, K, 1>& h, const Vec<D>& n) {
+  if constexpr (K == D) {
+    const double before = h.squaredNorm();
+    if (before == 0.0) return;
+    h -= h.dot(n) * n;
+    const double after = h.squaredNorm();
+    if (after > 0.0) h *= std::sqrt(before / after);
+  }
+}
+
+/// Evaluates one touching contact and updates its history.
+///   Tangential: xi += v_t dt; F_t = -k_t xi - c_t v_t; |F_t| <= mu F_n, with
+///   xi reset to the slip limit when sliding. Rolling (type C, Ai et al. 2011):
+///   theta += w_roll dt; M = -k_r theta, |M| <= mu_r R* F_n, k_r = 2.25 k_n mu_r^2 R*^2.
+template <int D, class Law>
+inline ContactForce<D> evaluate_contact(const PairParameters& p, const Vec<D>& n, double overlap,
+                                        double arm_i, double arm_j, const Vec<D>& v_rel,
+                                        const AngVec<D>& omega_rel, double m_eff, double r_eff,
+                                        double dt, Vec<D>& xi, AngVec<D>* rolling) {
+  const double vn = v_rel.dot(n);
+  const NormalResponse nr = Law::evaluate(p, overlap, vn, m_eff, r_eff);
+  const double fn = nr.force;
+  Vec<D> force = -fn * n;
+
+  // Tangential spring-dashpot with Coulomb friction.
+  const Vec<D> vt = v_rel - vn * n;
+  rotate_into_plane<D, D>(xi, n);
+  xi += vt * dt;
+  const double kt = nr.tangential_stiffness;
+  const double ct = p.tangential_damping * std::sqrt(m_eff * kt);
+  Vec<D> ft = -kt * xi - ct * vt;
+  const double ft_max = p.friction * fn;
+  const double ft_norm2 = ft.squaredNorm();
+  if (ft_norm2 > ft_max * ft_max) {
+    const double ft_norm = std::sqrt(ft_norm2);
+    ft *= ft_max / ft_norm;
+    xi = kt > 0.0 ? Vec<D>(-(ft + ct * vt) / kt) : Vec<D>::Zero();
+    if (ft_max == 0.0) xi.setZero();
+  }
+  force += ft;
+
+  ContactForce<D> out;
+  out.force_on_i = force;
+  out.normal_force = fn;
+  out.torque_i = cross(Vec<D>(arm_i * n), ft);
+  out.torque_j = cross(Vec<D>(arm_j * n), ft);
+
+  if (rolling != nullptr && p.rolling_friction > 0.0) {
+    AngVec<D> w_roll = omega_rel;
+    if constexpr (D == 3) {
+      w_roll -= w_roll.dot(n) * n;  // twisting is not resisted
+      rotate_into_plane<D, 3>(*rolling, n);
+    }
+    *rolling += w_roll * dt;
+    const double kr = 2.25 * nr.normal_stiffness * p.rolling_friction * p.rolling_friction *
+                      r_eff * r_eff;
+    AngVec<D> m = -kr * *rolling;
+    const double m_max = p.rolling_friction * r_eff * fn;
+    const double m_norm = m.norm();
+    if (m_norm > m_max) {
+      m *= (m_norm > 0.0 ? m_max / m_norm : 0.0);
+      *rolling = kr > 0.0 ? AngVec<D>(-m / kr) : AngVec<D>::Zero();
+    }
+    out.torque_i += m;
+    out.torque_j -= m;
+  }
+  return out;
+}
+
+}  // namespace darcydem

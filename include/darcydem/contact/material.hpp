@@ -1,0 +1,27 @@
+#pragma once
+// Materials and the contact parameters of each pair of materials.
+#include <string>
+#include <vector>
+
+namespace darcydem {
+
+struct Material {
+  std::string name;
+  double density = 0.0;         ///< kg/m^3
+  double youngs_modulus = 0.0;  ///< Pa (Hertz-Mindlin only)
+  double poisson_ratio = 0.0;   ///< - (Hertz-Mindlin only)
+};
+
+enum class NormalLaw { linear, hertz_mindlin };
+
+/// What a scene says about the contact between two materials.
+struct ContactSpec {
+  NormalLaw law = NormalLaw::linear;
+  double normal_stiffness = 0.0;              ///< N/m (linear)
+  double tangential_stiffness_ratio = 1.0;    ///< k_t / k_n (linear)
+  double restitution = 1.0;                   ///< normal coefficient of restitution
+  double friction = 0.0;                      ///< Coulomb coefficient
+  double rolling_friction = 0.0;              ///< mu_r, dimensionless (0: off)
+};
+
+}  // namespace darcydem

@@ -1,0 +1,78 @@
+#pragma once
+// The DEM simulation: owns the particles, materials, walls and neighbour
+// lists, and advances them by velocity Verlet. One step:
+//   1. half kick (v += a dt/2, with damping) and drift (x += v dt)
+//   2. walls move (servo walls update their speed from the last load)
+//   3. neighbour lists rebuilt if anything moved more than half the skin
+//   4. contact forces (one pass over pairs, then each particle gathers its
+//      share in a fixed order), gravity and external forces
+//   5. half kick with the new forces
+#include <cstdint>
+#include <vector>
+
+#include "darcydem/contact/contact_laws.hpp"
+#include "darcydem/contact/material.hpp"
+#include "darcydem/core/vec.hpp"
+#include "darcydem/neighbour/verlet_list.hpp"
+#include "darcydem/particles/particle_data.hpp"
+#include "darcydem/walls/wall.hpp"
+
+namespace darcydem {
+
+struct DampingSettings {
+  double local = 0.0;    ///< Cundall's non-viscous coefficient alpha, 0 <= alpha < 1
+  double viscous = 0.0;  ///< global viscous damping rate beta, 1/s (F = -beta m v)
+};
+
+template <int D>
+class Simulation {
+ public:
+  ParticleData<D> particles;
+  std::vector<Material> materials;
+  ContactTable contact_table;
+  std::vector<Wall<D>> walls;
+  Vec<D> gravity = Vec<D>::Zero();  ///< m/s^2
+  DampingSettings damping;
+  double skin = 0.0;       ///< Verlet skin, m (0: 0.2 x the smallest radius)
+  double time_step = 0.0;  ///< s
+  double time = 0.0;       ///< s
+  std::uint64_t steps = 0;
+
+  /// Chooses the contact law loop, builds the neighbour lists and evaluates
+  /// the initial forces. Call after setting everything up and before step().
+  void prepare();
+  void step();
+
+  /// Critical time step: sqrt(m_min / k_max) for linear contacts, the
+  /// Rayleigh step pi r sqrt(rho/G) / (0.1631 nu + 0.8766) for Hertz.
+  [[nodiscard]] double critical_time_step() const;
+
+  // Diagnostics (deterministic whatever the thread count).
+  [[nodiscard]] double kinetic_energy() const;         ///< J (translational + rotational)
+  [[nodiscard]] double gravitational_energy() const;   ///< J, -sum m g.x
+  [[nodiscard]] std::size_t contact_count() const;     ///< touching pairs incl. walls
+  [[nodiscard]] double mean_coordination() const;      ///< contacts per particle
+  [[nodiscard]] double max_overlap() const;            ///< m
+  [[nodiscard]] double unbalanced_force_ratio() const; ///< mean |F_i| / mean |F_contact|
+  [[nodiscard]] double elastic_energy() const;         ///< J, normal springs of linear contacts
+  [[nodiscard]] const VerletList<D>& pair_list() const { return list_; }
+  [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
+
+ private:
+  template <class Law>
+  void compute_forces_with();
+  void compute_forces();
+  void kick(double half_dt);
+  void drift();
+  void rebuild_if_needed();
+  void rebuild();
+
+  enum class LawChoice { linear, hertz, mixed };
+  LawChoice law_choice_ = LawChoice::linear;
+  bool rolling_ = false;
+  bool prepared_ = false;
+  VerletList<D> list_;
+  WallContactList<D> wall_list_;
+};
+
+}  // namespace darcydem

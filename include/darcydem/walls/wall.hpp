@@ -1,0 +1,68 @@
+#pragma once
+// Infinite plane walls. The normal points into the granular domain; a
+// particle touches the wall when its centre is closer to the plane than its
+// radius. A wall is fixed, moves at a prescribed velocity, or is
+// servo-controlled so that the load the particles put on it approaches a
+// target force.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "darcydem/core/vec.hpp"
+
+namespace darcydem {
+
+enum class WallMotion { fixed, velocity, servo };
+
+struct ServoControl {
+  double target_force = 0.0;  ///< N, compressive load wanted on the wall
+  double gain = 0.0;          ///< m/(s N): wall speed per newton of load error
+  double max_speed = 0.0;     ///< m/s
+};
+
+template <int D>
+struct Wall {
+  std::string name;
+  Vec<D> point = Vec<D>::Zero();   ///< a point of the plane, m
+  Vec<D> normal = Vec<D>::Zero();  ///< unit, pointing into the domain
+  std::uint16_t material = 0;
+  WallMotion motion = WallMotion::fixed;
+  Vec<D> velocity = Vec<D>::Zero();  ///< m/s (velocity mode; servo sets it)
+  ServoControl servo;
+  Vec<D> force = Vec<D>::Zero();     ///< N, force the particles exert on the wall
+  Vec<D> point_at_build = Vec<D>::Zero();
+
+  /// Signed distance of x from the plane, positive on the domain side.
+  [[nodiscard]] double distance(const Vec<D>& x) const { return (x - point).dot(normal); }
+  /// Compressive load on the wall (N): the force's component against the normal.
+  [[nodiscard]] double load() const { return -force.dot(normal); }
+
+  /// Updates the servo velocity from the last load and moves the wall.
+  void advance(double dt) {
+    if (motion == WallMotion::servo) {
+      double speed = servo.gain * (servo.target_force - load());
+      if (speed > servo.max_speed) speed = servo.max_speed;
+      if (speed < -servo.max_speed) speed = -servo.max_speed;
+      velocity = speed * normal;
+    } else if (motion == WallMotion::fixed) {
+      velocity.setZero();
+    }
+    point += velocity * dt;
+  }
+};
+
+/// Particle-wall candidates: for each particle, the walls within its radius
+/// plus the skin, with their contact history (CSR by particle).
+template <int D>
+struct WallContactList {
+  std::vector<std::uint32_t> offset;     ///< N+1
+  std::vector<std::uint16_t> wall;       ///< wall index of each candidate
+  std::vector<Vec<D>> tangential;        ///< tangential history
+  std::vector<AngVec<D>> rolling;        ///< rolling history (empty when unused)
+  std::vector<Vec<D>> force_on_particle; ///< this step's force, N
+
+  void build(const std::vector<Vec<D>>& position, const std::vector<double>& radius,
+             std::vector<Wall<D>>& walls, double skin, bool keep_rolling);
+};
+
+}  // namespace darcydem

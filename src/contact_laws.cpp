@@ -1,0 +1,31 @@
+#include "darcydem/contact/contact_laws.hpp"
+
+#include "darcydem/contact/restitution.hpp"
+
+namespace darcydem {
+
+PairParameters make_pair_parameters(const Material& a, const Material& b, const ContactSpec& spec) {
+  PairParameters p;
+  p.law = spec.law;
+  p.friction = spec.friction;
+  p.rolling_friction = spec.rolling_friction;
+  p.normal_stiffness = spec.normal_stiffness;
+  p.tangential_ratio = spec.tangential_stiffness_ratio;
+  if (spec.law == NormalLaw::hertz_mindlin) {
+    const double ea = a.youngs_modulus;
+    const double eb = b.youngs_modulus;
+    const double na = a.poisson_ratio;
+    const double nb = b.poisson_ratio;
+    p.hertz_modulus = 1.0 / ((1 - na * na) / ea + (1 - nb * nb) / eb);
+    const double ga = ea / (2 * (1 + na));
+    const double gb = eb / (2 * (1 + nb));
+    p.shear_modulus = 1.0 / ((2 - na) / ga + (2 - nb) / gb);
+  }
+  p.normal_damping = damping_for_restitution(spec.law, spec.restitution);
+  // The tangential dashpot uses the damping ratio of a linear oscillator with
+  // the same restitution.
+  p.tangential_damping = damping_for_restitution(NormalLaw::linear, spec.restitution);
+  return p;
+}
+
+}  // namespace darcydem

@@ -1,0 +1,74 @@
+#include "darcydem/neighbour/linked_cells.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace darcydem {
+
+template <int D>
+void LinkedCells<D>::build(const std::vector<Vec<D>>& points, double cell_size) {
+  const std::size_t n = points.size();
+  Vec<D> lo = Vec<D>::Constant(0.0);
+  Vec<D> hi = Vec<D>::Constant(0.0);
+  if (n > 0) {
+    lo = points[0];
+    hi = points[0];
+    for (const auto& p : points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  if (!lo.allFinite() || !hi.allFinite()) {
+    throw std::runtime_error("a particle position is not finite (the simulation blew up)");
+  }
+  // Limit the number of cells to a few per particle, whatever the spread.
+  const double limit = std::max<double>(64.0, 4.0 * static_cast<double>(n));
+  double size = cell_size;
+  for (;;) {
+    double count = 1.0;
+    for (int k = 0; k < D; ++k) count *= std::floor((hi[k] - lo[k]) / size) + 1.0;
+    if (count <= limit) break;
+    size *= 1.5;
+  }
+  origin_ = lo;
+  inv_size_ = 1.0 / size;
+  std::int64_t total = 1;
+  for (int k = 0; k < D; ++k) {
+    dims_[k] = static_cast<int>(std::floor((hi[k] - lo[k]) * inv_size_)) + 1;
+    total *= dims_[k];
+  }
+  start_.assign(static_cast<std::size_t>(total) + 1, 0);
+  cell_index_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<std::uint32_t>(flat(cell_of(points[i])));
+    cell_index_[i] = c;
+    ++start_[c + 1];
+  }
+  for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
+  sorted_.resize(n);
+  std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) sorted_[fill[cell_index_[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+template <int D>
+std::array<int, D> LinkedCells<D>::cell_of(const Vec<D>& x) const {
+  std::array<int, D> c;
+  for (int k = 0; k < D; ++k) {
+    int v = static_cast<int>((x[k] - origin_[k]) * inv_size_);
+    c[k] = std::clamp(v, 0, dims_[k] - 1);
+  }
+  return c;
+}
+
+template <int D>
+std::int64_t LinkedCells<D>::flat(const std::array<int, D>& c) const {
+  std::int64_t f = c[D - 1];
+  for (int k = D - 2; k >= 0; --k) f = f * dims_[k] + c[k];
+  return f;
+}
+
+template class LinkedCells<2>;
+template class LinkedCells<3>;
+
+}  // namespace darcydem

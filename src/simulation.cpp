@@ -1,0 +1,398 @@
+#include "darcydem/simulation/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "darcydem/contact/contact_kernel.hpp"
+#include "darcydem/core/deterministic_sum.hpp"
+
+namespace darcydem {
+
+template <int D>
+void Simulation<D>::prepare() {
+  if (contact_table.materials() != materials.size()) {
+    throw std::logic_error("contact table does not match the materials");
+  }
+  bool any_linear = false;
+  bool any_hertz = false;
+  for (const auto& p : contact_table.all()) {
+    (p.law == NormalLaw::linear ? any_linear : any_hertz) = true;
+  }
+  law_choice_ = (any_linear && any_hertz) ? LawChoice::mixed
+                : any_hertz               ? LawChoice::hertz
+                                          : LawChoice::linear;
+  rolling_ = contact_table.any_rolling();
+  if (skin <= 0.0) {
+    double r_min = std::numeric_limits<double>::max();
+    for (double r : particles.radius) r_min = std::min(r_min, r);
+    skin = particles.size() > 0 ? 0.2 * r_min : 1e-3;
+  }
+  if (time_step <= 0.0) throw std::logic_error("time step not set");
+  rebuild();
+  compute_forces();
+  prepared_ = true;
+}
+
+template <int D>
+void Simulation<D>::step() {
+  if (!prepared_) prepare();
+  kick(0.5 * time_step);
+  drift();
+  for (auto& w : walls) w.advance(time_step);
+  time += time_step;
+  rebuild_if_needed();
+  compute_forces();
+  kick(0.5 * time_step);
+  ++steps;
+}
+
+template <int D>
+void Simulation<D>::rebuild() {
+  list_.build(particles.position, particles.radius, skin, rolling_);
+  wall_list_.build(particles.position, particles.radius, walls, skin, rolling_);
+}
+
+template <int D>
+void Simulation<D>::rebuild_if_needed() {
+  const double moved = list_.max_displacement(particles.position);
+  double wall_moved = 0.0;
+  for (const auto& w : walls) {
+    wall_moved = std::max(wall_moved, std::abs((w.point - w.point_at_build).dot(w.normal)));
+  }
+  if (2.0 * moved > skin || moved + wall_moved > skin) rebuild();
+}
+
+template <int D>
+void Simulation<D>::kick(double half_dt) {
+  const auto n = static_cast<std::int64_t>(particles.size());
+  const double alpha = damping.local;
+  const double beta = damping.viscous;
+  auto& p = particles;
+#pragma omp parallel for schedule(static) if (n > 2000)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (p.fixed[i] != 0) continue;
+    Vec<D> f = p.force[i];
+    AngVec<D> t = p.torque[i];
+    if (alpha > 0.0) {
+      // Cundall's local damping: a force against the velocity, proportional
+      // to the unbalanced force, component by component.
+      for (int k = 0; k < D; ++k) {
+        const double v = p.velocity[i][k];
+        f[k] -= alpha * std::abs(p.force[i][k]) * (v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0));
+      }
+      for (int k = 0; k < rotation_dim<D>; ++k) {
+        const double w = p.angular_velocity[i][k];
+        t[k] -= alpha * std::abs(p.torque[i][k]) * (w > 0.0 ? 1.0 : (w < 0.0 ? -1.0 : 0.0));
+      }
+    }
+    Vec<D> a = f * p.inv_mass[i];
+    AngVec<D> alpha_rot = t * p.inv_inertia[i];
+    if (beta > 0.0) {
+      a -= beta * p.velocity[i];
+      alpha_rot -= beta * p.angular_velocity[i];
+    }
+    p.velocity[i] += a * half_dt;
+    p.angular_velocity[i] += alpha_rot * half_dt;
+  }
+}
+
+template <int D>
+void Simulation<D>::drift() {
+  const auto n = static_cast<std::int64_t>(particles.size());
+  const double dt = time_step;
+  auto& p = particles;
+#pragma omp parallel for schedule(static) if (n > 2000)
+  for (std::int64_t i = 0; i < n; ++i) p.position[i] += p.velocity[i] * dt;
+}
+
+template <int D>
+void Simulation<D>::compute_forces() {
+  switch (law_choice_) {
+    case LawChoice::linear:
+      compute_forces_with<LinearSpringDashpot>();
+      break;
+    case LawChoice::hertz:
+      compute_forces_with<HertzMindlin>();
+      break;
+    case LawChoice::mixed:
+      compute_forces_with<MixedNormalLaw>();
+      break;
+  }
+}
+
+template <int D>
+template <class Law>
+void Simulation<D>::compute_forces_with() {
+  auto& p = particles;
+  auto& L = list_;
+  auto& W = wall_list_;
+  const auto n = static_cast<std::int64_t>(p.size());
+  const double dt = time_step;
+  const bool rolling = rolling_;
+
+  // Pass 1: every pair once. Particle i keeps its share; j's share is stored
+  // with the pair. Wall contacts of i are done here too.
+#pragma omp parallel for schedule(dynamic, 512) if (n > 2000)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Vec<D> xi = p.position[i];
+    const double ri = p.radius[i];
+    Vec<D> f = Vec<D>::Zero();
+    AngVec<D> t = AngVec<D>::Zero();
+    for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
+      const std::uint32_t j = L.neighbour[k];
+      const Vec<D> d = p.position[j] - xi;
+      const double reach = ri + p.radius[j];
+      const double dist2 = d.squaredNorm();
+      const double inv_m = p.inv_mass[i] + p.inv_mass[j];
+      if (dist2 >= reach * reach || inv_m == 0.0) {
+        L.tangential[k].setZero();
+        if (rolling) L.rolling[k].setZero();
+        L.force_on_j[k].setZero();
+        L.torque_on_j[k].setZero();
+        continue;
+      }
+      const double dist = std::sqrt(dist2);
+      const Vec<D> nrm = d / dist;
+      const double overlap = reach - dist;
+      const double arm_i = ri - 0.5 * overlap;
+      const double arm_j = p.radius[j] - 0.5 * overlap;
+      const Vec<D> v_rel = p.velocity[i] + cross(p.angular_velocity[i], Vec<D>(arm_i * nrm)) -
+                           p.velocity[j] - cross(p.angular_velocity[j], Vec<D>(-arm_j * nrm));
+      const AngVec<D> w_rel = p.angular_velocity[i] - p.angular_velocity[j];
+      const double r_eff = ri * p.radius[j] / reach;
+      const auto c = evaluate_contact<D, Law>(contact_table(p.material[i], p.material[j]), nrm,
+                                              overlap, arm_i, arm_j, v_rel, w_rel, 1.0 / inv_m,
+                                              r_eff, dt, L.tangential[k],
+                                              rolling ? &L.rolling[k] : nullptr);
+      f += c.force_on_i;
+      t += c.torque_i;
+      L.force_on_j[k] = -c.force_on_i;
+      L.torque_on_j[k] = c.torque_j;
+    }
+    for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
+      const Wall<D>& w = walls[W.wall[k]];
+      const double gap = w.distance(xi);
+      const double overlap = ri - gap;
+      if (overlap <= 0.0 || p.inv_mass[i] == 0.0) {
+        W.tangential[k].setZero();
+        if (rolling) W.rolling[k].setZero();
+        W.force_on_particle[k].setZero();
+        continue;
+      }
+      const Vec<D> nrm = -w.normal;
+      const double arm_i = ri - overlap;
+      const Vec<D> v_rel =
+          p.velocity[i] + cross(p.angular_velocity[i], Vec<D>(arm_i * nrm)) - w.velocity;
+      const auto c = evaluate_contact<D, Law>(contact_table(p.material[i], w.material), nrm,
+                                              overlap, arm_i, 0.0, v_rel, p.angular_velocity[i],
+                                              1.0 / p.inv_mass[i], ri, dt, W.tangential[k],
+                                              rolling ? &W.rolling[k] : nullptr);
+      f += c.force_on_i;
+      t += c.torque_i;
+      W.force_on_particle[k] = c.force_on_i;
+    }
+    p.force[i] = f;
+    p.torque[i] = t;
+  }
+
+  // Pass 2: each particle adds the shares stored with the pairs, in order,
+  // then gravity and external forces.
+  const Vec<D> g = gravity;
+#pragma omp parallel for schedule(static) if (n > 2000)
+  for (std::int64_t j = 0; j < n; ++j) {
+    Vec<D> f = Vec<D>::Zero();
+    AngVec<D> t = AngVec<D>::Zero();
+    for (std::uint32_t q = L.reverse_offset[j]; q < L.reverse_offset[j + 1]; ++q) {
+      const std::uint32_t k = L.reverse_pair[q];
+      f += L.force_on_j[k];
+      t += L.torque_on_j[k];
+    }
+    f += p.external_force[j];
+    if (p.inv_mass[j] > 0.0) f += g / p.inv_mass[j];
+    p.force[j] += f;
+    p.torque[j] += t;
+  }
+
+  for (auto& w : walls) w.force.setZero();
+  for (std::int64_t i = 0; i < n; ++i) {
+    for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
+      walls[W.wall[k]].force -= W.force_on_particle[k];
+    }
+  }
+}
+
+template <int D>
+double Simulation<D>::critical_time_step() const {
+  const std::size_t nm = materials.size();
+  std::vector<double> m_min(nm, std::numeric_limits<double>::infinity());
+  std::vector<double> r_min(nm, std::numeric_limits<double>::infinity());
+  std::vector<bool> used(nm, false);
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const auto mat = particles.material[i];
+    used[mat] = true;
+    r_min[mat] = std::min(r_min[mat], particles.radius[i]);
+    if (particles.inv_mass[i] > 0.0) m_min[mat] = std::min(m_min[mat], 1.0 / particles.inv_mass[i]);
+  }
+  std::vector<bool> wall_used(nm, false);
+  for (const auto& w : walls) wall_used[w.material] = true;
+  double dt = std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < nm; ++a) {
+    if (!used[a] || !std::isfinite(m_min[a])) continue;
+    for (std::size_t b = 0; b < nm; ++b) {
+      if (!used[b] && !wall_used[b]) continue;
+      const PairParameters& pp = contact_table(a, b);
+      if (pp.law == NormalLaw::linear) {
+        dt = std::min(dt, std::sqrt(m_min[a] / pp.normal_stiffness));
+      } else {
+        const Material& m = materials[a];
+        const double shear = m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
+        const double rayleigh = std::numbers::pi * r_min[a] * std::sqrt(m.density / shear) /
+                                (0.1631 * m.poisson_ratio + 0.8766);
+        dt = std::min(dt, rayleigh);
+      }
+    }
+  }
+  return dt;
+}
+
+template <int D>
+double Simulation<D>::kinetic_energy() const {
+  const auto& p = particles;
+  return deterministic_sum(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
+    if (p.inv_mass[i] == 0.0) return 0.0;
+    return 0.5 * p.velocity[i].squaredNorm() / p.inv_mass[i] +
+           0.5 * p.angular_velocity[i].squaredNorm() / p.inv_inertia[i];
+  });
+}
+
+template <int D>
+double Simulation<D>::gravitational_energy() const {
+  const auto& p = particles;
+  return deterministic_sum(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
+    if (p.inv_mass[i] == 0.0) return 0.0;
+    return -gravity.dot(p.position[i]) / p.inv_mass[i];
+  });
+}
+
+namespace {
+template <int D, class F>
+void for_each_touching(const ParticleData<D>& p, const VerletList<D>& L,
+                       const std::vector<Wall<D>>& walls, F&& f) {
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
+      const std::uint32_t j = L.neighbour[k];
+      const double overlap = p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm();
+      if (overlap > 0.0) f(i, j, k, overlap, false);
+    }
+  }
+  (void)walls;
+}
+}  // namespace
+
+template <int D>
+std::size_t Simulation<D>::contact_count() const {
+  std::size_t count = 0;
+  for_each_touching(particles, list_, walls,
+                    [&](std::size_t, std::uint32_t, std::uint32_t, double, bool) { ++count; });
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
+      if (walls[wall_list_.wall[k]].distance(particles.position[i]) < particles.radius[i]) ++count;
+    }
+  }
+  return count;
+}
+
+template <int D>
+double Simulation<D>::mean_coordination() const {
+  if (particles.size() == 0) return 0.0;
+  std::size_t pp = 0;
+  for_each_touching(particles, list_, walls,
+                    [&](std::size_t, std::uint32_t, std::uint32_t, double, bool) { ++pp; });
+  const std::size_t all = contact_count();
+  return static_cast<double>(2 * pp + (all - pp)) / static_cast<double>(particles.size());
+}
+
+template <int D>
+double Simulation<D>::max_overlap() const {
+  double m = 0.0;
+  for_each_touching(particles, list_, walls,
+                    [&](std::size_t, std::uint32_t, std::uint32_t, double o, bool) { m = std::max(m, o); });
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
+      m = std::max(m, particles.radius[i] - walls[wall_list_.wall[k]].distance(particles.position[i]));
+    }
+  }
+  return m;
+}
+
+template <int D>
+double Simulation<D>::unbalanced_force_ratio() const {
+  const auto& p = particles;
+  double resultant = 0.0;
+  std::size_t free_count = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.inv_mass[i] == 0.0) continue;
+    resultant += p.force[i].norm();
+    ++free_count;
+  }
+  double contact = 0.0;
+  std::size_t contacts = 0;
+  for (const auto& f : list_.force_on_j) {
+    const double m = f.norm();
+    if (m > 0.0) {
+      contact += m;
+      ++contacts;
+    }
+  }
+  for (const auto& f : wall_list_.force_on_particle) {
+    const double m = f.norm();
+    if (m > 0.0) {
+      contact += m;
+      ++contacts;
+    }
+  }
+  if (free_count == 0) return 0.0;
+  if (contacts == 0) return std::numeric_limits<double>::infinity();
+  return (resultant / static_cast<double>(free_count)) / (contact / static_cast<double>(contacts));
+}
+
+template <int D>
+double Simulation<D>::elastic_energy() const {
+  double e = 0.0;
+  auto normal_energy = [&](const PairParameters& pp, double overlap, double r_eff) {
+    if (pp.law == NormalLaw::linear) return 0.5 * pp.normal_stiffness * overlap * overlap;
+    return 0.4 * (4.0 / 3.0) * pp.hertz_modulus * std::sqrt(r_eff) * std::pow(overlap, 2.5);
+  };
+  const auto& p = particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::uint32_t k = list_.row_offset[i]; k < list_.row_offset[i + 1]; ++k) {
+      const std::uint32_t j = list_.neighbour[k];
+      const double reach = p.radius[i] + p.radius[j];
+      const double overlap = reach - (p.position[j] - p.position[i]).norm();
+      if (overlap <= 0.0) continue;
+      const auto& pp = contact_table(p.material[i], p.material[j]);
+      e += normal_energy(pp, overlap, p.radius[i] * p.radius[j] / reach);
+      if (pp.law == NormalLaw::linear) {
+        e += 0.5 * pp.tangential_ratio * pp.normal_stiffness * list_.tangential[k].squaredNorm();
+      }
+    }
+    for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
+      const auto& w = walls[wall_list_.wall[k]];
+      const double overlap = p.radius[i] - w.distance(p.position[i]);
+      if (overlap <= 0.0) continue;
+      const auto& pp = contact_table(p.material[i], w.material);
+      e += normal_energy(pp, overlap, p.radius[i]);
+      if (pp.law == NormalLaw::linear) {
+        e += 0.5 * pp.tangential_ratio * pp.normal_stiffness * wall_list_.tangential[k].squaredNorm();
+      }
+    }
+  }
+  return e;
+}
+
+template class Simulation<2>;
+template class Simulation<3>;
+
+}  // namespace darcydem

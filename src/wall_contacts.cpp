@@ -1,0 +1,47 @@
+#include "darcydem/walls/wall.hpp"
+
+namespace darcydem {
+
+template <int D>
+void WallContactList<D>::build(const std::vector<Vec<D>>& position,
+                               const std::vector<double>& radius, std::vector<Wall<D>>& walls,
+                               double skin, bool keep_rolling) {
+  const std::size_t n = position.size();
+  std::vector<std::uint32_t> next_offset(n + 1, 0);
+  std::vector<std::uint16_t> next_wall;
+  std::vector<Vec<D>> next_tangential;
+  std::vector<AngVec<D>> next_rolling;
+  const bool have_old = offset.size() == n + 1;
+  const bool old_rolling = keep_rolling && rolling.size() == wall.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      if (walls[w].distance(position[i]) < radius[i] + skin) {
+        next_wall.push_back(static_cast<std::uint16_t>(w));
+        Vec<D> t = Vec<D>::Zero();
+        AngVec<D> r = AngVec<D>::Zero();
+        if (have_old) {
+          for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
+            if (wall[k] == w) {
+              t = tangential[k];
+              if (old_rolling) r = rolling[k];
+            }
+          }
+        }
+        next_tangential.push_back(t);
+        if (keep_rolling) next_rolling.push_back(r);
+      }
+    }
+    next_offset[i + 1] = static_cast<std::uint32_t>(next_wall.size());
+  }
+  offset = std::move(next_offset);
+  wall = std::move(next_wall);
+  tangential = std::move(next_tangential);
+  rolling = std::move(next_rolling);
+  force_on_particle.assign(wall.size(), Vec<D>::Zero());
+  for (auto& w : walls) w.point_at_build = w.point;
+}
+
+template struct WallContactList<2>;
+template struct WallContactList<3>;
+
+}  // namespace darcydem
