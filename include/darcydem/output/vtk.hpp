@@ -1,0 +1,28 @@
+#pragma once
+// VTK XML output: particle snapshots as .vtu (points with radius, velocity,
+// angular velocity, force, id) and a .pvd series that ParaView opens. The
+// series file is rewritten after every snapshot, so it stays valid when a
+// run is interrupted.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "darcydem/particles/particle_data.hpp"
+
+namespace darcydem {
+
+template <int D>
+void write_particles_vtu(const std::string& path, const ParticleData<D>& particles);
+
+class PvdSeries {
+ public:
+  explicit PvdSeries(std::string path) : path_(std::move(path)) {}
+  /// Adds a dataset (file name relative to the .pvd) at a time and rewrites the series.
+  void add(double time, const std::string& file);
+
+ private:
+  std::string path_;
+  std::vector<std::pair<double, std::string>> entries_;
+};
+
+}  // namespace darcydem

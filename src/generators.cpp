@@ -1,0 +1,209 @@
+#include "darcydem/generation/generators.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+namespace darcydem {
+
+double RadiusDistribution::largest() const {
+  switch (kind) {
+    case Kind::constant: return value;
+    case Kind::uniform: return max;
+    case Kind::table: return *std::max_element(radii.begin(), radii.end());
+  }
+  return value;
+}
+
+double RadiusDistribution::sample(std::mt19937_64& rng) const {
+  switch (kind) {
+    case Kind::constant: return value;
+    case Kind::uniform: return min + (max - min) * unit_random(rng);
+    case Kind::table: {
+      const double u = unit_random(rng);
+      double acc = 0.0;
+      for (std::size_t k = 0; k < radii.size(); ++k) {
+        acc += fractions[k];
+        if (u < acc) return radii[k];
+      }
+      return radii.back();
+    }
+  }
+  return value;
+}
+
+template <int D>
+Packing<D> lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spacing, double radius) {
+  Packing<D> out;
+  std::array<int, D> n{};
+  for (int k = 0; k < D; ++k) {
+    const double span = hi[k] - lo[k] - 2.0 * radius;
+    n[k] = span < 0.0 ? 0 : static_cast<int>(std::floor(span / spacing + 1e-9)) + 1;
+  }
+  std::array<int, D> idx{};
+  const std::int64_t total = [&] {
+    std::int64_t t = 1;
+    for (int k = 0; k < D; ++k) t *= n[k];
+    return t;
+  }();
+  for (std::int64_t c = 0; c < total; ++c) {
+    std::int64_t rest = c;
+    Vec<D> x;
+    for (int k = 0; k < D; ++k) {
+      idx[k] = static_cast<int>(rest % n[k]);
+      rest /= n[k];
+      x[k] = lo[k] + radius + idx[k] * spacing;
+    }
+    out.position.push_back(x);
+    out.radius.push_back(radius);
+  }
+  return out;
+}
+
+template <int D>
+Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, double radius,
+                          double gap) {
+  Packing<D> out;
+  const Vec<D> a = axis.normalized();
+  for (int i = 0; i < count; ++i) {
+    out.position.push_back(base + a * (radius + i * (2.0 * radius + gap)));
+    out.radius.push_back(radius);
+  }
+  return out;
+}
+
+template <int D>
+Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count,
+                          const RadiusDistribution& radii, std::uint64_t seed,
+                          std::int64_t max_attempts) {
+  std::mt19937_64 rng(seed);
+  Packing<D> out;
+  const double r_max = radii.largest();
+  const double cell = 2.0 * r_max;
+  std::array<std::int64_t, D> dims{};
+  for (int k = 0; k < D; ++k) {
+    dims[k] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((hi[k] - lo[k]) / cell)));
+  }
+  auto cell_of = [&](const Vec<D>& x, int k) {
+    return std::clamp<std::int64_t>(static_cast<std::int64_t>((x[k] - lo[k]) / cell), 0, dims[k] - 1);
+  };
+  auto flat = [&](const std::array<std::int64_t, D>& c) {
+    std::int64_t f = c[D - 1];
+    for (int k = D - 2; k >= 0; --k) f = f * dims[k] + c[k];
+    return f;
+  };
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> grid;
+  for (std::int64_t made = 0; made < count; ++made) {
+    const double r = radii.sample(rng);
+    bool placed = false;
+    for (std::int64_t attempt = 0; attempt < max_attempts && !placed; ++attempt) {
+      Vec<D> x;
+      for (int k = 0; k < D; ++k) x[k] = lo[k] + r + (hi[k] - lo[k] - 2.0 * r) * unit_random(rng);
+      std::array<std::int64_t, D> c{};
+      for (int k = 0; k < D; ++k) c[k] = cell_of(x, k);
+      bool free = true;
+      std::array<std::int64_t, D> o{};
+      const int neighbours = (D == 2) ? 9 : 27;
+      for (int m = 0; m < neighbours && free; ++m) {
+        int rest = m;
+        bool inside = true;
+        for (int k = 0; k < D; ++k) {
+          o[k] = c[k] + (rest % 3) - 1;
+          rest /= 3;
+          inside = inside && o[k] >= 0 && o[k] < dims[k];
+        }
+        if (!inside) continue;
+        auto it = grid.find(flat(o));
+        if (it == grid.end()) continue;
+        for (std::uint32_t j : it->second) {
+          const double reach = r + out.radius[j];
+          if ((out.position[j] - x).squaredNorm() < reach * reach) {
+            free = false;
+            break;
+          }
+        }
+      }
+      if (free) {
+        grid[flat(c)].push_back(static_cast<std::uint32_t>(out.position.size()));
+        out.position.push_back(x);
+        out.radius.push_back(r);
+        placed = true;
+      }
+    }
+    if (!placed) {
+      throw std::runtime_error(fmt::format(
+          "random packing: no room for particle {} of {} after {} attempts (the box is too full; "
+          "enlarge it, reduce the count, or raise max_attempts)",
+          made + 1, count, max_attempts));
+    }
+  }
+  return out;
+}
+
+template <int D>
+Packing<D> read_packing_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot open the particle file", path));
+  Packing<D> out;
+  std::string line;
+  int line_no = 0;
+  bool header = true;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty() || line[0] == '#') continue;
+    std::stringstream ss(line);
+    std::string cell;
+    std::vector<std::string> cells;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    if (header) {
+      header = false;
+      const std::string want = D == 2 ? "x,y,radius" : "x,y,z,radius";
+      std::string got;
+      for (auto& c : cells) {
+        c.erase(std::remove_if(c.begin(), c.end(), ::isspace), c.end());
+        got += (got.empty() ? "" : ",") + c;
+      }
+      if (got != want) {
+        throw std::runtime_error(
+            fmt::format("{}:{}: the header must be '{}', got '{}'", path, line_no, want, got));
+      }
+      continue;
+    }
+    if (cells.size() != D + 1) {
+      throw std::runtime_error(
+          fmt::format("{}:{}: expected {} comma-separated numbers, got {}", path, line_no, D + 1, cells.size()));
+    }
+    Vec<D> x;
+    double r = 0.0;
+    try {
+      for (int k = 0; k < D; ++k) x[k] = std::stod(cells[k]);
+      r = std::stod(cells[D]);
+    } catch (const std::exception&) {
+      throw std::runtime_error(fmt::format("{}:{}: not a number in '{}'", path, line_no, line));
+    }
+    if (!(r > 0.0) || !x.allFinite()) {
+      throw std::runtime_error(fmt::format("{}:{}: radius must be > 0 and coordinates finite", path, line_no));
+    }
+    out.position.push_back(x);
+    out.radius.push_back(r);
+  }
+  if (header) throw std::runtime_error(fmt::format("{}: the file is empty", path));
+  return out;
+}
+
+#define DARCYDEM_INSTANTIATE(D)                                                                  \
+  template Packing<D> lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);        \
+  template Packing<D> column_packing<D>(const Vec<D>&, const Vec<D>&, int, double, double);    \
+  template Packing<D> random_packing<D>(const Vec<D>&, const Vec<D>&, std::int64_t,           \
+                                        const RadiusDistribution&, std::uint64_t, std::int64_t); \
+  template Packing<D> read_packing_csv<D>(const std::string&);
+DARCYDEM_INSTANTIATE(2)
+DARCYDEM_INSTANTIATE(3)
+#undef DARCYDEM_INSTANTIATE
+
+}  // namespace darcydem

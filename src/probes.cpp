@@ -1,0 +1,40 @@
+#include "darcydem/output/probes.hpp"
+
+namespace darcydem {
+
+template <int D>
+std::size_t topmost_particle(const ParticleData<D>& particles) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < particles.size(); ++i) {
+    if (particles.position[i][D - 1] > particles.position[best][D - 1]) best = i;
+  }
+  return best;
+}
+
+template <int D>
+double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim) {
+  auto pick = [&](const Vec<D>& v) { return probe.component < 0 ? v.norm() : v[probe.component]; };
+  const auto& p = sim.particles;
+  switch (probe.quantity) {
+    case ProbeQuantity::particle_position:
+    case ProbeQuantity::particle_velocity: {
+      const std::size_t i = probe.particle < 0 ? topmost_particle(p) : static_cast<std::size_t>(probe.particle);
+      return pick(probe.quantity == ProbeQuantity::particle_position ? p.position[i] : p.velocity[i]);
+    }
+    case ProbeQuantity::wall_position: return pick(sim.walls[probe.wall].point);
+    case ProbeQuantity::wall_force: return pick(sim.walls[probe.wall].force);
+    case ProbeQuantity::kinetic_energy: return sim.kinetic_energy();
+    case ProbeQuantity::contact_count: return static_cast<double>(sim.contact_count());
+    case ProbeQuantity::coordination: return sim.mean_coordination();
+    case ProbeQuantity::max_overlap: return sim.max_overlap();
+    case ProbeQuantity::unbalanced_force: return sim.unbalanced_force_ratio();
+  }
+  return 0.0;
+}
+
+template double evaluate_probe<2>(const ProbeSpec&, const Simulation<2>&);
+template double evaluate_probe<3>(const ProbeSpec&, const Simulation<3>&);
+template std::size_t topmost_particle<2>(const ParticleData<2>&);
+template std::size_t topmost_particle<3>(const ParticleData<3>&);
+
+}  // namespace darcydem

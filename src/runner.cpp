@@ -1,0 +1,213 @@
+#include "darcydem/simulation/runner.hpp"
+
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "darcydem/output/probes.hpp"
+#include "darcydem/output/vtk.hpp"
+#include "darcydem/version.hpp"
+
+namespace darcydem {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      out += fmt::format("\\u{:04x}", static_cast<int>(c));
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+template <int D>
+void apply_stage(Simulation<D>& sim, const Stage<D>& stage) {
+  if (stage.gravity) sim.gravity = *stage.gravity;
+  if (stage.local_damping) sim.damping.local = *stage.local_damping;
+  if (stage.viscous_damping) sim.damping.viscous = *stage.viscous_damping;
+  for (const auto& c : stage.walls) {
+    auto& w = sim.walls[c.wall];
+    w.motion = c.motion;
+    w.velocity = c.motion == WallMotion::velocity ? c.velocity : Vec<D>::Zero();
+    w.servo = c.servo;
+  }
+}
+
+template <int D>
+bool stop_condition_met(const Simulation<D>& sim, const Stage<D>& stage) {
+  if (stage.kinetic_energy_below && sim.kinetic_energy() < *stage.kinetic_energy_below) return true;
+  if (stage.unbalanced_force_below && sim.unbalanced_force_ratio() < *stage.unbalanced_force_below) return true;
+  return false;
+}
+
+class Progress {
+ public:
+  explicit Progress(const RunOptions& o) : opt_(o), start_(Clock::now()), last_(start_) {}
+  void update(const std::string& stage, double t, double t_end, std::uint64_t steps, bool force = false) {
+    if (opt_.log == nullptr) return;
+    const auto now = Clock::now();
+    const double since = std::chrono::duration<double>(now - last_).count();
+    const double every = opt_.terminal ? 0.2 : opt_.progress_every;
+    if (!force && since < every) return;
+    const double elapsed = std::chrono::duration<double>(now - last_).count();
+    const double rate = elapsed > 0 ? static_cast<double>(steps - last_steps_) / elapsed : 0.0;
+    const double sim_rate = elapsed > 0 ? (t - last_t_) / elapsed : 0.0;
+    const double eta = sim_rate > 0 ? (t_end - t) / sim_rate : 0.0;
+    last_ = now;
+    last_steps_ = steps;
+    last_t_ = t;
+    if (opt_.terminal) {
+      const int width = 30;
+      const double frac = t_end > 0 ? std::min(1.0, t / t_end) : 1.0;
+      const int filled = static_cast<int>(frac * width);
+      *opt_.log << fmt::format("\r{:<12} [{}{}] t = {:.4g} s  {:.3g} steps/s  ETA {:.0f} s   ",
+                               stage, std::string(filled, '#'), std::string(width - filled, '.'), t,
+                               rate, eta)
+                << std::flush;
+    } else {
+      *opt_.log << fmt::format("stage {}: t = {:.6g} s of {:.6g} s, {} steps, {:.3g} steps/s, ETA {:.0f} s\n",
+                               stage, t, t_end, steps, rate, eta)
+                << std::flush;
+    }
+  }
+  void end_line() {
+    if (opt_.log != nullptr && opt_.terminal) *opt_.log << "\n";
+  }
+
+ private:
+  const RunOptions& opt_;
+  Clock::time_point start_;
+  Clock::time_point last_;
+  std::uint64_t last_steps_ = 0;
+  double last_t_ = 0.0;
+};
+
+}  // namespace
+
+bool output_dir_is_free(const std::string& dir) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return true;
+  return fs::is_directory(dir, ec) && fs::is_empty(dir, ec);
+}
+
+template <int D>
+RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
+  auto& sim = scene.simulation;
+  const fs::path out = options.out_dir;
+  fs::create_directories(out);
+  std::ofstream probes(out / "probes.csv");
+  if (!probes) throw std::runtime_error(fmt::format("{}: cannot write probes.csv", out.string()));
+  probes << "time";
+  for (const auto& p : scene.output.probes) probes << "," << p.name;
+  probes << "\n";
+  PvdSeries series((out / "particles.pvd").string());
+  int snapshot_index = 0;
+  auto write_probes = [&] {
+    probes << fmt::format("{:.10g}", sim.time);
+    for (const auto& p : scene.output.probes) probes << fmt::format(",{:.10g}", evaluate_probe(p, sim));
+    probes << "\n";
+  };
+  auto write_snapshot = [&] {
+    const std::string name = fmt::format("particles_{:05d}.vtu", snapshot_index++);
+    write_particles_vtu<D>((out / name).string(), sim.particles);
+    series.add(sim.time, name);
+  };
+
+  RunSummary summary;
+  const auto start = Clock::now();
+  Progress progress(options);
+  // The first stage's settings apply from the start.
+  if (!scene.stages.empty()) apply_stage(sim, scene.stages.front());
+  sim.prepare();
+  write_probes();
+  write_snapshot();
+  const double dt = sim.time_step;
+  double next_probe = sim.time + scene.output.probe_interval;
+  double next_snapshot = scene.output.snapshot_interval > 0 ? sim.time + scene.output.snapshot_interval : 1e300;
+  if (options.log != nullptr) {
+    *options.log << fmt::format("darcydem {}: {} particles, {}D, time step {:.4g} s (critical {:.4g} s)\n",
+                                version_string, sim.particles.size(), D, dt, sim.critical_time_step());
+  }
+
+  for (const auto& stage : scene.stages) {
+    apply_stage(sim, stage);
+    const auto n_steps = static_cast<std::uint64_t>(std::max(1.0, std::round(stage.duration / dt)));
+    const double t_end = sim.time + static_cast<double>(n_steps) * dt;
+    bool stopped_early = false;
+    for (std::uint64_t s = 0; s < n_steps; ++s) {
+      sim.step();
+      if (sim.time >= next_probe - 0.5 * dt) {
+        write_probes();
+        next_probe += scene.output.probe_interval;
+        if (next_probe < sim.time) next_probe = sim.time + scene.output.probe_interval;
+      }
+      if (sim.time >= next_snapshot - 0.5 * dt) {
+        write_snapshot();
+        next_snapshot += scene.output.snapshot_interval;
+      }
+      if ((s + 1) % static_cast<std::uint64_t>(stage.check_interval) == 0 && stop_condition_met(sim, stage)) {
+        stopped_early = true;
+        break;
+      }
+      if ((s & 255U) == 0) {
+        if (options.interrupt != nullptr && options.interrupt->load()) {
+          summary.interrupted = true;
+          break;
+        }
+        progress.update(stage.name, sim.time, t_end, sim.steps);
+      }
+    }
+    progress.update(stage.name, sim.time, t_end, sim.steps, true);
+    progress.end_line();
+    write_probes();
+    write_snapshot();
+    if (summary.interrupted) break;
+    summary.stages_completed.push_back(stage.name);
+    if (options.log != nullptr && stopped_early) {
+      *options.log << fmt::format("stage {}: stop condition met at t = {:.6g} s\n", stage.name, sim.time);
+    }
+  }
+  probes.flush();
+
+  summary.steps = sim.steps;
+  summary.simulated_time = sim.time;
+  summary.wall_time = std::chrono::duration<double>(Clock::now() - start).count();
+  std::ofstream json(out / "run.json");
+  std::string stages;
+  for (const auto& s : summary.stages_completed) stages += (stages.empty() ? "" : ", ") + json_string(s);
+  json << "{\n"
+       << fmt::format("  \"version\": {},\n", json_string(version_string))
+       << fmt::format("  \"scene\": {},\n", json_string(scene.file))
+       << fmt::format("  \"scene_hash\": \"fnv1a64:{}\",\n", scene.text_hash)
+       << fmt::format("  \"dimension\": {},\n", D)
+       << fmt::format("  \"particles\": {},\n", sim.particles.size())
+       << fmt::format("  \"time_step\": {:.17g},\n", dt)
+       << fmt::format("  \"steps\": {},\n", summary.steps)
+       << fmt::format("  \"simulated_time\": {:.17g},\n", summary.simulated_time)
+       << fmt::format("  \"wall_time\": {:.6f},\n", summary.wall_time)
+       << fmt::format("  \"threads\": {},\n", omp_get_max_threads())
+       << fmt::format("  \"status\": \"{}\",\n", summary.interrupted ? "interrupted" : "completed")
+       << fmt::format("  \"stages_completed\": [{}]\n", stages) << "}\n";
+  return summary;
+}
+
+template RunSummary run_scene<2>(Scene<2>&, const RunOptions&);
+template RunSummary run_scene<3>(Scene<3>&, const RunOptions&);
+
+}  // namespace darcydem

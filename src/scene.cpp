@@ -1,0 +1,505 @@
+#include "darcydem/scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "darcydem/contact/contact_laws.hpp"
+#include "darcydem/generation/generators.hpp"
+#include "darcydem/neighbour/linked_cells.hpp"
+#include "darcydem/scene/toml_reader.hpp"
+
+namespace darcydem {
+namespace {
+
+const std::vector<std::string> kTopLevel = {"simulation", "material", "contact", "wall",
+                                            "particles",  "output",   "probe",   "stage"};
+
+auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+auto non_negative = [](double v) { return v >= 0.0 && std::isfinite(v); };
+
+template <int D>
+Vec<D> to_vec(const std::vector<double>& v) {
+  Vec<D> out;
+  for (int k = 0; k < D; ++k) out[k] = v[k];
+  return out;
+}
+
+/// Iterates an array of tables, giving a reader for each.
+template <class F>
+void for_each_table(TableReader& parent, std::string_view key, const std::string& label, F&& f) {
+  const toml::array* arr = parent.optional_array(key);
+  if (arr == nullptr) return;
+  int index = 0;
+  for (const auto& node : *arr) {
+    ++index;
+    const toml::table* t = node.as_table();
+    if (t == nullptr) parent.fail(key, fmt::format("must be an array of tables ([[{}]])", key));
+    TableReader r(*t, fmt::format("[[{}]] #{}", label, index), parent.file());
+    f(r, index);
+    r.finish();
+  }
+}
+
+struct MaterialRef {
+  std::map<std::string, std::uint16_t> index;
+  std::vector<std::string> names;
+  std::uint16_t lookup(TableReader& r, std::string_view key, const std::string& name) const {
+    auto it = index.find(name);
+    if (it == index.end()) {
+      std::string hint;
+      if (auto s = did_you_mean(name, names); !s.empty()) hint = fmt::format(" (did you mean \"{}\"?)", s);
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + ("\"" + n + "\"");
+      r.fail(key, fmt::format("no material named \"{}\"{}; defined: {}", name, hint, list));
+    }
+    return it->second;
+  }
+};
+
+RadiusDistribution read_radius(TableReader& r) {
+  RadiusDistribution d;
+  r.allow({"radius", "radius_min", "radius_max", "radii", "fractions"});
+  if (r.has("radius")) {
+    d.kind = RadiusDistribution::Kind::constant;
+    d.value = r.check("radius", r.number("radius"), positive, "> 0 m");
+  } else if (r.has("radius_min") || r.has("radius_max")) {
+    d.kind = RadiusDistribution::Kind::uniform;
+    d.min = r.check("radius_min", r.number("radius_min"), positive, "> 0 m");
+    d.max = r.number("radius_max");
+    r.check("radius_max", d.max, [&](double v) { return v >= d.min; }, ">= radius_min");
+  } else if (r.has("radii")) {
+    d.kind = RadiusDistribution::Kind::table;
+    d.radii = r.number_list("radii");
+    d.fractions = r.number_list("fractions");
+    if (d.fractions.size() != d.radii.size()) {
+      r.fail("fractions", "must have as many entries as 'radii'");
+    }
+    double sum = 0.0;
+    for (double f : d.fractions) sum += r.check("fractions", f, non_negative, ">= 0");
+    for (double x : d.radii) r.check("radii", x, positive, "> 0 m");
+    if (std::abs(sum - 1.0) > 1e-9) r.fail("fractions", fmt::format("must add up to 1, they add up to {}", sum));
+  } else {
+    r.fail_table("needs a size: 'radius' (constant), 'radius_min' and 'radius_max' (uniform), "
+                 "or 'radii' with 'fractions' (a table of sizes)");
+  }
+  return d;
+}
+
+template <int D>
+Vec<D> read_direction(TableReader& r, std::string_view key, std::optional<Vec<D>> fallback) {
+  auto v = r.optional_numbers(key, D);
+  if (!v) {
+    if (!fallback) r.fail_table(fmt::format("missing required key '{}' (an array of {} numbers)", key, D));
+    return *fallback;
+  }
+  Vec<D> out = to_vec<D>(*v);
+  if (!(out.norm() > 0.0)) r.fail(key, "must be a non-zero vector");
+  return out.normalized();
+}
+
+template <int D>
+void read_wall_motion(TableReader& r, Vec<D>& velocity, WallMotion& motion, ServoControl& servo) {
+  r.allow({"velocity", "servo", "fixed"});
+  const int given = int(r.has("velocity")) + int(r.has("servo")) + int(r.has("fixed"));
+  if (given > 1) r.fail_table("give only one of 'velocity', 'servo' or 'fixed'");
+  if (r.has("velocity")) {
+    motion = WallMotion::velocity;
+    velocity = to_vec<D>(r.numbers("velocity", D));
+  } else if (const toml::table* s = r.optional_table("servo")) {
+    TableReader sr(*s, r.where() + " servo", r.file());
+    motion = WallMotion::servo;
+    servo.target_force = sr.check("target_force", sr.number("target_force"), non_negative, ">= 0 N");
+    servo.gain = sr.check("gain", sr.number("gain"), positive, "> 0 m/(s N)");
+    servo.max_speed = sr.check("max_speed", sr.number("max_speed"), positive, "> 0 m/s");
+    sr.finish();
+  } else if (r.has("fixed")) {
+    if (!r.boolean_or("fixed", true)) r.fail("fixed", "only 'fixed = true' makes sense; give 'velocity' to move it");
+    motion = WallMotion::fixed;
+  }
+}
+
+template <int D>
+std::int64_t axis_component(TableReader& r, std::string_view key, bool allow_norm) {
+  std::vector<std::string> allowed = D == 2 ? std::vector<std::string>{"x", "y"}
+                                            : std::vector<std::string>{"x", "y", "z"};
+  if (allow_norm) allowed.emplace_back("norm");
+  const std::string c = r.choice(key, allowed);
+  if (c == "norm") return -1;
+  return c[0] - 'x';
+}
+
+template <int D>
+void check_initial_overlaps(const Simulation<D>& sim, double tolerance,
+                            const std::vector<std::string>& origin) {
+  const auto& p = sim.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (const auto& w : sim.walls) {
+      const double overlap = p.radius[i] - w.distance(p.position[i]);
+      if (overlap > tolerance * p.radius[i]) {
+        throw SceneError(fmt::format(
+            "{}: error: particle {} overlaps wall \"{}\" by {:.3g} m at start ({:.3g} of its radius; "
+            "allowed: simulation.initial_overlap_tolerance = {})",
+            origin[i], i, w.name, overlap, overlap / p.radius[i], tolerance));
+      }
+    }
+  }
+  if (p.size() < 2) return;
+  LinkedCells<D> cells;
+  double r_max = *std::max_element(p.radius.begin(), p.radius.end());
+  cells.build(p.position, 2.0 * r_max);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    cells.for_each_near(cells.cell_of(p.position[i]), [&](std::uint32_t j) {
+      if (j <= i) return;
+      const double overlap = p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm();
+      const double allowed = tolerance * std::min(p.radius[i], p.radius[j]);
+      if (overlap > allowed) {
+        throw SceneError(fmt::format(
+            "{}: error: particles {} and {} overlap by {:.3g} m at start (from {}; allowed: "
+            "simulation.initial_overlap_tolerance = {} of the smaller radius)",
+            origin[i], i, j, overlap, origin[j], tolerance));
+      }
+    });
+  }
+}
+
+}  // namespace
+
+std::string fnv1a_hex(const std::string& bytes) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  return fmt::format("{:016x}", h);
+}
+
+int scene_dimension(const toml::table& root, const std::string& file) {
+  const toml::table* sim = root["simulation"].as_table();
+  if (sim == nullptr) {
+    throw SceneError(fmt::format("{}:1:1: error: missing required table [simulation] (with 'dimension' = 2 or 3)", file));
+  }
+  TableReader r(*sim, "[simulation]", file);
+  const auto d = r.integer("dimension");
+  if (d != 2 && d != 3) r.fail("dimension", fmt::format("must be 2 (discs) or 3 (spheres), got {}", d));
+  return static_cast<int>(d);
+}
+
+template <int D>
+Scene<D> build_scene(const toml::table& root, const std::string& file, const std::string& text) {
+  Scene<D> scene;
+  scene.file = file;
+  scene.text_hash = fnv1a_hex(text);
+  auto& sim = scene.simulation;
+  const std::filesystem::path base = std::filesystem::path(file).parent_path();
+  TableReader top(root, "scene", file);
+
+  // [simulation]
+  double overlap_tolerance = 0.01;
+  {
+    const toml::table* t = top.optional_table("simulation");
+    TableReader r(*t, "[simulation]", file);
+    r.integer("dimension");
+    r.allow({"time_step"});
+    if (const toml::node* n = t->get("time_step"); n != nullptr) {
+      if (n->is_string()) {
+        if (*n->value<std::string>() != "auto") r.fail("time_step", "must be \"auto\" or a number of seconds > 0");
+      } else if (auto v = n->value<double>(); v && (n->is_floating_point() || n->is_integer())) {
+        scene.time_step.automatic = false;
+        scene.time_step.value = r.check("time_step", *v, positive, "\"auto\" or a number of seconds > 0");
+      } else {
+        r.fail("time_step", "must be \"auto\" or a number of seconds > 0");
+      }
+    }
+    scene.time_step.safety_factor = r.check("safety_factor", r.number_or("safety_factor", 0.2),
+                                            [](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]");
+    sim.skin = r.check("skin", r.number_or("skin", 0.0), non_negative, ">= 0 m (0: automatic)");
+    overlap_tolerance = r.check("initial_overlap_tolerance", r.number_or("initial_overlap_tolerance", 0.01),
+                                non_negative, ">= 0 (a fraction of the radius)");
+    r.finish();
+  }
+
+  // [[material]]
+  MaterialRef materials;
+  for_each_table(top, "material", "material", [&](TableReader& r, int) {
+    Material m;
+    m.name = r.string("name");
+    if (materials.index.count(m.name) != 0) r.fail("name", fmt::format("material \"{}\" is defined twice", m.name));
+    m.density = r.check("density", r.number("density"), positive, "> 0 kg/m^3");
+    m.youngs_modulus = r.check("youngs_modulus", r.number_or("youngs_modulus", 0.0), non_negative, ">= 0 Pa");
+    m.poisson_ratio = r.check("poisson_ratio", r.number_or("poisson_ratio", 0.0),
+                              [](double v) { return v > -1.0 && v < 0.5; }, "in (-1, 0.5)");
+    materials.index[m.name] = static_cast<std::uint16_t>(sim.materials.size());
+    materials.names.push_back(m.name);
+    sim.materials.push_back(m);
+  });
+  if (sim.materials.empty()) top.fail_table("needs at least one [[material]]");
+
+  // [[contact]]: one per pair of materials that can touch.
+  const std::size_t nm = sim.materials.size();
+  sim.contact_table = ContactTable(nm);
+  std::vector<bool> defined(nm * nm, false);
+  for_each_table(top, "contact", "contact", [&](TableReader& r, int) {
+    auto names = r.string_list("materials");
+    if (names.size() != 2) r.fail("materials", "must name exactly two materials, e.g. [\"sand\", \"sand\"]");
+    const auto a = materials.lookup(r, "materials", names[0]);
+    const auto b = materials.lookup(r, "materials", names[1]);
+    if (defined[a * nm + b]) r.fail("materials", fmt::format("the pair {} / {} is defined twice", names[0], names[1]));
+    ContactSpec spec;
+    const std::string law = r.choice("law", {"linear", "hertz_mindlin"});
+    r.allow({"normal_stiffness", "tangential_stiffness_ratio"});
+    if (law == "linear") {
+      spec.law = NormalLaw::linear;
+      spec.normal_stiffness = r.check("normal_stiffness", r.number("normal_stiffness"), positive, "> 0 N/m");
+      spec.tangential_stiffness_ratio = r.check("tangential_stiffness_ratio",
+                                                r.number_or("tangential_stiffness_ratio", 1.0), non_negative, ">= 0");
+    } else {
+      spec.law = NormalLaw::hertz_mindlin;
+      if (r.has("normal_stiffness")) r.fail("normal_stiffness", "does not apply to hertz_mindlin (set youngs_modulus and poisson_ratio on the materials)");
+      for (auto idx : {a, b}) {
+        if (!(sim.materials[idx].youngs_modulus > 0.0)) {
+          r.fail("law", fmt::format("hertz_mindlin needs youngs_modulus > 0 on material \"{}\"", sim.materials[idx].name));
+        }
+      }
+    }
+    spec.restitution = r.check("restitution", r.number("restitution"),
+                               [](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]");
+    spec.friction = r.check("friction", r.number_or("friction", 0.0), non_negative, ">= 0");
+    spec.rolling_friction = r.check("rolling_friction", r.number_or("rolling_friction", 0.0), non_negative, ">= 0");
+    sim.contact_table.set(a, b, make_pair_parameters(sim.materials[a], sim.materials[b], spec));
+    defined[a * nm + b] = defined[b * nm + a] = true;
+  });
+
+  // [[wall]]
+  std::map<std::string, std::size_t> wall_index;
+  std::vector<std::string> wall_names;
+  for_each_table(top, "wall", "wall", [&](TableReader& r, int) {
+    Wall<D> w;
+    w.name = r.string("name");
+    if (wall_index.count(w.name) != 0) r.fail("name", fmt::format("wall \"{}\" is defined twice", w.name));
+    w.point = to_vec<D>(r.numbers("point", D));
+    w.normal = read_direction<D>(r, "normal", std::nullopt);
+    w.material = materials.lookup(r, "material", r.string("material"));
+    read_wall_motion<D>(r, w.velocity, w.motion, w.servo);
+    wall_index[w.name] = sim.walls.size();
+    wall_names.push_back(w.name);
+    sim.walls.push_back(w);
+  });
+
+  // [[particles]]
+  std::vector<std::string> origin;
+  for_each_table(top, "particles", "particles", [&](TableReader& r, int index) {
+    const std::string gen = r.choice("generator", {"lattice", "column", "random", "csv"});
+    const auto mat = materials.lookup(r, "material", r.string("material"));
+    const bool fixed = r.boolean_or("fixed", false);
+    Packing<D> pk;
+    if (gen == "lattice") {
+      const Vec<D> lo = to_vec<D>(r.numbers("min", D));
+      const Vec<D> hi = to_vec<D>(r.numbers("max", D));
+      const double radius = r.check("radius", r.number("radius"), positive, "> 0 m");
+      const double spacing = r.check("spacing", r.number_or("spacing", 2.0 * radius),
+                                     [&](double v) { return v >= 2.0 * radius; }, ">= 2 x radius (m)");
+      pk = lattice_packing<D>(lo, hi, spacing, radius);
+    } else if (gen == "column") {
+      const Vec<D> base = to_vec<D>(r.numbers("base", D));
+      Vec<D> up = Vec<D>::Zero();
+      up[D - 1] = 1.0;
+      const Vec<D> axis = read_direction<D>(r, "axis", up);
+      const auto count = r.integer("count");
+      if (count < 1) r.fail("count", "must be >= 1");
+      const double radius = r.check("radius", r.number("radius"), positive, "> 0 m");
+      const double gap = r.check("gap", r.number_or("gap", 0.0), non_negative, ">= 0 m");
+      pk = column_packing<D>(base, axis, static_cast<int>(count), radius, gap);
+    } else if (gen == "random") {
+      const Vec<D> lo = to_vec<D>(r.numbers("min", D));
+      const Vec<D> hi = to_vec<D>(r.numbers("max", D));
+      const auto count = r.integer("count");
+      if (count < 1) r.fail("count", "must be >= 1");
+      const RadiusDistribution dist = read_radius(r);
+      for (int k = 0; k < D; ++k) {
+        if (hi[k] - lo[k] < 2.0 * dist.largest()) r.fail("max", "the box must be wider than the largest particle in every direction");
+      }
+      const auto seed = r.optional_integer("seed").value_or(1);
+      const auto attempts = r.optional_integer("max_attempts").value_or(1000);
+      try {
+        pk = random_packing<D>(lo, hi, count, dist, static_cast<std::uint64_t>(seed), attempts);
+      } catch (const std::runtime_error& e) {
+        r.fail("count", e.what());
+      }
+    } else {
+      const std::string rel = r.string("file");
+      const std::string path = (base / rel).string();
+      try {
+        pk = read_packing_csv<D>(path);
+      } catch (const std::runtime_error& e) {
+        r.fail("file", e.what());
+      }
+    }
+    const Vec<D> velocity = to_vec<D>(r.optional_numbers("velocity", D).value_or(std::vector<double>(D, 0.0)));
+    if (pk.position.empty()) r.fail_table("made no particles (is the box smaller than one particle?)");
+    const double density = sim.materials[mat].density;
+    for (std::size_t k = 0; k < pk.position.size(); ++k) {
+      sim.particles.add(pk.position[k], pk.radius[k], density, mat, fixed, velocity);
+      origin.push_back(fmt::format("{} ([[particles]] #{})", r.here(), index));
+    }
+  });
+  if (sim.particles.size() == 0) top.fail_table("needs at least one [[particles]] generator that makes particles");
+
+  // Every pair of materials that can meet needs a [[contact]].
+  {
+    std::vector<bool> used(nm, false);
+    std::vector<bool> wall_used(nm, false);
+    for (auto m : sim.particles.material) used[m] = true;
+    for (const auto& w : sim.walls) wall_used[w.material] = true;
+    for (std::size_t a = 0; a < nm; ++a) {
+      for (std::size_t b = 0; b < nm; ++b) {
+        if (used[a] && (used[b] || wall_used[b]) && !defined[a * nm + b]) {
+          top.fail_table(fmt::format("no [[contact]] for materials \"{}\" and \"{}\", which can touch",
+                                     sim.materials[a].name, sim.materials[b].name));
+        }
+      }
+    }
+  }
+
+  // [output] and [[probe]]
+  if (const toml::table* t = top.optional_table("output")) {
+    TableReader r(*t, "[output]", file);
+    scene.output.probe_interval = r.check("probe_interval", r.number_or("probe_interval", 0.0), non_negative, ">= 0 s");
+    scene.output.snapshot_interval = r.check("snapshot_interval", r.number_or("snapshot_interval", 0.0), non_negative, ">= 0 s");
+    r.finish();
+  }
+  std::vector<std::string> probe_names;
+  for_each_table(top, "probe", "probe", [&](TableReader& r, int) {
+    ProbeSpec p;
+    p.name = r.string("name");
+    if (p.name.empty() || p.name.find_first_of(",\"\n") != std::string::npos || p.name == "time") {
+      r.fail("name", "must be a non-empty name without commas or quotes, other than \"time\"");
+    }
+    if (std::find(probe_names.begin(), probe_names.end(), p.name) != probe_names.end()) {
+      r.fail("name", fmt::format("probe \"{}\" is defined twice", p.name));
+    }
+    probe_names.push_back(p.name);
+    const std::string q = r.choice("quantity", {"particle_position", "particle_velocity", "wall_position",
+                                                "wall_force", "kinetic_energy", "contact_count",
+                                                "coordination", "max_overlap", "unbalanced_force"});
+    r.allow({"particle", "component", "wall"});
+    if (q == "particle_position" || q == "particle_velocity") {
+      p.quantity = q == "particle_position" ? ProbeQuantity::particle_position : ProbeQuantity::particle_velocity;
+      const toml::node* n = r.raw("particle");
+      if (n == nullptr) r.fail_table("missing required key 'particle' (an index, or \"top\")");
+      if (n->is_string() && *n->value<std::string>() == "top") {
+        p.particle = -1;
+      } else if (n->is_integer()) {
+        const auto idx = *n->value<std::int64_t>();
+        if (idx < 0 || static_cast<std::size_t>(idx) >= sim.particles.size()) {
+          r.fail("particle", fmt::format("must be in 0..{} (the scene has {} particles)",
+                                         sim.particles.size() - 1, sim.particles.size()));
+        }
+        p.particle = idx;
+      } else {
+        r.fail("particle", "must be a particle index (0-based, in creation order) or \"top\"");
+      }
+      p.component = static_cast<int>(axis_component<D>(r, "component", true));
+    } else if (q == "wall_position" || q == "wall_force") {
+      p.quantity = q == "wall_position" ? ProbeQuantity::wall_position : ProbeQuantity::wall_force;
+      const std::string w = r.string("wall");
+      auto it = wall_index.find(w);
+      if (it == wall_index.end()) {
+        std::string hint;
+        if (auto s = did_you_mean(w, wall_names); !s.empty()) hint = fmt::format(" (did you mean \"{}\"?)", s);
+        r.fail("wall", fmt::format("no wall named \"{}\"{}", w, hint));
+      }
+      p.wall = it->second;
+      p.component = static_cast<int>(axis_component<D>(r, "component", true));
+    } else {
+      for (auto k : {"particle", "component", "wall"}) {
+        if (r.has(k)) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
+      }
+      p.quantity = q == "kinetic_energy"  ? ProbeQuantity::kinetic_energy
+                   : q == "contact_count" ? ProbeQuantity::contact_count
+                   : q == "coordination"  ? ProbeQuantity::coordination
+                   : q == "max_overlap"   ? ProbeQuantity::max_overlap
+                                          : ProbeQuantity::unbalanced_force;
+    }
+    scene.output.probes.push_back(p);
+  });
+
+  // [[stage]]
+  for_each_table(top, "stage", "stage", [&](TableReader& r, int index) {
+    Stage<D> s;
+    s.name = r.optional_string("name").value_or(fmt::format("stage{}", index));
+    s.duration = r.check("duration", r.number("duration"), positive, "> 0 s (the longest the stage runs)");
+    if (auto g = r.optional_numbers("gravity", D)) s.gravity = to_vec<D>(*g);
+    if (auto a = r.optional_number("local_damping")) {
+      s.local_damping = r.check("local_damping", *a, [](double v) { return v >= 0.0 && v < 1.0; }, "in [0, 1)");
+    }
+    if (auto b = r.optional_number("viscous_damping")) {
+      s.viscous_damping = r.check("viscous_damping", *b, non_negative, ">= 0 1/s");
+    }
+    if (const toml::table* st = r.optional_table("stop_when")) {
+      TableReader sr(*st, r.where() + " stop_when", file);
+      if (auto v = sr.optional_number("kinetic_energy_below")) {
+        s.kinetic_energy_below = sr.check("kinetic_energy_below", *v, positive, "> 0 J");
+      }
+      if (auto v = sr.optional_number("unbalanced_force_below")) {
+        s.unbalanced_force_below = sr.check("unbalanced_force_below", *v, positive, "> 0");
+      }
+      s.check_interval = sr.optional_integer("check_interval").value_or(100);
+      if (s.check_interval < 1) sr.fail("check_interval", "must be >= 1 step");
+      if (!s.kinetic_energy_below && !s.unbalanced_force_below) {
+        sr.fail_table("needs 'kinetic_energy_below' or 'unbalanced_force_below'");
+      }
+      sr.finish();
+    }
+    if (const toml::table* wt = r.optional_table("walls")) {
+      for (const auto& [name, node] : *wt) {
+        auto it = wall_index.find(std::string(name.str()));
+        if (it == wall_index.end()) {
+          std::string hint;
+          if (auto h = did_you_mean(name.str(), wall_names); !h.empty()) hint = fmt::format(" (did you mean \"{}\"?)", h);
+          throw SceneError(fmt::format("{}:{}:{}: error: {} walls: no wall named \"{}\"{}", file,
+                                       node.source().begin.line, node.source().begin.column, r.where(), name.str(), hint));
+        }
+        const toml::table* ct = node.as_table();
+        if (ct == nullptr) r.fail("walls", "each wall entry must be a table, e.g. walls.top = { velocity = [0, -0.01] }");
+        TableReader cr(*ct, fmt::format("{} walls.{}", r.where(), name.str()), file);
+        WallChange<D> c;
+        c.wall = it->second;
+        read_wall_motion<D>(cr, c.velocity, c.motion, c.servo);
+        cr.finish();
+        s.walls.push_back(c);
+      }
+    }
+    scene.stages.push_back(s);
+  });
+  if (scene.stages.empty()) top.fail_table("needs at least one [[stage]] (with a 'duration')");
+
+  for (const auto& key : kTopLevel) top.allow({key});
+  top.finish();
+
+  check_initial_overlaps(sim, overlap_tolerance, origin);
+
+  // Time step: the first stage's gravity does not matter for the critical step.
+  const double critical = sim.critical_time_step();
+  if (scene.time_step.automatic) {
+    sim.time_step = scene.time_step.safety_factor * critical;
+  } else {
+    if (scene.time_step.value > critical) {
+      const toml::table* t = root["simulation"].as_table();
+      TableReader r(*t, "[simulation]", file);
+      r.fail("time_step", fmt::format("{:.4g} s is larger than the critical time step {:.4g} s "
+                                      "(sqrt(m_min/k_max) or the Rayleigh step); use a smaller "
+                                      "value or \"auto\"", scene.time_step.value, critical));
+    }
+    sim.time_step = scene.time_step.value;
+  }
+  return scene;
+}
+
+template Scene<2> build_scene<2>(const toml::table&, const std::string&, const std::string&);
+template Scene<3> build_scene<3>(const toml::table&, const std::string&, const std::string&);
+
+}  // namespace darcydem

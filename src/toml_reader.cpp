@@ -1,0 +1,251 @@
+#include "darcydem/scene/toml_reader.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+namespace darcydem {
+namespace {
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      const std::size_t cost = (a[i - 1] == b[j - 1]) ? 0 : 1;
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + cost});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::table: return "a table";
+    default: return "a date/time";
+  }
+}
+
+}  // namespace
+
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_d = std::max<std::size_t>(2, word.size() / 3) + 1;
+  for (const auto& c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+TableReader::TableReader(const toml::table& table, std::string where, std::string file)
+    : table_(table), where_(std::move(where)), file_(std::move(file)) {}
+
+std::string TableReader::location(const toml::source_region& s) const {
+  return fmt::format("{}:{}:{}", file_, s.begin.line, s.begin.column);
+}
+
+std::string TableReader::format_number(double v) { return fmt::format("{}", v); }
+
+void TableReader::fail(std::string_view key, const std::string& message) const {
+  const toml::node* n = table_.get(key);
+  const auto& src = n != nullptr ? n->source() : table_.source();
+  throw SceneError(fmt::format("{}: error: {} key '{}': {}", location(src), where_, key, message));
+}
+
+void TableReader::fail_table(const std::string& message) const {
+  throw SceneError(fmt::format("{}: error: {}: {}", location(table_.source()), where_, message));
+}
+
+bool TableReader::has(std::string_view key) const { return table_.contains(key); }
+
+void TableReader::allow(std::initializer_list<std::string_view> keys) {
+  for (auto k : keys) used_.emplace(k);
+}
+
+const toml::node* TableReader::get(std::string_view key) {
+  used_.emplace(key);
+  return table_.get(key);
+}
+
+std::optional<double> TableReader::optional_number(std::string_view key) {
+  const toml::node* n = get(key);
+  if (n == nullptr) return std::nullopt;
+  if (auto v = n->value<double>(); v && (n->is_floating_point() || n->is_integer())) return *v;
+  fail(key, "must be a number, got " + type_name(*n));
+}
+
+double TableReader::number(std::string_view key) {
+  auto v = optional_number(key);
+  if (!v) fail_table(fmt::format("missing required key '{}' (a number)", key));
+  return *v;
+}
+
+double TableReader::number_or(std::string_view key, double fallback) {
+  return optional_number(key).value_or(fallback);
+}
+
+std::optional<std::int64_t> TableReader::optional_integer(std::string_view key) {
+  const toml::node* n = get(key);
+  if (n == nullptr) return std::nullopt;
+  if (!n->is_integer()) fail(key, "must be an integer, got " + type_name(*n));
+  return n->value<std::int64_t>();
+}
+
+std::int64_t TableReader::integer(std::string_view key) {
+  auto v = optional_integer(key);
+  if (!v) fail_table(fmt::format("missing required key '{}' (an integer)", key));
+  return *v;
+}
+
+bool TableReader::boolean_or(std::string_view key, bool fallback) {
+  const toml::node* n = get(key);
+  if (n == nullptr) return fallback;
+  if (!n->is_boolean()) fail(key, "must be true or false, got " + type_name(*n));
+  return *n->value<bool>();
+}
+
+std::optional<std::string> TableReader::optional_string(std::string_view key) {
+  const toml::node* n = get(key);
+  if (n == nullptr) return std::nullopt;
+  if (!n->is_string()) fail(key, "must be a string, got " + type_name(*n));
+  return *n->value<std::string>();
+}
+
+std::string TableReader::string(std::string_view key) {
+  auto v = optional_string(key);
+  if (!v) fail_table(fmt::format("missing required key '{}' (a string)", key));
+  return *v;
+}
+
+std::optional<std::string> TableReader::optional_choice(std::string_view key,
+                                                        const std::vector<std::string>& allowed) {
+  auto v = optional_string(key);
+  if (!v) return v;
+  if (std::find(allowed.begin(), allowed.end(), *v) == allowed.end()) {
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
+    std::string hint;
+    if (auto s = did_you_mean(*v, allowed); !s.empty()) hint = fmt::format(" (did you mean \"{}\"?)", s);
+    fail(key, fmt::format("\"{}\" is not allowed; one of {}{}", *v, list, hint));
+  }
+  return v;
+}
+
+std::string TableReader::choice(std::string_view key, const std::vector<std::string>& allowed) {
+  auto v = optional_choice(key, allowed);
+  if (!v) {
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
+    fail_table(fmt::format("missing required key '{}' (one of {})", key, list));
+  }
+  return *v;
+}
+
+std::optional<std::vector<double>> TableReader::optional_numbers(std::string_view key,
+                                                                 std::size_t n) {
+  const toml::node* node = get(key);
+  if (node == nullptr) return std::nullopt;
+  const toml::array* a = node->as_array();
+  if (a == nullptr || a->size() != n) {
+    fail(key, fmt::format("must be an array of {} numbers", n));
+  }
+  std::vector<double> out;
+  for (const auto& e : *a) {
+    auto v = e.value<double>();
+    if (!v) fail(key, fmt::format("must be an array of {} numbers", n));
+    out.push_back(*v);
+  }
+  return out;
+}
+
+std::vector<double> TableReader::numbers(std::string_view key, std::size_t n) {
+  auto v = optional_numbers(key, n);
+  if (!v) fail_table(fmt::format("missing required key '{}' (an array of {} numbers)", key, n));
+  return *v;
+}
+
+std::vector<double> TableReader::number_list(std::string_view key) {
+  const toml::node* node = get(key);
+  if (node == nullptr) fail_table(fmt::format("missing required key '{}' (an array of numbers)", key));
+  const toml::array* a = node->as_array();
+  if (a == nullptr || a->empty()) fail(key, "must be a non-empty array of numbers");
+  std::vector<double> out;
+  for (const auto& e : *a) {
+    auto v = e.value<double>();
+    if (!v) fail(key, "must be a non-empty array of numbers");
+    out.push_back(*v);
+  }
+  return out;
+}
+
+std::vector<std::string> TableReader::string_list(std::string_view key) {
+  const toml::node* node = get(key);
+  if (node == nullptr) fail_table(fmt::format("missing required key '{}' (an array of strings)", key));
+  const toml::array* a = node->as_array();
+  if (a == nullptr) fail(key, "must be an array of strings");
+  std::vector<std::string> out;
+  for (const auto& e : *a) {
+    auto v = e.value<std::string>();
+    if (!v) fail(key, "must be an array of strings");
+    out.push_back(*v);
+  }
+  return out;
+}
+
+const toml::table* TableReader::optional_table(std::string_view key) {
+  const toml::node* n = get(key);
+  if (n == nullptr) return nullptr;
+  if (!n->is_table()) fail(key, "must be a table, got " + type_name(*n));
+  return n->as_table();
+}
+
+const toml::array* TableReader::optional_array(std::string_view key) {
+  const toml::node* n = get(key);
+  if (n == nullptr) return nullptr;
+  if (!n->is_array()) fail(key, "must be an array, got " + type_name(*n));
+  return n->as_array();
+}
+
+void TableReader::finish() const {
+  std::vector<std::string> allowed(used_.begin(), used_.end());
+  for (const auto& [k, v] : table_) {
+    if (used_.count(k.str()) != 0) continue;
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+    std::string hint;
+    if (auto s = did_you_mean(k.str(), allowed); !s.empty()) hint = fmt::format(" Did you mean '{}'?", s);
+    throw SceneError(fmt::format("{}: error: {} has unknown key '{}'.{} Allowed keys: {}.",
+                                 location(v.source()), where_, k.str(), hint, list));
+  }
+}
+
+toml::table parse_toml_file(const std::string& path, std::string& text_out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(fmt::format("{}: error: cannot open the scene file", path));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  text_out = ss.str();
+  try {
+    return toml::parse(text_out, path);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(fmt::format("{}:{}:{}: error: TOML syntax: {}", path, e.source().begin.line,
+                                 e.source().begin.column, e.description()));
+  }
+}
+
+}  // namespace darcydem

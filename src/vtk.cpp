@@ -1,0 +1,78 @@
+#include "darcydem/output/vtk.hpp"
+
+#include <fstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+
+namespace darcydem {
+namespace {
+
+template <int D, class Get>
+void write_vector_array(fmt::ostream& out, const char* name, std::size_t n, Get&& get) {
+  out.print("        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"ascii\">\n", name);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto v = get(i);
+    out.print("{:.17g} {:.17g} {:.17g}\n", v[0], v[1], D == 3 ? v[2] : 0.0);
+  }
+  out.print("        </DataArray>\n");
+}
+
+}  // namespace
+
+template <int D>
+void write_particles_vtu(const std::string& path, const ParticleData<D>& p) {
+  try {
+    auto out = fmt::output_file(path);
+    const std::size_t n = p.size();
+    out.print("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
+    out.print("  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"0\">\n", n);
+    out.print("      <Points>\n");
+    write_vector_array<D>(out, "position", n, [&](std::size_t i) { return p.position[i]; });
+    out.print("      </Points>\n      <PointData Scalars=\"radius\">\n");
+    out.print("        <DataArray type=\"Float64\" Name=\"radius\" format=\"ascii\">\n");
+    for (std::size_t i = 0; i < n; ++i) out.print("{:.17g}\n", p.radius[i]);
+    out.print("        </DataArray>\n");
+    out.print("        <DataArray type=\"Int64\" Name=\"id\" format=\"ascii\">\n");
+    for (std::size_t i = 0; i < n; ++i) out.print("{}\n", p.id[i]);
+    out.print("        </DataArray>\n");
+    write_vector_array<D>(out, "velocity", n, [&](std::size_t i) { return p.velocity[i]; });
+    write_vector_array<D>(out, "force", n, [&](std::size_t i) { return p.force[i]; });
+    write_vector_array<D>(out, "angular_velocity", n, [&](std::size_t i) {
+      if constexpr (D == 2) {
+        return Vec<3>(0.0, 0.0, p.angular_velocity[i][0]);
+      } else {
+        return p.angular_velocity[i];
+      }
+    });
+    out.print("      </PointData>\n      <Cells>\n");
+    out.print("        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\"></DataArray>\n");
+    out.print("        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\"></DataArray>\n");
+    out.print("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\"></DataArray>\n");
+    out.print("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+    out.close();
+  } catch (const std::system_error& e) {
+    throw std::runtime_error(fmt::format("{}: cannot write the snapshot: {}", path, e.what()));
+  }
+}
+
+void PvdSeries::add(double time, const std::string& file) {
+  entries_.emplace_back(time, file);
+  const std::string tmp = path_ + ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write the series file", path_));
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
+    for (const auto& [t, f] : entries_) {
+      out << fmt::format("    <DataSet timestep=\"{:.17g}\" part=\"0\" file=\"{}\"/>\n", t, f);
+    }
+    out << "  </Collection>\n</VTKFile>\n";
+  }
+  std::rename(tmp.c_str(), path_.c_str());
+}
+
+template void write_particles_vtu<2>(const std::string&, const ParticleData<2>&);
+template void write_particles_vtu<3>(const std::string&, const ParticleData<3>&);
+
+}  // namespace darcydem
