@@ -89,9 +89,20 @@ std::optional<double> TableReader::optional_number(std::string_view key) {
   fail(key, "must be a number, got " + type_name(*n));
 }
 
+void TableReader::missing(std::string_view key, const std::string& what) const {
+  // A near-miss key is more likely a typo than an omission: report that.
+  for (const auto& [k, v] : table_) {
+    if (used_.count(k.str()) == 0 && did_you_mean(k.str(), {std::string(key)}) == key) {
+      throw SceneError(fmt::format("{}: error: {} has unknown key '{}'. Did you mean '{}'? ('{}' is required: {})",
+                                   location(v.source()), where_, k.str(), key, key, what));
+    }
+  }
+  fail_table(fmt::format("missing required key '{}' ({})", key, what));
+}
+
 double TableReader::number(std::string_view key) {
   auto v = optional_number(key);
-  if (!v) fail_table(fmt::format("missing required key '{}' (a number)", key));
+  if (!v) missing(key, "a number");
   return *v;
 }
 
@@ -108,7 +119,7 @@ std::optional<std::int64_t> TableReader::optional_integer(std::string_view key) 
 
 std::int64_t TableReader::integer(std::string_view key) {
   auto v = optional_integer(key);
-  if (!v) fail_table(fmt::format("missing required key '{}' (an integer)", key));
+  if (!v) missing(key, "an integer");
   return *v;
 }
 
@@ -128,7 +139,7 @@ std::optional<std::string> TableReader::optional_string(std::string_view key) {
 
 std::string TableReader::string(std::string_view key) {
   auto v = optional_string(key);
-  if (!v) fail_table(fmt::format("missing required key '{}' (a string)", key));
+  if (!v) missing(key, "a string");
   return *v;
 }
 
@@ -151,7 +162,7 @@ std::string TableReader::choice(std::string_view key, const std::vector<std::str
   if (!v) {
     std::string list;
     for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
-    fail_table(fmt::format("missing required key '{}' (one of {})", key, list));
+    missing(key, "one of " + list);
   }
   return *v;
 }
@@ -175,13 +186,13 @@ std::optional<std::vector<double>> TableReader::optional_numbers(std::string_vie
 
 std::vector<double> TableReader::numbers(std::string_view key, std::size_t n) {
   auto v = optional_numbers(key, n);
-  if (!v) fail_table(fmt::format("missing required key '{}' (an array of {} numbers)", key, n));
+  if (!v) missing(key, fmt::format("an array of {} numbers", n));
   return *v;
 }
 
 std::vector<double> TableReader::number_list(std::string_view key) {
   const toml::node* node = get(key);
-  if (node == nullptr) fail_table(fmt::format("missing required key '{}' (an array of numbers)", key));
+  if (node == nullptr) missing(key, "an array of numbers");
   const toml::array* a = node->as_array();
   if (a == nullptr || a->empty()) fail(key, "must be a non-empty array of numbers");
   std::vector<double> out;
@@ -195,7 +206,7 @@ std::vector<double> TableReader::number_list(std::string_view key) {
 
 std::vector<std::string> TableReader::string_list(std::string_view key) {
   const toml::node* node = get(key);
-  if (node == nullptr) fail_table(fmt::format("missing required key '{}' (an array of strings)", key));
+  if (node == nullptr) missing(key, "an array of strings");
   const toml::array* a = node->as_array();
   if (a == nullptr) fail(key, "must be an array of strings");
   std::vector<std::string> out;

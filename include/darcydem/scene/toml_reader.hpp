@@ -62,6 +62,8 @@ class TableReader {
 
   /// Error at a key (its line if present, else the table's).
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+  /// A required key is absent (reports a near-miss key as a typo instead).
+  [[noreturn]] void missing(std::string_view key, const std::string& what) const;
   /// Error about the table itself.
   [[noreturn]] void fail_table(const std::string& message) const;
 

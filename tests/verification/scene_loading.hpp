@@ -1,0 +1,42 @@
+#pragma once
+// Loads scene files from the source tree, as a user would run them.
+#include <string>
+
+#include "darcydem/scene/scene.hpp"
+#include "darcydem/scene/toml_reader.hpp"
+
+namespace darcydem::testing {
+
+template <int D>
+Scene<D> load_scene(const std::string& relative) {
+  const std::string path = std::string(DARCYDEM_SOURCE_DIR) + "/" + relative;
+  std::string text;
+  const toml::table root = parse_toml_file(path, text);
+  return build_scene<D>(root, path, text);
+}
+
+/// Runs every stage without writing output (stop conditions honoured).
+template <int D>
+void run_stages(Scene<D>& scene) {
+  auto& sim = scene.simulation;
+  bool prepared = false;
+  for (const auto& stage : scene.stages) {
+    if (stage.gravity) sim.gravity = *stage.gravity;
+    if (stage.local_damping) sim.damping.local = *stage.local_damping;
+    if (stage.viscous_damping) sim.damping.viscous = *stage.viscous_damping;
+    if (!prepared) {
+      sim.prepare();
+      prepared = true;
+    }
+    const auto n = static_cast<long>(std::round(stage.duration / sim.time_step));
+    for (long s = 0; s < n; ++s) {
+      sim.step();
+      if ((s + 1) % stage.check_interval == 0) {
+        if (stage.kinetic_energy_below && sim.kinetic_energy() < *stage.kinetic_energy_below) break;
+        if (stage.unbalanced_force_below && sim.unbalanced_force_ratio() < *stage.unbalanced_force_below) break;
+      }
+    }
+  }
+}
+
+}  // namespace darcydem::testing
