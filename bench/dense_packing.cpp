@@ -1,0 +1,121 @@
+// Benchmark: DEM steps on a dense, settled 3D packing of monodisperse spheres
+// (d = 1 mm, 2650 kg/m^3, linear contacts k_n = 1000 N/m, friction 0.5,
+// restitution 0.5) in a box under gravity. The packing is a face-centred
+// cubic stack of touching spheres (12 neighbours each, more than the ~6 of a
+// random packing, so the contact work is on the heavy side), settled under
+// gravity with local damping before timing.
+//
+// Counters: particle_steps_per_second, bytes_per_particle (arrays held by
+// the simulation), peak_rss_bytes. Write JSON with
+//   bench_dense_packing --benchmark_out=bench/results/dense_packing.json
+#include <benchmark/benchmark.h>
+#include <omp.h>
+#include <sys/resource.h>
+
+#include <cmath>
+
+#include "darcydem/contact/contact_laws.hpp"
+#include "darcydem/simulation/simulation.hpp"
+
+namespace {
+
+using darcydem::Simulation;
+using darcydem::Vec;
+
+Simulation<3> make_packing(std::int64_t target) {
+  Simulation<3> sim;
+  darcydem::Material grain{"grain", 2650.0, 0.0, 0.0};
+  sim.materials.push_back(grain);
+  darcydem::ContactSpec spec;
+  spec.normal_stiffness = 1000.0;
+  spec.friction = 0.5;
+  spec.restitution = 0.5;
+  sim.contact_table = darcydem::ContactTable(1);
+  sim.contact_table.set(0, 0, darcydem::make_pair_parameters(grain, grain, spec));
+  const double d = 1e-3;
+  const double r = 0.5 * d;
+  const double a = std::sqrt(2.0) * d;  // FCC cube edge for touching spheres
+  // A square base of n x n cubic cells, as many layers as needed.
+  const int n = std::max(2, static_cast<int>(std::cbrt(static_cast<double>(target) / 4.0 / 2.0)));
+  const Vec<3> basis[4] = {Vec<3>(0, 0, 0), Vec<3>(0.5 * a, 0.5 * a, 0), Vec<3>(0.5 * a, 0, 0.5 * a),
+                           Vec<3>(0, 0.5 * a, 0.5 * a)};
+  for (int k = 0; static_cast<std::int64_t>(sim.particles.size()) < target; ++k) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        for (const auto& b : basis) {
+          if (static_cast<std::int64_t>(sim.particles.size()) >= target) break;
+          const Vec<3> x = Vec<3>(r + i * a, r + j * a, r + k * a) + b;
+          sim.particles.add(x, r, 2650.0, 0, false);
+        }
+      }
+    }
+  }
+  const double side = n * a + 0.5 * a;
+  auto wall = [&](Vec<3> p, Vec<3> nrm) {
+    darcydem::Wall<3> w;
+    w.point = p;
+    w.normal = nrm;
+    sim.walls.push_back(w);
+  };
+  wall(Vec<3>(0, 0, 0), Vec<3>(0, 0, 1));
+  wall(Vec<3>(0, 0, 0), Vec<3>(1, 0, 0));
+  wall(Vec<3>(side, 0, 0), Vec<3>(-1, 0, 0));
+  wall(Vec<3>(0, 0, 0), Vec<3>(0, 1, 0));
+  wall(Vec<3>(0, side, 0), Vec<3>(0, -1, 0));
+  sim.gravity = Vec<3>(0, 0, -9.81);
+  sim.damping.local = 0.7;
+  sim.time_step = 0.2 * sim.critical_time_step();
+  sim.prepare();
+  for (int s = 0; s < 300; ++s) sim.step();  // settle onto the contacts
+  return sim;
+}
+
+template <class T>
+std::size_t bytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
+std::size_t footprint(const Simulation<3>& sim) {
+  const auto& p = sim.particles;
+  const auto& l = sim.pair_list();
+  return bytes(p.id) + bytes(p.radius) + bytes(p.inv_mass) + bytes(p.inv_inertia) + bytes(p.material) +
+         bytes(p.fixed) + bytes(p.position) + bytes(p.velocity) + bytes(p.angular_velocity) +
+         bytes(p.force) + bytes(p.torque) + bytes(p.external_force) + bytes(l.row_offset) +
+         bytes(l.neighbour) + bytes(l.tangential) + bytes(l.rolling) + bytes(l.force_on_j) +
+         bytes(l.torque_on_j) + bytes(l.reverse_offset) + bytes(l.reverse_pair) +
+         // the list keeps reference positions and a linked-cell index
+         p.size() * (sizeof(Vec<3>) + 2 * sizeof(std::uint32_t));
+}
+
+void BM_DensePacking(benchmark::State& state) {
+  const auto n = state.range(0);
+  const int threads = static_cast<int>(state.range(1));
+  omp_set_num_threads(threads);
+  auto sim = make_packing(n);
+  const auto builds0 = sim.list_builds();
+  for (auto _ : state) {
+    sim.step();
+  }
+  const double particles = static_cast<double>(sim.particles.size());
+  state.counters["particle_steps_per_second"] =
+      benchmark::Counter(particles * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["particles"] = particles;
+  state.counters["threads"] = threads;
+  state.counters["bytes_per_particle"] = static_cast<double>(footprint(sim)) / particles;
+  state.counters["pairs_per_particle"] = static_cast<double>(sim.pair_list().pair_count()) / particles;
+  state.counters["contacts_per_particle"] = static_cast<double>(sim.contact_count()) / particles;
+  state.counters["list_builds"] = static_cast<double>(sim.list_builds() - builds0);
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  state.counters["peak_rss_bytes"] = static_cast<double>(usage.ru_maxrss) * 1024.0;
+}
+
+BENCHMARK(BM_DensePacking)
+    ->ArgsProduct({{10'000, 100'000, 1'000'000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
