@@ -199,3 +199,39 @@ TEST(SlipToRoll, DiscRollsAtTwoThirdsOfLaunchSpeed) {
 
 }  // namespace
 }  // namespace darcydem
+
+namespace darcydem {
+namespace {
+
+// A servo-controlled lid presses a column of 5 discs onto a floor, no
+// gravity. In equilibrium the lid's load equals the target, the floor
+// carries the same force (balance), and each of the 6 linear contacts is
+// compressed by F / k_n, so the lid sits 6 F / k_n below the touching
+// height. Tolerance 0.5%: the servo's residual error once settled.
+TEST(ServoWall, ReachesTargetLoadAndSpringCompression) {
+  ContactSpec spec;
+  spec.normal_stiffness = 1e5;
+  spec.restitution = 0.3;
+  auto sim = testing::single_material<2>(2650.0, spec);
+  const double r = 5e-4;
+  for (int i = 0; i < 5; ++i) sim.particles.add(Vec<2>(0, r + 2 * r * i), r, 2650.0, 0, false);
+  sim.walls.push_back(testing::plane<2>(Vec<2>(0, 0), Vec<2>(0, 1), "floor"));
+  auto lid = testing::plane<2>(Vec<2>(0, 10 * r + 1e-5), Vec<2>(0, -1), "lid");
+  lid.motion = WallMotion::servo;
+  lid.servo.target_force = 2.0;  // N
+  lid.servo.gain = 1e-3;         // m/s per N
+  lid.servo.max_speed = 0.05;
+  sim.walls.push_back(lid);
+  sim.damping.local = 0.7;
+  sim.time_step = 0.1 * sim.critical_time_step();
+  sim.prepare();
+  for (int s = 0; s < 200000; ++s) sim.step();
+  const double f = 2.0;
+  EXPECT_NEAR(sim.walls[1].load(), f, 0.005 * f);
+  EXPECT_NEAR(sim.walls[0].load(), f, 0.005 * f);
+  const double expected_top = 10 * r - 6 * f / spec.normal_stiffness;
+  EXPECT_NEAR(sim.walls[1].point.y(), expected_top, 0.005 * 6 * f / spec.normal_stiffness);
+}
+
+}  // namespace
+}  // namespace darcydem
