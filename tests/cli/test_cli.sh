@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Command-line behaviour: --version, check, strict errors with exit code 2,
+# output files, refusal to overwrite, and a clean interrupt.
+# Usage: test_cli.sh PATH/TO/darcydem SOURCE_DIR
+set -u
+exe="$1"
+src="$2"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+passed=0
+failed=0
+ok() { echo "ok: $1"; passed=$((passed + 1)); }
+bad() { echo "FAILED: $1"; failed=$((failed + 1)); }
+
+"$exe" --version | grep -q "^darcydem [0-9]" && ok "--version" || bad "--version"
+
+scene="$src/examples/column_settling/column.toml"
+"$exe" check "$scene" | grep -q "OK (2D, 50 particles" && ok "check accepts the example" || bad "check"
+
+sed 's/^density = 2650.0/densty = 2650.0/' "$scene" > "$work/bad.toml"
+msg="$("$exe" check "$work/bad.toml" 2>&1)"; rc=$?
+[ $rc -eq 2 ] && echo "$msg" | grep -q "bad.toml:[0-9]*:[0-9]*: error: .*'densty'.*Did you mean 'density'" \
+  && ok "bad key: exit 2 with file:line and suggestion" || bad "bad key ($rc): $msg"
+
+"$exe" run "$scene" --out "$work/out" > /dev/null 2>&1; rc=$?
+[ $rc -eq 0 ] && [ -s "$work/out/probes.csv" ] && [ -s "$work/out/particles.pvd" ] && [ -s "$work/out/run.json" ] \
+  && head -1 "$work/out/probes.csv" | grep -q "^time,top_y,floor_load,kinetic_energy$" \
+  && grep -q '"status": "completed"' "$work/out/run.json" && ok "run writes probes, snapshots, run.json" || bad "run ($rc)"
+
+"$exe" run "$scene" --out "$work/out" > /dev/null 2>"$work/err"; rc=$?
+[ $rc -eq 2 ] && grep -q "not empty; use --force" "$work/err" && ok "refuses a non-empty output directory" || bad "overwrite ($rc)"
+"$exe" run "$scene" --out "$work/out" --force > /dev/null 2>&1 && ok "--force overwrites" || bad "--force"
+
+# A long run, interrupted: what was computed is kept and run.json says so.
+sed -e 's/^duration = 1.0/duration = 1000.0/' -e '/stop_when/,/check_interval/d' "$scene" > "$work/long.toml"
+timeout --preserve-status -s INT 2 "$exe" run "$work/long.toml" --out "$work/long" > /dev/null 2>&1; rc=$?
+rows=$(wc -l < "$work/long/probes.csv" 2>/dev/null || echo 0)
+[ $rc -eq 130 ] && grep -q '"status": "interrupted"' "$work/long/run.json" && [ "$rows" -gt 10 ] \
+  && ok "interrupt keeps output ($rows probe rows)" || bad "interrupt (rc $rc, rows $rows)"
+
+echo "$passed passed, $failed failed"
+[ $failed -eq 0 ]
