@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <iostream>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
@@ -26,12 +26,12 @@ std::atomic<bool> g_interrupt{false};
 void on_signal(int) { g_interrupt.store(true); }
 
 template <int D>
-int run(const toml::table& root, const std::string& file, const std::string& text,
-        const std::string& out, bool check_only) {
+int run(const toml::table& root, const std::string& file, const std::string& text, const std::string& out,
+        bool check_only) {
   auto scene = darcydem::build_scene<D>(root, file, text);
   if (check_only) {
-    std::cout << fmt::format("{}: OK ({}D, {} particles, {} walls, {} stages, time step {:.4g} s)\n", file,
-                             D, scene.simulation.particles.size(), scene.simulation.walls.size(),
+    std::cout << fmt::format("{}: OK ({}D, {} particles, {} walls, {} stages, time step {:.4g} s)\n", file, D,
+                             scene.simulation.particles.size(), scene.simulation.walls.size(),
                              scene.stages.size(), scene.simulation.time_step);
     return 0;
   }
@@ -69,7 +69,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scene", scene_file, "scene file (TOML)")->required()->check(CLI::ExistingFile);
   run_cmd->add_option("--out,-o", out_dir, "output directory")->required();
   run_cmd->add_flag("--force", force, "write into a non-empty output directory");
-  run_cmd->add_option("--threads,-j", threads, "OpenMP threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  run_cmd->add_option("--threads,-j", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
 
   std::string check_file;
   auto* check_cmd = app.add_subcommand("check", "validate a scene without running it");
@@ -79,7 +80,8 @@ int main(int argc, char** argv) {
   try {
     if (*check_cmd) return dispatch(check_file, "", true);
     if (!force && !darcydem::output_dir_is_free(out_dir)) {
-      std::cerr << fmt::format("error: output directory '{}' is not empty; use --force to write into it\n", out_dir);
+      std::cerr << fmt::format("error: output directory '{}' is not empty; use --force to write into it\n",
+                               out_dir);
       return 2;
     }
     if (threads > 0) omp_set_num_threads(threads);

@@ -79,10 +79,10 @@ std::size_t footprint(const Simulation<3>& sim) {
   const auto& p = sim.particles;
   const auto& l = sim.pair_list();
   return bytes(p.id) + bytes(p.radius) + bytes(p.inv_mass) + bytes(p.inv_inertia) + bytes(p.material) +
-         bytes(p.fixed) + bytes(p.position) + bytes(p.velocity) + bytes(p.angular_velocity) +
-         bytes(p.force) + bytes(p.torque) + bytes(p.external_force) + bytes(l.row_offset) +
-         bytes(l.neighbour) + bytes(l.tangential) + bytes(l.rolling) + bytes(l.force_on_j) +
-         bytes(l.torque_on_j) + bytes(l.reverse_offset) + bytes(l.reverse_pair) +
+         bytes(p.fixed) + bytes(p.position) + bytes(p.velocity) + bytes(p.angular_velocity) + bytes(p.force) +
+         bytes(p.torque) + bytes(p.external_force) + bytes(l.row_offset) + bytes(l.neighbour) +
+         bytes(l.tangential) + bytes(l.rolling) + bytes(l.force_on_j) + bytes(l.torque_on_j) +
+         bytes(l.reverse_offset) + bytes(l.reverse_pair) +
          // the list keeps reference positions and a linked-cell index
          p.size() * (sizeof(Vec<3>) + 2 * sizeof(std::uint32_t));
 }

@@ -13,17 +13,22 @@ namespace darcydem {
 
 double RadiusDistribution::largest() const {
   switch (kind) {
-    case Kind::constant: return value;
-    case Kind::uniform: return max;
-    case Kind::table: return *std::max_element(radii.begin(), radii.end());
+    case Kind::constant:
+      return value;
+    case Kind::uniform:
+      return max;
+    case Kind::table:
+      return *std::max_element(radii.begin(), radii.end());
   }
   return value;
 }
 
 double RadiusDistribution::sample(std::mt19937_64& rng) const {
   switch (kind) {
-    case Kind::constant: return value;
-    case Kind::uniform: return min + (max - min) * unit_random(rng);
+    case Kind::constant:
+      return value;
+    case Kind::uniform:
+      return min + (max - min) * unit_random(rng);
     case Kind::table: {
       const double u = unit_random(rng);
       double acc = 0.0;
@@ -66,8 +71,7 @@ Packing<D> lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spacing, d
 }
 
 template <int D>
-Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, double radius,
-                          double gap) {
+Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, double radius, double gap) {
   Packing<D> out;
   const Vec<D> a = axis.normalized();
   for (int i = 0; i < count; ++i) {
@@ -79,8 +83,7 @@ Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, dou
 
 template <int D>
 Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count,
-                          const RadiusDistribution& radii, std::uint64_t seed,
-                          std::int64_t max_attempts) {
+                          const RadiusDistribution& radii, std::uint64_t seed, std::int64_t max_attempts) {
   std::mt19937_64 rng(seed);
   Packing<D> out;
   const double r_max = radii.largest();
@@ -136,10 +139,10 @@ Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
       }
     }
     if (!placed) {
-      throw std::runtime_error(fmt::format(
-          "random packing: no room for particle {} of {} after {} attempts (the box is too full; "
-          "enlarge it, reduce the count, or raise max_attempts)",
-          made + 1, count, max_attempts));
+      throw std::runtime_error(
+          fmt::format("random packing: no room for particle {} of {} after {} attempts (the box is too full; "
+                      "enlarge it, reduce the count, or raise max_attempts)",
+                      made + 1, count, max_attempts));
     }
   }
   return out;
@@ -175,8 +178,8 @@ Packing<D> read_packing_csv(const std::string& path) {
       continue;
     }
     if (cells.size() != D + 1) {
-      throw std::runtime_error(
-          fmt::format("{}:{}: expected {} comma-separated numbers, got {}", path, line_no, D + 1, cells.size()));
+      throw std::runtime_error(fmt::format("{}:{}: expected {} comma-separated numbers, got {}", path,
+                                           line_no, D + 1, cells.size()));
     }
     Vec<D> x;
     double r = 0.0;
@@ -187,7 +190,8 @@ Packing<D> read_packing_csv(const std::string& path) {
       throw std::runtime_error(fmt::format("{}:{}: not a number in '{}'", path, line_no, line));
     }
     if (!(r > 0.0) || !x.allFinite()) {
-      throw std::runtime_error(fmt::format("{}:{}: radius must be > 0 and coordinates finite", path, line_no));
+      throw std::runtime_error(
+          fmt::format("{}:{}: radius must be > 0 and coordinates finite", path, line_no));
     }
     out.position.push_back(x);
     out.radius.push_back(r);
@@ -197,9 +201,9 @@ Packing<D> read_packing_csv(const std::string& path) {
 }
 
 #define DARCYDEM_INSTANTIATE(D)                                                                  \
-  template Packing<D> lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);        \
-  template Packing<D> column_packing<D>(const Vec<D>&, const Vec<D>&, int, double, double);    \
-  template Packing<D> random_packing<D>(const Vec<D>&, const Vec<D>&, std::int64_t,           \
+  template Packing<D> lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);          \
+  template Packing<D> column_packing<D>(const Vec<D>&, const Vec<D>&, int, double, double);      \
+  template Packing<D> random_packing<D>(const Vec<D>&, const Vec<D>&, std::int64_t,              \
                                         const RadiusDistribution&, std::uint64_t, std::int64_t); \
   template Packing<D> read_packing_csv<D>(const std::string&);
 DARCYDEM_INSTANTIATE(2)

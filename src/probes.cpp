@@ -18,16 +18,24 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim) {
   switch (probe.quantity) {
     case ProbeQuantity::particle_position:
     case ProbeQuantity::particle_velocity: {
-      const std::size_t i = probe.particle < 0 ? topmost_particle(p) : static_cast<std::size_t>(probe.particle);
+      const std::size_t i =
+          probe.particle < 0 ? topmost_particle(p) : static_cast<std::size_t>(probe.particle);
       return pick(probe.quantity == ProbeQuantity::particle_position ? p.position[i] : p.velocity[i]);
     }
-    case ProbeQuantity::wall_position: return pick(sim.walls[probe.wall].point);
-    case ProbeQuantity::wall_force: return pick(sim.walls[probe.wall].force);
-    case ProbeQuantity::kinetic_energy: return sim.kinetic_energy();
-    case ProbeQuantity::contact_count: return static_cast<double>(sim.contact_count());
-    case ProbeQuantity::coordination: return sim.mean_coordination();
-    case ProbeQuantity::max_overlap: return sim.max_overlap();
-    case ProbeQuantity::unbalanced_force: return sim.unbalanced_force_ratio();
+    case ProbeQuantity::wall_position:
+      return pick(sim.walls[probe.wall].point);
+    case ProbeQuantity::wall_force:
+      return pick(sim.walls[probe.wall].force);
+    case ProbeQuantity::kinetic_energy:
+      return sim.kinetic_energy();
+    case ProbeQuantity::contact_count:
+      return static_cast<double>(sim.contact_count());
+    case ProbeQuantity::coordination:
+      return sim.mean_coordination();
+    case ProbeQuantity::max_overlap:
+      return sim.max_overlap();
+    case ProbeQuantity::unbalanced_force:
+      return sim.unbalanced_force_ratio();
   }
   return 0.0;
 }

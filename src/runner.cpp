@@ -52,7 +52,8 @@ void apply_stage(Simulation<D>& sim, const Stage<D>& stage) {
 template <int D>
 bool stop_condition_met(const Simulation<D>& sim, const Stage<D>& stage) {
   if (stage.kinetic_energy_below && sim.kinetic_energy() < *stage.kinetic_energy_below) return true;
-  if (stage.unbalanced_force_below && sim.unbalanced_force_ratio() < *stage.unbalanced_force_below) return true;
+  if (stage.unbalanced_force_below && sim.unbalanced_force_ratio() < *stage.unbalanced_force_below)
+    return true;
   return false;
 }
 
@@ -76,9 +77,8 @@ class Progress {
       const int width = 30;
       const double frac = t_end > 0 ? std::min(1.0, t / t_end) : 1.0;
       const int filled = static_cast<int>(frac * width);
-      *opt_.log << fmt::format("\r{:<12} [{}{}] t = {:.4g} s  {:.3g} steps/s  ETA {:.0f} s   ",
-                               stage, std::string(filled, '#'), std::string(width - filled, '.'), t,
-                               rate, eta)
+      *opt_.log << fmt::format("\r{:<12} [{}{}] t = {:.4g} s  {:.3g} steps/s  ETA {:.0f} s   ", stage,
+                               std::string(filled, '#'), std::string(width - filled, '.'), t, rate, eta)
                 << std::flush;
     } else {
       *opt_.log << fmt::format("stage {}: t = {:.6g} s of {:.6g} s, {} steps, {:.3g} steps/s, ETA {:.0f} s\n",
@@ -139,7 +139,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   write_snapshot();
   const double dt = sim.time_step;
   double next_probe = sim.time + scene.output.probe_interval;
-  double next_snapshot = scene.output.snapshot_interval > 0 ? sim.time + scene.output.snapshot_interval : 1e300;
+  double next_snapshot =
+      scene.output.snapshot_interval > 0 ? sim.time + scene.output.snapshot_interval : 1e300;
   if (options.log != nullptr) {
     *options.log << fmt::format("darcydem {}: {} particles, {}D, time step {:.4g} s (critical {:.4g} s)\n",
                                 version_string, sim.particles.size(), D, dt, sim.critical_time_step());
@@ -197,8 +198,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
        << fmt::format("  \"scene_hash\": \"fnv1a64:{}\",\n", scene.text_hash)
        << fmt::format("  \"dimension\": {},\n", D)
        << fmt::format("  \"particles\": {},\n", sim.particles.size())
-       << fmt::format("  \"time_step\": {:.17g},\n", dt)
-       << fmt::format("  \"steps\": {},\n", summary.steps)
+       << fmt::format("  \"time_step\": {:.17g},\n", dt) << fmt::format("  \"steps\": {},\n", summary.steps)
        << fmt::format("  \"simulated_time\": {:.17g},\n", summary.simulated_time)
        << fmt::format("  \"wall_time\": {:.6f},\n", summary.wall_time)
        << fmt::format("  \"threads\": {},\n", omp_get_max_threads())

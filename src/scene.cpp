@@ -70,7 +70,8 @@ RadiusDistribution read_radius(TableReader& r) {
     d.kind = RadiusDistribution::Kind::uniform;
     d.min = r.check("radius_min", r.number("radius_min"), positive, "> 0 m");
     d.max = r.number("radius_max");
-    r.check("radius_max", d.max, [&](double v) { return v >= d.min; }, ">= radius_min");
+    r.check(
+        "radius_max", d.max, [&](double v) { return v >= d.min; }, ">= radius_min");
   } else if (r.has("radii")) {
     d.kind = RadiusDistribution::Kind::table;
     d.radii = r.number_list("radii");
@@ -81,10 +82,12 @@ RadiusDistribution read_radius(TableReader& r) {
     double sum = 0.0;
     for (double f : d.fractions) sum += r.check("fractions", f, non_negative, ">= 0");
     for (double x : d.radii) r.check("radii", x, positive, "> 0 m");
-    if (std::abs(sum - 1.0) > 1e-9) r.fail("fractions", fmt::format("must add up to 1, they add up to {}", sum));
+    if (std::abs(sum - 1.0) > 1e-9)
+      r.fail("fractions", fmt::format("must add up to 1, they add up to {}", sum));
   } else {
-    r.fail_table("needs a size: 'radius' (constant), 'radius_min' and 'radius_max' (uniform), "
-                 "or 'radii' with 'fractions' (a table of sizes)");
+    r.fail_table(
+        "needs a size: 'radius' (constant), 'radius_min' and 'radius_max' (uniform), "
+        "or 'radii' with 'fractions' (a table of sizes)");
   }
   return d;
 }
@@ -117,15 +120,16 @@ void read_wall_motion(TableReader& r, Vec<D>& velocity, WallMotion& motion, Serv
     servo.max_speed = sr.check("max_speed", sr.number("max_speed"), positive, "> 0 m/s");
     sr.finish();
   } else if (r.has("fixed")) {
-    if (!r.boolean_or("fixed", true)) r.fail("fixed", "only 'fixed = true' makes sense; give 'velocity' to move it");
+    if (!r.boolean_or("fixed", true))
+      r.fail("fixed", "only 'fixed = true' makes sense; give 'velocity' to move it");
     motion = WallMotion::fixed;
   }
 }
 
 template <int D>
 std::int64_t axis_component(TableReader& r, std::string_view key, bool allow_norm) {
-  std::vector<std::string> allowed = D == 2 ? std::vector<std::string>{"x", "y"}
-                                            : std::vector<std::string>{"x", "y", "z"};
+  std::vector<std::string> allowed =
+      D == 2 ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};
   if (allow_norm) allowed.emplace_back("norm");
   const std::string c = r.choice(key, allowed);
   if (c == "norm") return -1;
@@ -157,10 +161,10 @@ void check_initial_overlaps(const Simulation<D>& sim, double tolerance,
       const double overlap = p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm();
       const double allowed = tolerance * std::min(p.radius[i], p.radius[j]);
       if (overlap > allowed) {
-        throw SceneError(fmt::format(
-            "{}: error: particles {} and {} overlap by {:.3g} m at start (from {}; allowed: "
-            "simulation.initial_overlap_tolerance = {} of the smaller radius)",
-            origin[i], i, j, overlap, origin[j], tolerance));
+        throw SceneError(
+            fmt::format("{}: error: particles {} and {} overlap by {:.3g} m at start (from {}; allowed: "
+                        "simulation.initial_overlap_tolerance = {} of the smaller radius)",
+                        origin[i], i, j, overlap, origin[j], tolerance));
       }
     });
   }
@@ -180,7 +184,8 @@ std::string fnv1a_hex(const std::string& bytes) {
 int scene_dimension(const toml::table& root, const std::string& file) {
   const toml::table* sim = root["simulation"].as_table();
   if (sim == nullptr) {
-    throw SceneError(fmt::format("{}:1:1: error: missing required table [simulation] (with 'dimension' = 2 or 3)", file));
+    throw SceneError(
+        fmt::format("{}:1:1: error: missing required table [simulation] (with 'dimension' = 2 or 3)", file));
   }
   TableReader r(*sim, "[simulation]", file);
   const auto d = r.integer("dimension");
@@ -206,7 +211,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     r.allow({"time_step"});
     if (const toml::node* n = t->get("time_step"); n != nullptr) {
       if (n->is_string()) {
-        if (*n->value<std::string>() != "auto") r.fail("time_step", "must be \"auto\" or a number of seconds > 0");
+        if (*n->value<std::string>() != "auto")
+          r.fail("time_step", "must be \"auto\" or a number of seconds > 0");
       } else if (auto v = n->value<double>(); v && (n->is_floating_point() || n->is_integer())) {
         scene.time_step.automatic = false;
         scene.time_step.value = r.check("time_step", *v, positive, "\"auto\" or a number of seconds > 0");
@@ -214,8 +220,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         r.fail("time_step", "must be \"auto\" or a number of seconds > 0");
       }
     }
-    scene.time_step.safety_factor = r.check("safety_factor", r.number_or("safety_factor", 0.2),
-                                            [](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]");
+    scene.time_step.safety_factor = r.check(
+        "safety_factor", r.number_or("safety_factor", 0.2), [](double v) { return v > 0.0 && v <= 1.0; },
+        "in (0, 1]");
     sim.skin = r.check("skin", r.number_or("skin", 0.0), non_negative, ">= 0 m (0: automatic)");
     overlap_tolerance = r.check("initial_overlap_tolerance", r.number_or("initial_overlap_tolerance", 0.01),
                                 non_negative, ">= 0 (a fraction of the radius)");
@@ -227,11 +234,13 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   for_each_table(top, "material", "material", [&](TableReader& r, int) {
     Material m;
     m.name = r.string("name");
-    if (materials.index.count(m.name) != 0) r.fail("name", fmt::format("material \"{}\" is defined twice", m.name));
+    if (materials.index.count(m.name) != 0)
+      r.fail("name", fmt::format("material \"{}\" is defined twice", m.name));
     m.density = r.check("density", r.number("density"), positive, "> 0 kg/m^3");
     m.youngs_modulus = r.check("youngs_modulus", r.number_or("youngs_modulus", 0.0), non_negative, ">= 0 Pa");
-    m.poisson_ratio = r.check("poisson_ratio", r.number_or("poisson_ratio", 0.0),
-                              [](double v) { return v > -1.0 && v < 0.5; }, "in (-1, 0.5)");
+    m.poisson_ratio = r.check(
+        "poisson_ratio", r.number_or("poisson_ratio", 0.0), [](double v) { return v > -1.0 && v < 0.5; },
+        "in (-1, 0.5)");
     materials.index[m.name] = static_cast<std::uint16_t>(sim.materials.size());
     materials.names.push_back(m.name);
     sim.materials.push_back(m);
@@ -247,28 +256,33 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     if (names.size() != 2) r.fail("materials", "must name exactly two materials, e.g. [\"sand\", \"sand\"]");
     const auto a = materials.lookup(r, "materials", names[0]);
     const auto b = materials.lookup(r, "materials", names[1]);
-    if (defined[a * nm + b]) r.fail("materials", fmt::format("the pair {} / {} is defined twice", names[0], names[1]));
+    if (defined[a * nm + b])
+      r.fail("materials", fmt::format("the pair {} / {} is defined twice", names[0], names[1]));
     ContactSpec spec;
     const std::string law = r.choice("law", {"linear", "hertz_mindlin"});
     r.allow({"normal_stiffness", "tangential_stiffness_ratio"});
     if (law == "linear") {
       spec.law = NormalLaw::linear;
       spec.normal_stiffness = r.check("normal_stiffness", r.number("normal_stiffness"), positive, "> 0 N/m");
-      spec.tangential_stiffness_ratio = r.check("tangential_stiffness_ratio",
-                                                r.number_or("tangential_stiffness_ratio", 1.0), non_negative, ">= 0");
+      spec.tangential_stiffness_ratio = r.check(
+          "tangential_stiffness_ratio", r.number_or("tangential_stiffness_ratio", 1.0), non_negative, ">= 0");
     } else {
       spec.law = NormalLaw::hertz_mindlin;
-      if (r.has("normal_stiffness")) r.fail("normal_stiffness", "does not apply to hertz_mindlin (set youngs_modulus and poisson_ratio on the materials)");
+      if (r.has("normal_stiffness"))
+        r.fail("normal_stiffness",
+               "does not apply to hertz_mindlin (set youngs_modulus and poisson_ratio on the materials)");
       for (auto idx : {a, b}) {
         if (!(sim.materials[idx].youngs_modulus > 0.0)) {
-          r.fail("law", fmt::format("hertz_mindlin needs youngs_modulus > 0 on material \"{}\"", sim.materials[idx].name));
+          r.fail("law", fmt::format("hertz_mindlin needs youngs_modulus > 0 on material \"{}\"",
+                                    sim.materials[idx].name));
         }
       }
     }
-    spec.restitution = r.check("restitution", r.number("restitution"),
-                               [](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]");
+    spec.restitution = r.check(
+        "restitution", r.number("restitution"), [](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]");
     spec.friction = r.check("friction", r.number_or("friction", 0.0), non_negative, ">= 0");
-    spec.rolling_friction = r.check("rolling_friction", r.number_or("rolling_friction", 0.0), non_negative, ">= 0");
+    spec.rolling_friction =
+        r.check("rolling_friction", r.number_or("rolling_friction", 0.0), non_negative, ">= 0");
     sim.contact_table.set(a, b, make_pair_parameters(sim.materials[a], sim.materials[b], spec));
     defined[a * nm + b] = defined[b * nm + a] = true;
   });
@@ -300,8 +314,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       const Vec<D> lo = to_vec<D>(r.numbers("min", D));
       const Vec<D> hi = to_vec<D>(r.numbers("max", D));
       const double radius = r.check("radius", r.number("radius"), positive, "> 0 m");
-      const double spacing = r.check("spacing", r.number_or("spacing", 2.0 * radius),
-                                     [&](double v) { return v >= 2.0 * radius; }, ">= 2 x radius (m)");
+      const double spacing = r.check(
+          "spacing", r.number_or("spacing", 2.0 * radius), [&](double v) { return v >= 2.0 * radius; },
+          ">= 2 x radius (m)");
       pk = lattice_packing<D>(lo, hi, spacing, radius);
     } else if (gen == "column") {
       const Vec<D> base = to_vec<D>(r.numbers("base", D));
@@ -320,7 +335,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       if (count < 1) r.fail("count", "must be >= 1");
       const RadiusDistribution dist = read_radius(r);
       for (int k = 0; k < D; ++k) {
-        if (hi[k] - lo[k] < 2.0 * dist.largest()) r.fail("max", "the box must be wider than the largest particle in every direction");
+        if (hi[k] - lo[k] < 2.0 * dist.largest())
+          r.fail("max", "the box must be wider than the largest particle in every direction");
       }
       const auto seed = r.optional_integer("seed").value_or(1);
       const auto attempts = r.optional_integer("max_attempts").value_or(1000);
@@ -338,7 +354,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         r.fail("file", e.what());
       }
     }
-    const Vec<D> velocity = to_vec<D>(r.optional_numbers("velocity", D).value_or(std::vector<double>(D, 0.0)));
+    const Vec<D> velocity =
+        to_vec<D>(r.optional_numbers("velocity", D).value_or(std::vector<double>(D, 0.0)));
     if (pk.position.empty()) r.fail_table("made no particles (is the box smaller than one particle?)");
     const double density = sim.materials[mat].density;
     for (std::size_t k = 0; k < pk.position.size(); ++k) {
@@ -346,7 +363,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       origin.push_back(fmt::format("{} ([[particles]] #{})", r.here(), index));
     }
   });
-  if (sim.particles.size() == 0) top.fail_table("needs at least one [[particles]] generator that makes particles");
+  if (sim.particles.size() == 0)
+    top.fail_table("needs at least one [[particles]] generator that makes particles");
 
   // Every pair of materials that can meet needs a [[contact]].
   {
@@ -367,8 +385,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   // [output] and [[probe]]
   if (const toml::table* t = top.optional_table("output")) {
     TableReader r(*t, "[output]", file);
-    scene.output.probe_interval = r.check("probe_interval", r.number_or("probe_interval", 0.0), non_negative, ">= 0 s");
-    scene.output.snapshot_interval = r.check("snapshot_interval", r.number_or("snapshot_interval", 0.0), non_negative, ">= 0 s");
+    scene.output.probe_interval =
+        r.check("probe_interval", r.number_or("probe_interval", 0.0), non_negative, ">= 0 s");
+    scene.output.snapshot_interval =
+        r.check("snapshot_interval", r.number_or("snapshot_interval", 0.0), non_negative, ">= 0 s");
     r.finish();
   }
   std::vector<std::string> probe_names;
@@ -382,12 +402,13 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       r.fail("name", fmt::format("probe \"{}\" is defined twice", p.name));
     }
     probe_names.push_back(p.name);
-    const std::string q = r.choice("quantity", {"particle_position", "particle_velocity", "wall_position",
-                                                "wall_force", "kinetic_energy", "contact_count",
-                                                "coordination", "max_overlap", "unbalanced_force"});
+    const std::string q = r.choice(
+        "quantity", {"particle_position", "particle_velocity", "wall_position", "wall_force",
+                     "kinetic_energy", "contact_count", "coordination", "max_overlap", "unbalanced_force"});
     r.allow({"particle", "component", "wall"});
     if (q == "particle_position" || q == "particle_velocity") {
-      p.quantity = q == "particle_position" ? ProbeQuantity::particle_position : ProbeQuantity::particle_velocity;
+      p.quantity =
+          q == "particle_position" ? ProbeQuantity::particle_position : ProbeQuantity::particle_velocity;
       const toml::node* n = r.raw("particle");
       if (n == nullptr) r.fail_table("missing required key 'particle' (an index, or \"top\")");
       if (n->is_string() && *n->value<std::string>() == "top") {
@@ -409,7 +430,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       auto it = wall_index.find(w);
       if (it == wall_index.end()) {
         std::string hint;
-        if (auto s = did_you_mean(w, wall_names); !s.empty()) hint = fmt::format(" (did you mean \"{}\"?)", s);
+        if (auto s = did_you_mean(w, wall_names); !s.empty())
+          hint = fmt::format(" (did you mean \"{}\"?)", s);
         r.fail("wall", fmt::format("no wall named \"{}\"{}", w, hint));
       }
       p.wall = it->second;
@@ -434,7 +456,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     s.duration = r.check("duration", r.number("duration"), positive, "> 0 s (the longest the stage runs)");
     if (auto g = r.optional_numbers("gravity", D)) s.gravity = to_vec<D>(*g);
     if (auto a = r.optional_number("local_damping")) {
-      s.local_damping = r.check("local_damping", *a, [](double v) { return v >= 0.0 && v < 1.0; }, "in [0, 1)");
+      s.local_damping = r.check(
+          "local_damping", *a, [](double v) { return v >= 0.0 && v < 1.0; }, "in [0, 1)");
     }
     if (auto b = r.optional_number("viscous_damping")) {
       s.viscous_damping = r.check("viscous_damping", *b, non_negative, ">= 0 1/s");
@@ -459,12 +482,15 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         auto it = wall_index.find(std::string(name.str()));
         if (it == wall_index.end()) {
           std::string hint;
-          if (auto h = did_you_mean(name.str(), wall_names); !h.empty()) hint = fmt::format(" (did you mean \"{}\"?)", h);
+          if (auto h = did_you_mean(name.str(), wall_names); !h.empty())
+            hint = fmt::format(" (did you mean \"{}\"?)", h);
           throw SceneError(fmt::format("{}:{}:{}: error: {} walls: no wall named \"{}\"{}", file,
-                                       node.source().begin.line, node.source().begin.column, r.where(), name.str(), hint));
+                                       node.source().begin.line, node.source().begin.column, r.where(),
+                                       name.str(), hint));
         }
         const toml::table* ct = node.as_table();
-        if (ct == nullptr) r.fail("walls", "each wall entry must be a table, e.g. walls.top = { velocity = [0, -0.01] }");
+        if (ct == nullptr)
+          r.fail("walls", "each wall entry must be a table, e.g. walls.top = { velocity = [0, -0.01] }");
         TableReader cr(*ct, fmt::format("{} walls.{}", r.where(), name.str()), file);
         WallChange<D> c;
         c.wall = it->second;
@@ -492,7 +518,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       TableReader r(*t, "[simulation]", file);
       r.fail("time_step", fmt::format("{:.4g} s is larger than the critical time step {:.4g} s "
                                       "(sqrt(m_min/k_max) or the Rayleigh step); use a smaller "
-                                      "value or \"auto\"", scene.time_step.value, critical));
+                                      "value or \"auto\"",
+                                      scene.time_step.value, critical));
     }
     sim.time_step = scene.time_step.value;
   }

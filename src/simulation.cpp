@@ -158,14 +158,13 @@ void Simulation<D>::compute_forces_with() {
       const double overlap = reach - dist;
       const double arm_i = ri - 0.5 * overlap;
       const double arm_j = p.radius[j] - 0.5 * overlap;
-      const Vec<D> v_rel = p.velocity[i] + cross(p.angular_velocity[i], Vec<D>(arm_i * nrm)) -
-                           p.velocity[j] - cross(p.angular_velocity[j], Vec<D>(-arm_j * nrm));
+      const Vec<D> v_rel = p.velocity[i] + cross(p.angular_velocity[i], Vec<D>(arm_i * nrm)) - p.velocity[j] -
+                           cross(p.angular_velocity[j], Vec<D>(-arm_j * nrm));
       const AngVec<D> w_rel = p.angular_velocity[i] - p.angular_velocity[j];
       const double r_eff = ri * p.radius[j] / reach;
-      const auto c = evaluate_contact<D, Law>(contact_table(p.material[i], p.material[j]), nrm,
-                                              overlap, arm_i, arm_j, v_rel, w_rel, 1.0 / inv_m,
-                                              r_eff, dt, L.tangential[k],
-                                              rolling ? &L.rolling[k] : nullptr);
+      const auto c = evaluate_contact<D, Law>(contact_table(p.material[i], p.material[j]), nrm, overlap,
+                                              arm_i, arm_j, v_rel, w_rel, 1.0 / inv_m, r_eff, dt,
+                                              L.tangential[k], rolling ? &L.rolling[k] : nullptr);
       f += c.force_on_i;
       t += c.torque_i;
       L.force_on_j[k] = -c.force_on_i;
@@ -183,12 +182,10 @@ void Simulation<D>::compute_forces_with() {
       }
       const Vec<D> nrm = -w.normal;
       const double arm_i = ri - overlap;
-      const Vec<D> v_rel =
-          p.velocity[i] + cross(p.angular_velocity[i], Vec<D>(arm_i * nrm)) - w.velocity;
-      const auto c = evaluate_contact<D, Law>(contact_table(p.material[i], w.material), nrm,
-                                              overlap, arm_i, 0.0, v_rel, p.angular_velocity[i],
-                                              1.0 / p.inv_mass[i], ri, dt, W.tangential[k],
-                                              rolling ? &W.rolling[k] : nullptr);
+      const Vec<D> v_rel = p.velocity[i] + cross(p.angular_velocity[i], Vec<D>(arm_i * nrm)) - w.velocity;
+      const auto c = evaluate_contact<D, Law>(contact_table(p.material[i], w.material), nrm, overlap, arm_i,
+                                              0.0, v_rel, p.angular_velocity[i], 1.0 / p.inv_mass[i], ri, dt,
+                                              W.tangential[k], rolling ? &W.rolling[k] : nullptr);
       f += c.force_on_i;
       t += c.torque_i;
       W.force_on_particle[k] = c.force_on_i;
@@ -248,8 +245,8 @@ double Simulation<D>::critical_time_step() const {
       } else {
         const Material& m = materials[a];
         const double shear = m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
-        const double rayleigh = std::numbers::pi * r_min[a] * std::sqrt(m.density / shear) /
-                                (0.1631 * m.poisson_ratio + 0.8766);
+        const double rayleigh =
+            std::numbers::pi * r_min[a] * std::sqrt(m.density / shear) / (0.1631 * m.poisson_ratio + 0.8766);
         dt = std::min(dt, rayleigh);
       }
     }
@@ -278,8 +275,8 @@ double Simulation<D>::gravitational_energy() const {
 
 namespace {
 template <int D, class F>
-void for_each_touching(const ParticleData<D>& p, const VerletList<D>& L,
-                       const std::vector<Wall<D>>& walls, F&& f) {
+void for_each_touching(const ParticleData<D>& p, const VerletList<D>& L, const std::vector<Wall<D>>& walls,
+                       F&& f) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
       const std::uint32_t j = L.neighbour[k];

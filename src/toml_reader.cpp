@@ -27,13 +27,20 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 std::string type_name(const toml::node& n) {
   switch (n.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::table: return "a table";
-    default: return "a date/time";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::table:
+      return "a table";
+    default:
+      return "a date/time";
   }
 }
 
@@ -93,8 +100,9 @@ void TableReader::missing(std::string_view key, const std::string& what) const {
   // A near-miss key is more likely a typo than an omission: report that.
   for (const auto& [k, v] : table_) {
     if (used_.count(k.str()) == 0 && did_you_mean(k.str(), {std::string(key)}) == key) {
-      throw SceneError(fmt::format("{}: error: {} has unknown key '{}'. Did you mean '{}'? ('{}' is required: {})",
-                                   location(v.source()), where_, k.str(), key, key, what));
+      throw SceneError(
+          fmt::format("{}: error: {} has unknown key '{}'. Did you mean '{}'? ('{}' is required: {})",
+                      location(v.source()), where_, k.str(), key, key, what));
     }
   }
   fail_table(fmt::format("missing required key '{}' ({})", key, what));
@@ -167,8 +175,7 @@ std::string TableReader::choice(std::string_view key, const std::vector<std::str
   return *v;
 }
 
-std::optional<std::vector<double>> TableReader::optional_numbers(std::string_view key,
-                                                                 std::size_t n) {
+std::optional<std::vector<double>> TableReader::optional_numbers(std::string_view key, std::size_t n) {
   const toml::node* node = get(key);
   if (node == nullptr) return std::nullopt;
   const toml::array* a = node->as_array();

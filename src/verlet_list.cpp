@@ -6,8 +6,8 @@
 namespace darcydem {
 
 template <int D>
-void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector<double>& radius,
-                          double skin, bool keep_rolling) {
+void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector<double>& radius, double skin,
+                          bool keep_rolling) {
   const auto n = static_cast<std::int64_t>(position.size());
   double r_max = 0.0;
   for (double r : radius) r_max = std::max(r_max, r);

@@ -11,7 +11,8 @@ namespace {
 
 template <int D, class Get>
 void write_vector_array(fmt::ostream& out, const char* name, std::size_t n, Get&& get) {
-  out.print("        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"ascii\">\n", name);
+  out.print("        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"ascii\">\n",
+            name);
   for (std::size_t i = 0; i < n; ++i) {
     const auto v = get(i);
     out.print("{:.17g} {:.17g} {:.17g}\n", v[0], v[1], D == 3 ? v[2] : 0.0);
@@ -26,7 +27,9 @@ void write_particles_vtu(const std::string& path, const ParticleData<D>& p) {
   try {
     auto out = fmt::output_file(path);
     const std::size_t n = p.size();
-    out.print("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
+    out.print(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+        "byte_order=\"LittleEndian\">\n");
     out.print("  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"0\">\n", n);
     out.print("      <Points>\n");
     write_vector_array<D>(out, "position", n, [&](std::size_t i) { return p.position[i]; });

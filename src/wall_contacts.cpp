@@ -3,9 +3,8 @@
 namespace darcydem {
 
 template <int D>
-void WallContactList<D>::build(const std::vector<Vec<D>>& position,
-                               const std::vector<double>& radius, std::vector<Wall<D>>& walls,
-                               double skin, bool keep_rolling) {
+void WallContactList<D>::build(const std::vector<Vec<D>>& position, const std::vector<double>& radius,
+                               std::vector<Wall<D>>& walls, double skin, bool keep_rolling) {
   const std::size_t n = position.size();
   std::vector<std::uint32_t> next_offset(n + 1, 0);
   std::vector<std::uint16_t> next_wall;

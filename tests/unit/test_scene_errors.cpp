@@ -51,8 +51,8 @@ gravity = [0.0, -9.81]
 
 std::string write_scene(const std::string& text) {
   static int counter = 0;
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("darcydem_scene_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + ".toml");
+  const auto path = std::filesystem::temp_directory_path() / ("darcydem_scene_" + std::to_string(::getpid()) +
+                                                              "_" + std::to_string(counter++) + ".toml");
   std::ofstream(path) << text;
   return path.string();
 }
@@ -127,7 +127,8 @@ TEST(SceneErrors, OverlapWithWallAtStartIsRefused) {
 }
 
 TEST(SceneErrors, OverlappingParticlesAtStartAreRefused) {
-  const auto msg = load_error(replace(kGood, "radius = 0.0005", "radius = 0.0005\naxis = [0.0, 1.0]\ngap = -0.0002"));
+  const auto msg =
+      load_error(replace(kGood, "radius = 0.0005", "radius = 0.0005\naxis = [0.0, 1.0]\ngap = -0.0002"));
   EXPECT_NE(msg.find("gap"), std::string::npos) << msg;  // a negative gap is refused first
 }
 

@@ -7,8 +7,8 @@ namespace darcydem::testing {
 
 /// One material with the given contact spec for every pair (walls included).
 template <int D>
-Simulation<D> single_material(double density, const ContactSpec& spec,
-                              double youngs_modulus = 0.0, double poisson_ratio = 0.0) {
+Simulation<D> single_material(double density, const ContactSpec& spec, double youngs_modulus = 0.0,
+                              double poisson_ratio = 0.0) {
   Simulation<D> sim;
   Material m{"grain", density, youngs_modulus, poisson_ratio};
   sim.materials.push_back(m);

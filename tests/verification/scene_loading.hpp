@@ -33,7 +33,8 @@ void run_stages(Scene<D>& scene) {
       sim.step();
       if ((s + 1) % stage.check_interval == 0) {
         if (stage.kinetic_energy_below && sim.kinetic_energy() < *stage.kinetic_energy_below) break;
-        if (stage.unbalanced_force_below && sim.unbalanced_force_ratio() < *stage.unbalanced_force_below) break;
+        if (stage.unbalanced_force_below && sim.unbalanced_force_ratio() < *stage.unbalanced_force_below)
+          break;
       }
     }
   }

@@ -16,7 +16,7 @@ namespace darcydem {
 
 template <int D>
 struct ContactHistory {
-  Vec<D> tangential = Vec<D>::Zero();   ///< elastic tangential displacement, m
+  Vec<D> tangential = Vec<D>::Zero();  ///< elastic tangential displacement, m
 };
 
 template <int D>
@@ -47,8 +47,8 @@ inline void rotate_into_plane(Eigen::Matrix<double, K, 1>& h, const Vec<D>& n) {
 template <int D, class Law>
 inline ContactForce<D> evaluate_contact(const PairParameters& p, const Vec<D>& n, double overlap,
                                         double arm_i, double arm_j, const Vec<D>& v_rel,
-                                        const AngVec<D>& omega_rel, double m_eff, double r_eff,
-                                        double dt, Vec<D>& xi, AngVec<D>* rolling) {
+                                        const AngVec<D>& omega_rel, double m_eff, double r_eff, double dt,
+                                        Vec<D>& xi, AngVec<D>* rolling) {
   const double vn = v_rel.dot(n);
   const NormalResponse nr = Law::evaluate(p, overlap, vn, m_eff, r_eff);
   const double fn = nr.force;
@@ -84,8 +84,7 @@ inline ContactForce<D> evaluate_contact(const PairParameters& p, const Vec<D>& n
       rotate_into_plane<D, 3>(*rolling, n);
     }
     *rolling += w_roll * dt;
-    const double kr = 2.25 * nr.normal_stiffness * p.rolling_friction * p.rolling_friction *
-                      r_eff * r_eff;
+    const double kr = 2.25 * nr.normal_stiffness * p.rolling_friction * p.rolling_friction * r_eff * r_eff;
     AngVec<D> m = -kr * *rolling;
     const double m_max = p.rolling_friction * r_eff * fn;
     const double m_norm = m.norm();

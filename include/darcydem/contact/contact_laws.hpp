@@ -15,14 +15,14 @@ namespace darcydem {
 /// Per material pair: everything a contact evaluation needs.
 struct PairParameters {
   NormalLaw law = NormalLaw::linear;
-  double normal_stiffness = 0.0;   ///< N/m (linear)
-  double tangential_ratio = 1.0;   ///< k_t / k_n (linear)
-  double hertz_modulus = 0.0;      ///< E* = 1 / ((1-nu1^2)/E1 + (1-nu2^2)/E2), Pa
-  double shear_modulus = 0.0;      ///< G* = 1 / ((2-nu1)/G1 + (2-nu2)/G2), Pa
-  double normal_damping = 0.0;     ///< dimensionless gamma (restitution.hpp)
-  double tangential_damping = 0.0; ///< dimensionless, c_t = gamma_t sqrt(m k_t)
-  double friction = 0.0;           ///< Coulomb mu
-  double rolling_friction = 0.0;   ///< mu_r (0: no rolling resistance)
+  double normal_stiffness = 0.0;    ///< N/m (linear)
+  double tangential_ratio = 1.0;    ///< k_t / k_n (linear)
+  double hertz_modulus = 0.0;       ///< E* = 1 / ((1-nu1^2)/E1 + (1-nu2^2)/E2), Pa
+  double shear_modulus = 0.0;       ///< G* = 1 / ((2-nu1)/G1 + (2-nu2)/G2), Pa
+  double normal_damping = 0.0;      ///< dimensionless gamma (restitution.hpp)
+  double tangential_damping = 0.0;  ///< dimensionless, c_t = gamma_t sqrt(m k_t)
+  double friction = 0.0;            ///< Coulomb mu
+  double rolling_friction = 0.0;    ///< mu_r (0: no rolling resistance)
 };
 
 struct NormalResponse {
@@ -34,8 +34,8 @@ struct NormalResponse {
 /// Linear spring-dashpot: F = k_n d + gamma sqrt(m k_n) vn, clamped at 0;
 /// k_t = ratio * k_n.
 struct LinearSpringDashpot {
-  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn,
-                                 double m_eff, double /*r_eff*/) {
+  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn, double m_eff,
+                                 double /*r_eff*/) {
     const double k = p.normal_stiffness;
     const double f = k * overlap + p.normal_damping * std::sqrt(m_eff * k) * vn;
     return {f > 0.0 ? f : 0.0, k, p.tangential_ratio * k};
@@ -46,8 +46,8 @@ struct LinearSpringDashpot {
 ///   F = K d^1.5 + gamma sqrt(m K) d^0.25 vn, K = 4/3 E* sqrt(R*), clamped at 0;
 ///   k_n = 2 E* sqrt(R* d) (tangent), k_t = 8 G* sqrt(R* d) (Mindlin, no slip).
 struct HertzMindlin {
-  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn,
-                                 double m_eff, double r_eff) {
+  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn, double m_eff,
+                                 double r_eff) {
     const double a = std::sqrt(r_eff * overlap);  // contact radius
     const double big_k = 4.0 / 3.0 * p.hertz_modulus * std::sqrt(r_eff);
     const double f = big_k * overlap * std::sqrt(overlap) +
@@ -58,8 +58,8 @@ struct HertzMindlin {
 
 /// Several laws in one scene: dispatch on the pair's law (well predicted).
 struct MixedNormalLaw {
-  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn,
-                                 double m_eff, double r_eff) {
+  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn, double m_eff,
+                                 double r_eff) {
     if (p.law == NormalLaw::linear) {
       return LinearSpringDashpot::evaluate(p, overlap, vn, m_eff, r_eff);
     }
@@ -71,8 +71,7 @@ struct MixedNormalLaw {
 class ContactTable {
  public:
   ContactTable() = default;
-  explicit ContactTable(std::size_t n_materials)
-      : n_(n_materials), pairs_(n_materials * n_materials) {}
+  explicit ContactTable(std::size_t n_materials) : n_(n_materials), pairs_(n_materials * n_materials) {}
   void set(std::size_t a, std::size_t b, const PairParameters& p) {
     pairs_[a * n_ + b] = p;
     pairs_[b * n_ + a] = p;

@@ -17,11 +17,11 @@ enum class NormalLaw { linear, hertz_mindlin };
 /// What a scene says about the contact between two materials.
 struct ContactSpec {
   NormalLaw law = NormalLaw::linear;
-  double normal_stiffness = 0.0;              ///< N/m (linear)
-  double tangential_stiffness_ratio = 1.0;    ///< k_t / k_n (linear)
-  double restitution = 1.0;                   ///< normal coefficient of restitution
-  double friction = 0.0;                      ///< Coulomb coefficient
-  double rolling_friction = 0.0;              ///< mu_r, dimensionless (0: off)
+  double normal_stiffness = 0.0;            ///< N/m (linear)
+  double tangential_stiffness_ratio = 1.0;  ///< k_t / k_n (linear)
+  double restitution = 1.0;                 ///< normal coefficient of restitution
+  double friction = 0.0;                    ///< Coulomb coefficient
+  double rolling_friction = 0.0;            ///< mu_r, dimensionless (0: off)
 };
 
 }  // namespace darcydem

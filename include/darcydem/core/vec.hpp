@@ -19,18 +19,13 @@ template <int D>
 using AngVec = Eigen::Matrix<double, rotation_dim<D>, 1>;
 
 /// a x b: the moment of force b about arm a.
-inline AngVec<2> cross(const Vec<2>& a, const Vec<2>& b) {
-  return AngVec<2>(a.x() * b.y() - a.y() * b.x());
-}
+inline AngVec<2> cross(const Vec<2>& a, const Vec<2>& b) { return AngVec<2>(a.x() * b.y() - a.y() * b.x()); }
 inline Vec<3> cross(const Vec<3>& a, const Vec<3>& b) {
-  return Vec<3>(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(),
-                a.x() * b.y() - a.y() * b.x());
+  return Vec<3>(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x());
 }
 
 /// w x r: the velocity of a point at arm r of a body spinning at w.
-inline Vec<2> cross(const AngVec<2>& w, const Vec<2>& r) {
-  return Vec<2>(-w[0] * r.y(), w[0] * r.x());
-}
+inline Vec<2> cross(const AngVec<2>& w, const Vec<2>& r) { return Vec<2>(-w[0] * r.y(), w[0] * r.x()); }
 
 /// Volume of a particle of radius r: a disc of 1 m thickness in 2D (m^3).
 template <int D>

@@ -13,20 +13,18 @@ namespace darcydem {
 struct RadiusDistribution {
   enum class Kind { constant, uniform, table };
   Kind kind = Kind::constant;
-  double value = 0.0;              ///< constant radius, m
-  double min = 0.0;                ///< uniform range, m
+  double value = 0.0;  ///< constant radius, m
+  double min = 0.0;    ///< uniform range, m
   double max = 0.0;
-  std::vector<double> radii;       ///< table of sizes, m
-  std::vector<double> fractions;   ///< number fractions of the table (sum 1)
+  std::vector<double> radii;      ///< table of sizes, m
+  std::vector<double> fractions;  ///< number fractions of the table (sum 1)
 
   [[nodiscard]] double largest() const;
   [[nodiscard]] double sample(std::mt19937_64& rng) const;
 };
 
 /// Uniform double in [0, 1) from 53 random bits (portable across libraries).
-inline double unit_random(std::mt19937_64& rng) {
-  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
-}
+inline double unit_random(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
 template <int D>
 struct Packing {
@@ -42,16 +40,14 @@ Packing<D> lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spacing, d
 /// `count` particles stacked along `axis` from `base` (the point the lowest
 /// particle rests on), centre to centre 2r + gap.
 template <int D>
-Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, double radius,
-                          double gap);
+Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, double radius, double gap);
 
 /// Random sequential addition of `count` non-overlapping particles inside the
 /// box [lo, hi]. Throws std::runtime_error when `max_attempts` tries per
 /// particle do not find room.
 template <int D>
 Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count,
-                          const RadiusDistribution& radii, std::uint64_t seed,
-                          std::int64_t max_attempts);
+                          const RadiusDistribution& radii, std::uint64_t seed, std::int64_t max_attempts);
 
 /// Reads `x,y[,z],radius` rows (a header line naming the columns first).
 /// Throws std::runtime_error naming the file and line on a bad row.

@@ -30,11 +30,11 @@ class VerletList {
 
   // Rows: pairs of particle i are row_offset[i] .. row_offset[i+1]-1.
   std::vector<std::uint32_t> row_offset;
-  std::vector<std::uint32_t> neighbour;   ///< j of each pair
-  std::vector<Vec<D>> tangential;         ///< tangential spring history of each pair
-  std::vector<AngVec<D>> rolling;         ///< rolling history (empty when unused)
-  std::vector<Vec<D>> force_on_j;         ///< this step's force on j from each pair
-  std::vector<AngVec<D>> torque_on_j;     ///< this step's torque on j from each pair
+  std::vector<std::uint32_t> neighbour;  ///< j of each pair
+  std::vector<Vec<D>> tangential;        ///< tangential spring history of each pair
+  std::vector<AngVec<D>> rolling;        ///< rolling history (empty when unused)
+  std::vector<Vec<D>> force_on_j;        ///< this step's force on j from each pair
+  std::vector<AngVec<D>> torque_on_j;    ///< this step's torque on j from each pair
   // Reverse index: pairs where particle j is second are
   // reverse_pair[reverse_offset[j] .. reverse_offset[j+1]-1].
   std::vector<std::uint32_t> reverse_offset;

@@ -44,9 +44,7 @@ struct ParticleData {
   }
 
   /// Mass from density for any particle, fixed or not (kg).
-  [[nodiscard]] static double mass_of(double density, double r) {
-    return density * particle_volume<D>(r);
-  }
+  [[nodiscard]] static double mass_of(double density, double r) { return density * particle_volume<D>(r); }
 };
 
 }  // namespace darcydem

@@ -42,8 +42,7 @@ class TableReader {
   std::optional<std::string> optional_string(std::string_view key);
   /// A string that must be one of `allowed`.
   std::string choice(std::string_view key, const std::vector<std::string>& allowed);
-  std::optional<std::string> optional_choice(std::string_view key,
-                                             const std::vector<std::string>& allowed);
+  std::optional<std::string> optional_choice(std::string_view key, const std::vector<std::string>& allowed);
   /// An array of exactly n numbers.
   std::vector<double> numbers(std::string_view key, std::size_t n);
   std::optional<std::vector<double>> optional_numbers(std::string_view key, std::size_t n);

@@ -48,13 +48,13 @@ class Simulation {
   [[nodiscard]] double critical_time_step() const;
 
   // Diagnostics (deterministic whatever the thread count).
-  [[nodiscard]] double kinetic_energy() const;         ///< J (translational + rotational)
-  [[nodiscard]] double gravitational_energy() const;   ///< J, -sum m g.x
-  [[nodiscard]] std::size_t contact_count() const;     ///< touching pairs incl. walls
-  [[nodiscard]] double mean_coordination() const;      ///< contacts per particle
-  [[nodiscard]] double max_overlap() const;            ///< m
-  [[nodiscard]] double unbalanced_force_ratio() const; ///< mean |F_i| / mean |F_contact|
-  [[nodiscard]] double elastic_energy() const;         ///< J, normal springs of linear contacts
+  [[nodiscard]] double kinetic_energy() const;          ///< J (translational + rotational)
+  [[nodiscard]] double gravitational_energy() const;    ///< J, -sum m g.x
+  [[nodiscard]] std::size_t contact_count() const;      ///< touching pairs incl. walls
+  [[nodiscard]] double mean_coordination() const;       ///< contacts per particle
+  [[nodiscard]] double max_overlap() const;             ///< m
+  [[nodiscard]] double unbalanced_force_ratio() const;  ///< mean |F_i| / mean |F_contact|
+  [[nodiscard]] double elastic_energy() const;          ///< J, normal springs of linear contacts
   [[nodiscard]] const VerletList<D>& pair_list() const { return list_; }
   [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
 

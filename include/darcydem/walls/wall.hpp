@@ -29,7 +29,7 @@ struct Wall {
   WallMotion motion = WallMotion::fixed;
   Vec<D> velocity = Vec<D>::Zero();  ///< m/s (velocity mode; servo sets it)
   ServoControl servo;
-  Vec<D> force = Vec<D>::Zero();     ///< N, force the particles exert on the wall
+  Vec<D> force = Vec<D>::Zero();  ///< N, force the particles exert on the wall
   Vec<D> point_at_build = Vec<D>::Zero();
 
   /// Signed distance of x from the plane, positive on the domain side.
@@ -55,11 +55,11 @@ struct Wall {
 /// plus the skin, with their contact history (CSR by particle).
 template <int D>
 struct WallContactList {
-  std::vector<std::uint32_t> offset;     ///< N+1
-  std::vector<std::uint16_t> wall;       ///< wall index of each candidate
-  std::vector<Vec<D>> tangential;        ///< tangential history
-  std::vector<AngVec<D>> rolling;        ///< rolling history (empty when unused)
-  std::vector<Vec<D>> force_on_particle; ///< this step's force, N
+  std::vector<std::uint32_t> offset;      ///< N+1
+  std::vector<std::uint16_t> wall;        ///< wall index of each candidate
+  std::vector<Vec<D>> tangential;         ///< tangential history
+  std::vector<AngVec<D>> rolling;         ///< rolling history (empty when unused)
+  std::vector<Vec<D>> force_on_particle;  ///< this step's force, N
 
   void build(const std::vector<Vec<D>>& position, const std::vector<double>& radius,
              std::vector<Wall<D>>& walls, double skin, bool keep_rolling);
