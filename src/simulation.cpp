@@ -275,8 +275,7 @@ double Simulation<D>::gravitational_energy() const {
 
 namespace {
 template <int D, class F>
-void for_each_touching(const ParticleData<D>& p, const VerletList<D>& L, const std::vector<Wall<D>>& walls,
-                       F&& f) {
+void for_each_touching(const ParticleData<D>& p, const VerletList<D>& L, F&& f) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
       const std::uint32_t j = L.neighbour[k];
@@ -284,14 +283,13 @@ void for_each_touching(const ParticleData<D>& p, const VerletList<D>& L, const s
       if (overlap > 0.0) f(i, j, k, overlap, false);
     }
   }
-  (void)walls;
 }
 }  // namespace
 
 template <int D>
 std::size_t Simulation<D>::contact_count() const {
   std::size_t count = 0;
-  for_each_touching(particles, list_, walls,
+  for_each_touching(particles, list_,
                     [&](std::size_t, std::uint32_t, std::uint32_t, double, bool) { ++count; });
   for (std::size_t i = 0; i < particles.size(); ++i) {
     for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
@@ -305,8 +303,7 @@ template <int D>
 double Simulation<D>::mean_coordination() const {
   if (particles.size() == 0) return 0.0;
   std::size_t pp = 0;
-  for_each_touching(particles, list_, walls,
-                    [&](std::size_t, std::uint32_t, std::uint32_t, double, bool) { ++pp; });
+  for_each_touching(particles, list_, [&](std::size_t, std::uint32_t, std::uint32_t, double, bool) { ++pp; });
   const std::size_t all = contact_count();
   return static_cast<double>(2 * pp + (all - pp)) / static_cast<double>(particles.size());
 }
@@ -314,7 +311,7 @@ double Simulation<D>::mean_coordination() const {
 template <int D>
 double Simulation<D>::max_overlap() const {
   double m = 0.0;
-  for_each_touching(particles, list_, walls,
+  for_each_touching(particles, list_,
                     [&](std::size_t, std::uint32_t, std::uint32_t, double o, bool) { m = std::max(m, o); });
   for (std::size_t i = 0; i < particles.size(); ++i) {
     for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {

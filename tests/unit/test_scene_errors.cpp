@@ -127,9 +127,18 @@ TEST(SceneErrors, OverlapWithWallAtStartIsRefused) {
 }
 
 TEST(SceneErrors, OverlappingParticlesAtStartAreRefused) {
+  // A second column 0.2 mm above the first: its discs overlap the first's by 0.8 mm.
+  const auto msg = load_error(replace(kGood, "[[stage]]",
+                                      "[[particles]]\ngenerator = \"column\"\nmaterial = \"sand\"\n"
+                                      "base = [0.0, 0.0002]\ncount = 1\nradius = 0.0005\n\n[[stage]]"));
+  EXPECT_NE(msg.find("particles 0 and 3 overlap"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("initial_overlap_tolerance"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, NegativeGapIsRefused) {
   const auto msg =
       load_error(replace(kGood, "radius = 0.0005", "radius = 0.0005\naxis = [0.0, 1.0]\ngap = -0.0002"));
-  EXPECT_NE(msg.find("gap"), std::string::npos) << msg;  // a negative gap is refused first
+  EXPECT_NE(msg.find("key 'gap': must be >= 0 m"), std::string::npos) << msg;
 }
 
 TEST(SceneErrors, TimeStepAboveCriticalNamesBoth) {
