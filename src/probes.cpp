@@ -12,7 +12,7 @@ std::size_t topmost_particle(const ParticleData<D>& particles) {
 }
 
 template <int D>
-double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim) {
+double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const PoreFluid<D>* fluid) {
   auto pick = [&](const Vec<D>& v) { return probe.component < 0 ? v.norm() : v[probe.component]; };
   const auto& p = sim.particles;
   switch (probe.quantity) {
@@ -36,12 +36,23 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim) {
       return sim.max_overlap();
     case ProbeQuantity::unbalanced_force:
       return sim.unbalanced_force_ratio();
+    case ProbeQuantity::pore_pressure: {
+      Vec<D> x;
+      for (int k = 0; k < D; ++k) x[k] = probe.position[k];
+      return fluid != nullptr ? fluid->pressure_at(x) : 0.0;
+    }
+    case ProbeQuantity::fluid_inflow:
+      return fluid != nullptr ? fluid->side_inflow(probe.side) : 0.0;
+    case ProbeQuantity::fluid_imbalance:
+      return fluid != nullptr ? fluid->total_balance().imbalance() : 0.0;
+    case ProbeQuantity::fluid_iterations:
+      return fluid != nullptr ? fluid->last_solve().iterations : 0.0;
   }
   return 0.0;
 }
 
-template double evaluate_probe<2>(const ProbeSpec&, const Simulation<2>&);
-template double evaluate_probe<3>(const ProbeSpec&, const Simulation<3>&);
+template double evaluate_probe<2>(const ProbeSpec&, const Simulation<2>&, const PoreFluid<2>*);
+template double evaluate_probe<3>(const ProbeSpec&, const Simulation<3>&, const PoreFluid<3>*);
 template std::size_t topmost_particle<2>(const ParticleData<2>&);
 template std::size_t topmost_particle<3>(const ParticleData<3>&);
 

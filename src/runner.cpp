@@ -37,7 +37,14 @@ std::string json_string(const std::string& s) {
 }
 
 template <int D>
-void apply_stage(Simulation<D>& sim, const Stage<D>& stage) {
+void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage) {
+  if (fluid != nullptr) {
+    if (stage.freeze_permeability) fluid->permeability_frozen = *stage.freeze_permeability;
+    for (const auto& [side, b] : stage.fluid_sides) {
+      fluid->sides[side] = b;
+      fluid->sides[side].value.start = sim.time;
+    }
+  }
   if (stage.gravity) sim.gravity = *stage.gravity;
   if (stage.local_damping) sim.damping.local = *stage.local_damping;
   if (stage.viscous_damping) sim.damping.viscous = *stage.viscous_damping;
@@ -117,23 +124,33 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   for (const auto& p : scene.output.probes) probes << "," << p.name;
   probes << "\n";
   PvdSeries series((out / "particles.pvd").string());
+  PvdSeries fluid_series((out / "fluid.pvd").string());
+  PoreFluid<D>* fluid = scene.fluid.get();
+  std::optional<SeepageColumnAnalysis<D>> seepage;
+  if (scene.seepage_column) seepage.emplace(*scene.seepage_column, scene);
   int snapshot_index = 0;
   auto write_probes = [&] {
     probes << fmt::format("{:.10g}", sim.time);
-    for (const auto& p : scene.output.probes) probes << fmt::format(",{:.10g}", evaluate_probe(p, sim));
+    for (const auto& p : scene.output.probes) probes << fmt::format(",{:.10g}", evaluate_probe(p, sim, scene.fluid.get()));
     probes << "\n";
   };
   auto write_snapshot = [&] {
-    const std::string name = fmt::format("particles_{:05d}.vtu", snapshot_index++);
+    const std::string name = fmt::format("particles_{:05d}.vtu", snapshot_index);
     write_particles_vtu<D>((out / name).string(), sim.particles);
     series.add(sim.time, name);
+    if (fluid != nullptr) {
+      const std::string fname = fmt::format("fluid_{:05d}.vti", snapshot_index);
+      write_fluid_vti<D>((out / fname).string(), *fluid);
+      fluid_series.add(sim.time, fname);
+    }
+    ++snapshot_index;
   };
 
   RunSummary summary;
   const auto start = Clock::now();
   Progress progress(options);
   // The first stage's settings apply from the start.
-  if (!scene.stages.empty()) apply_stage(sim, scene.stages.front());
+  if (!scene.stages.empty()) apply_stage(sim, fluid, scene.stages.front());
   sim.prepare();
   write_probes();
   write_snapshot();
@@ -143,16 +160,39 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       scene.output.snapshot_interval > 0 ? sim.time + scene.output.snapshot_interval : 1e300;
   if (options.log != nullptr) {
     *options.log << fmt::format("darcydem {}: {} particles, {}D, time step {:.4g} s (critical {:.4g} s)\n",
-                                version_string, sim.particles.size(), D, dt, sim.critical_time_step());
+                                version_string, sim.particles.size(), D, dt,
+                                fluid != nullptr ? fluid->critical_time_step(sim.particles, sim.critical_time_step())
+                                                 : sim.critical_time_step());
+    if (fluid != nullptr) {
+      std::string sides;
+      for (int k = 0; k < 2 * D; ++k) sides += fmt::format(" {}={}", side_names[k], to_string(fluid->sides[k].type));
+      *options.log << fmt::format(
+          "pore fluid: {} cells, K_f = {:.4g} Pa, {} solver, fluid step every {} DEM steps; sides:{}\n",
+          fluid->grid.size(), fluid->fluid.bulk_modulus, to_string(fluid->solver().kind()), fluid->steps_per_update,
+          sides);
+    }
   }
+  std::uint64_t fluid_iterations = 0;
+  double fluid_residual = 0.0;
+  double fluid_worst_imbalance = 0.0;
 
   for (const auto& stage : scene.stages) {
-    apply_stage(sim, stage);
+    apply_stage(sim, fluid, stage);
+    if (seepage) seepage->stage_started(scene, stage.name);
     const auto n_steps = static_cast<std::uint64_t>(std::max(1.0, std::round(stage.duration / dt)));
     const double t_end = sim.time + static_cast<double>(n_steps) * dt;
     bool stopped_early = false;
     for (std::uint64_t s = 0; s < n_steps; ++s) {
       sim.step();
+      if (fluid != nullptr && sim.steps % static_cast<std::uint64_t>(fluid->steps_per_update) == 0) {
+        fluid->update(sim.particles, fluid->steps_per_update * dt, sim.time);
+        fluid_iterations += static_cast<std::uint64_t>(fluid->last_solve().iterations);
+        fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);
+        const auto& b = fluid->last_balance();
+        const double scale = std::max({std::abs(b.inflow), std::abs(b.stored), std::abs(b.pore_change), 1e-300});
+        fluid_worst_imbalance = std::max(fluid_worst_imbalance, std::abs(b.imbalance()) / scale);
+      }
+      if (seepage) seepage->after_step(scene);
       if (sim.time >= next_probe - 0.5 * dt) {
         write_probes();
         next_probe += scene.output.probe_interval;
@@ -178,6 +218,15 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     progress.end_line();
     write_probes();
     write_snapshot();
+    if (seepage) seepage->stage_ended(scene, stage.name, !summary.interrupted);
+    if (fluid != nullptr && options.log != nullptr) {
+      const auto& tb = fluid->total_balance();
+      *options.log << fmt::format(
+          "fluid balance so far: inflow {:.6g} m^3 = stored {:.6g} + pore change {:.6g}; imbalance {:.3g} m^3 "
+          "(worst step {:.3g} relative); solver residual <= {:.3g}, {} iterations\n",
+          tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), fluid_worst_imbalance, fluid_residual,
+          fluid_iterations);
+    }
     if (summary.interrupted) break;
     summary.stages_completed.push_back(stage.name);
     if (options.log != nullptr && stopped_early) {
@@ -185,6 +234,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     }
   }
   probes.flush();
+  if (seepage) summary.seepage_column = seepage->finish(scene, out.string(), options.log);
 
   summary.steps = sim.steps;
   summary.simulated_time = sim.time;
@@ -201,7 +251,22 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
        << fmt::format("  \"time_step\": {:.17g},\n", dt) << fmt::format("  \"steps\": {},\n", summary.steps)
        << fmt::format("  \"simulated_time\": {:.17g},\n", summary.simulated_time)
        << fmt::format("  \"wall_time\": {:.6f},\n", summary.wall_time)
-       << fmt::format("  \"threads\": {},\n", omp_get_max_threads())
+       << fmt::format("  \"threads\": {},\n", omp_get_max_threads());
+  if (fluid != nullptr) {
+    const auto& tb = fluid->total_balance();
+    json << fmt::format("  \"fluid\": {{\"cells\": {}, \"updates\": {}, \"solver\": \"{}\", \"iterations\": {}, "
+                        "\"max_residual\": {:.6g}, \"inflow\": {:.17g}, \"stored\": {:.17g}, \"pore_change\": {:.17g}, "
+                        "\"imbalance\": {:.6g}, \"worst_step_imbalance\": {:.6g}}},\n",
+                        fluid->grid.size(), fluid->updates(), to_string(fluid->solver().kind()), fluid_iterations,
+                        fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), fluid_worst_imbalance);
+  }
+  if (summary.seepage_column) {
+    const auto& r = *summary.seepage_column;
+    json << fmt::format("  \"seepage_column\": {{\"uplift_rms_error\": {:.6g}, \"pressure_max_error\": {:.6g}, "
+                        "\"passed\": {}}},\n",
+                        r.uplift_rms_error, r.pressure_max_error, r.passed ? "true" : "false");
+  }
+  json
        << fmt::format("  \"status\": \"{}\",\n", summary.interrupted ? "interrupted" : "completed")
        << fmt::format("  \"stages_completed\": [{}]\n", stages) << "}\n";
   return summary;

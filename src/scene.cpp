@@ -10,13 +10,14 @@
 #include "darcydem/contact/contact_laws.hpp"
 #include "darcydem/generation/generators.hpp"
 #include "darcydem/neighbour/linked_cells.hpp"
+#include "darcydem/scene/scene_fluid.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 
 namespace darcydem {
 namespace {
 
-const std::vector<std::string> kTopLevel = {"simulation", "material", "contact", "wall",
-                                            "particles",  "output",   "probe",   "stage"};
+const std::vector<std::string> kTopLevel = {"simulation", "material", "contact", "wall",   "particles",
+                                            "output",     "probe",    "stage",   "fluid",  "analysis"};
 
 auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
 auto non_negative = [](double v) { return v >= 0.0 && std::isfinite(v); };
@@ -382,6 +383,14 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     }
   }
 
+  // [fluid]
+  if (const toml::table* t = top.optional_table("fluid")) {
+    scene.fluid = read_fluid<D>(*t, file, sim.particles);
+    sim.force_field = scene.fluid.get();
+  } else if (top.has("fluid")) {
+    top.fail("fluid", "must be a table ([fluid])");
+  }
+
   // [output] and [[probe]]
   if (const toml::table* t = top.optional_table("output")) {
     TableReader r(*t, "[output]", file);
@@ -403,10 +412,32 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     }
     probe_names.push_back(p.name);
     const std::string q = r.choice(
-        "quantity", {"particle_position", "particle_velocity", "wall_position", "wall_force",
-                     "kinetic_energy", "contact_count", "coordination", "max_overlap", "unbalanced_force"});
-    r.allow({"particle", "component", "wall"});
-    if (q == "particle_position" || q == "particle_velocity") {
+        "quantity", {"particle_position", "particle_velocity", "wall_position", "wall_force", "kinetic_energy",
+                     "contact_count", "coordination", "max_overlap", "unbalanced_force", "pore_pressure",
+                     "fluid_inflow", "fluid_imbalance", "fluid_iterations"});
+    r.allow({"particle", "component", "wall", "position", "side"});
+    const bool fluid_probe = q == "pore_pressure" || q == "fluid_inflow" || q == "fluid_imbalance" ||
+                             q == "fluid_iterations";
+    if (fluid_probe && !scene.fluid) {
+      r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
+    }
+    for (auto k : {"position", "side"}) {
+      if (r.has(k) && !(q == "pore_pressure" && std::string(k) == "position") &&
+          !(q == "fluid_inflow" && std::string(k) == "side")) {
+        r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
+      }
+    }
+    if (q == "pore_pressure") {
+      p.quantity = ProbeQuantity::pore_pressure;
+      p.position = r.numbers("position", D);
+    } else if (q == "fluid_inflow") {
+      p.quantity = ProbeQuantity::fluid_inflow;
+      const auto names = std::vector<std::string>(side_names, side_names + 2 * D);
+      const std::string side = r.choice("side", names);
+      p.side = static_cast<int>(std::find(names.begin(), names.end(), side) - names.begin());
+    } else if (q == "fluid_imbalance" || q == "fluid_iterations") {
+      p.quantity = q == "fluid_imbalance" ? ProbeQuantity::fluid_imbalance : ProbeQuantity::fluid_iterations;
+    } else if (q == "particle_position" || q == "particle_velocity") {
       p.quantity =
           q == "particle_position" ? ProbeQuantity::particle_position : ProbeQuantity::particle_velocity;
       const toml::node* n = r.raw("particle");
@@ -499,17 +530,66 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         s.walls.push_back(c);
       }
     }
+    if (const toml::table* ft = r.optional_table("fluid")) {
+      if (!scene.fluid) r.fail("fluid", "changes the pore fluid, but the scene has no [fluid] table");
+      TableReader fr(*ft, r.where() + " fluid", file);
+      if (const toml::table* bt = fr.optional_table("boundary")) {
+        s.fluid_sides = read_fluid_sides<D>(*bt, r.where() + " fluid.boundary", file);
+      }
+      if (fr.has("freeze_permeability")) s.freeze_permeability = fr.boolean_or("freeze_permeability", false);
+      fr.finish();
+    }
     scene.stages.push_back(s);
   });
   if (scene.stages.empty()) top.fail_table("needs at least one [[stage]] (with a 'duration')");
+
+  // [analysis]
+  if (const toml::table* t = top.optional_table("analysis")) {
+    TableReader r(*t, "[analysis]", file);
+    r.choice("kind", {"seepage_column"});
+    if (!scene.fluid) r.fail("kind", "\"seepage_column\" needs a pore fluid: the scene has no [fluid] table");
+    SeepageColumnSpec a;
+    std::vector<std::string> stage_names;
+    for (const auto& st : scene.stages) stage_names.push_back(st.name);
+    auto stage_name = [&](std::string_view key) {
+      const std::string n = r.string(key);
+      if (std::find(stage_names.begin(), stage_names.end(), n) == stage_names.end()) {
+        std::string hint;
+        if (auto h = did_you_mean(n, stage_names); !h.empty()) hint = fmt::format(" (did you mean \"{}\"?)", h);
+        r.fail(key, fmt::format("no stage named \"{}\"{}", n, hint));
+      }
+      return n;
+    };
+    a.settle_stage = stage_name("settle_stage");
+    a.inflow_stage = stage_name("inflow_stage");
+    a.pressure_times = r.number_list("pressure_times");
+    for (double x : a.pressure_times) r.check("pressure_times", x, positive, "> 0 s after the inflow starts");
+    a.uplift_interval = r.check("uplift_interval", r.number_or("uplift_interval", 1e-3), positive, "> 0 s");
+    a.uplift_tolerance = r.check("uplift_tolerance", r.number_or("uplift_tolerance", 0.02), positive, "> 0");
+    a.pressure_tolerance = r.check("pressure_tolerance", r.number_or("pressure_tolerance", 0.03), positive, "> 0");
+    a.plots = r.boolean_or("plots", true);
+    const auto& inflow = *std::find_if(scene.stages.begin(), scene.stages.end(),
+                                       [&](const Stage<D>& st) { return st.name == a.inflow_stage; });
+    const bool has_flux = std::any_of(inflow.fluid_sides.begin(), inflow.fluid_sides.end(), [](const auto& fs) {
+      return fs.first == 2 * (D - 1) && fs.second.type == FluidBoundaryType::flux;
+    });
+    if (!has_flux) {
+      r.fail("inflow_stage", fmt::format("stage \"{}\" must set a flux on the bottom side ({}) in its "
+                                         "fluid.boundary", a.inflow_stage, side_names[2 * (D - 1)]));
+    }
+    r.finish();
+    scene.seepage_column = a;
+  }
 
   for (const auto& key : kTopLevel) top.allow({key});
   top.finish();
 
   check_initial_overlaps(sim, overlap_tolerance, origin);
 
-  // Time step: the first stage's gravity does not matter for the critical step.
-  const double critical = sim.critical_time_step();
+  // Time step: the first stage's gravity does not matter for the critical
+  // step; the pore fluid's undrained stiffness and drag do.
+  const double critical = scene.fluid ? scene.fluid->critical_time_step(sim.particles, sim.critical_time_step())
+                                      : sim.critical_time_step();
   if (scene.time_step.automatic) {
     sim.time_step = scene.time_step.safety_factor * critical;
   } else {
@@ -517,7 +597,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       const toml::table* t = root["simulation"].as_table();
       TableReader r(*t, "[simulation]", file);
       r.fail("time_step", fmt::format("{:.4g} s is larger than the critical time step {:.4g} s "
-                                      "(sqrt(m_min/k_max) or the Rayleigh step); use a smaller "
+                                      "(sqrt(m_min/k_max) or the Rayleigh step, with the pore fluid's K_f/n and drag "
+                                      "if any); use a smaller "
                                       "value or \"auto\"",
                                       scene.time_step.value, critical));
     }

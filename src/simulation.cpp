@@ -195,8 +195,13 @@ void Simulation<D>::compute_forces_with() {
   }
 
   // Pass 2: each particle adds the shares stored with the pairs, in order,
-  // then gravity and external forces.
+  // then gravity, external forces and the force field.
   const Vec<D> g = gravity;
+  const bool field = force_field != nullptr;
+  if (field) {
+    field_force_.resize(p.size());
+    force_field->particle_forces(p, gravity, field_force_);
+  }
 #pragma omp parallel for schedule(static) if (n > 2000)
   for (std::int64_t j = 0; j < n; ++j) {
     Vec<D> f = Vec<D>::Zero();
@@ -207,6 +212,7 @@ void Simulation<D>::compute_forces_with() {
       t += L.torque_on_j[k];
     }
     f += p.external_force[j];
+    if (field) f += field_force_[j];
     if (p.inv_mass[j] > 0.0) f += g / p.inv_mass[j];
     p.force[j] += f;
     p.torque[j] += t;

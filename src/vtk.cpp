@@ -60,6 +60,38 @@ void write_particles_vtu(const std::string& path, const ParticleData<D>& p) {
   }
 }
 
+template <int D>
+void write_fluid_vti(const std::string& path, const PoreFluid<D>& f) {
+  try {
+    auto out = fmt::output_file(path);
+    const auto& g = f.grid;
+    const int nz = D == 3 ? g.cells[D - 1] : 1;
+    const double oz = D == 3 ? g.origin[2] : 0.0;
+    const double hz = D == 3 ? g.spacing[2] : 1.0;
+    const std::string extent = fmt::format("0 {} 0 {} 0 {}", g.cells[0], g.cells[1], nz);
+    out.print(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
+    out.print("  <ImageData WholeExtent=\"{}\" Origin=\"{:.17g} {:.17g} {:.17g}\" Spacing=\"{:.17g} {:.17g} {:.17g}\">\n",
+              extent, g.origin[0], g.origin[1], oz, g.spacing[0], g.spacing[1], hz);
+    out.print("    <Piece Extent=\"{}\">\n      <CellData Scalars=\"pressure\">\n", extent);
+    auto scalars = [&](const char* name, const std::vector<double>& v) {
+      out.print("        <DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", name);
+      for (double x : v) out.print("{:.17g}\n", x);
+      out.print("        </DataArray>\n");
+    };
+    scalars("pressure", f.pressure());
+    scalars("porosity", f.porosity());
+    write_vector_array<D>(out, "permeability", g.size(), [&](std::size_t i) { return f.permeability_field()[i]; });
+    const auto q = f.darcy_velocity();
+    write_vector_array<D>(out, "darcy_velocity", g.size(), [&](std::size_t i) { return q[i]; });
+    write_vector_array<D>(out, "solid_velocity", g.size(), [&](std::size_t i) { return f.solid_velocity()[i]; });
+    out.print("      </CellData>\n    </Piece>\n  </ImageData>\n</VTKFile>\n");
+    out.close();
+  } catch (const std::system_error& e) {
+    throw std::runtime_error(fmt::format("{}: cannot write the fluid snapshot: {}", path, e.what()));
+  }
+}
+
 void PvdSeries::add(double time, const std::string& file) {
   entries_.emplace_back(time, file);
   const std::string tmp = path_ + ".tmp";
@@ -77,5 +109,7 @@ void PvdSeries::add(double time, const std::string& file) {
 
 template void write_particles_vtu<2>(const std::string&, const ParticleData<2>&);
 template void write_particles_vtu<3>(const std::string&, const ParticleData<3>&);
+template void write_fluid_vti<2>(const std::string&, const PoreFluid<2>&);
+template void write_fluid_vti<3>(const std::string&, const PoreFluid<3>&);
 
 }  // namespace darcydem

@@ -5,7 +5,7 @@
 namespace darcydem {
 
 template <int D>
-double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim);
+double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const PoreFluid<D>* fluid = nullptr);
 
 /// Index of the particle with the highest centre along the last axis.
 template <int D>

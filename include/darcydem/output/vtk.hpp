@@ -7,12 +7,19 @@
 #include <utility>
 #include <vector>
 
+#include "darcydem/fluid/pore_fluid.hpp"
 #include "darcydem/particles/particle_data.hpp"
 
 namespace darcydem {
 
 template <int D>
 void write_particles_vtu(const std::string& path, const ParticleData<D>& particles);
+
+/// The pore fluid's cell fields as VTK ImageData (.vti): excess pressure,
+/// porosity, intrinsic permeability, Darcy velocity, solid velocity. In 2D
+/// the cells are 1 m thick.
+template <int D>
+void write_fluid_vti(const std::string& path, const PoreFluid<D>& fluid);
 
 class PvdSeries {
  public:

@@ -2,6 +2,7 @@
 // A scene: the simulation set up from a TOML file, with what to output and
 // the list of stages to run. Documented key by key in docs/SCENE.md.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "darcydem/core/vec.hpp"
+#include "darcydem/fluid/pore_fluid.hpp"
 #include "darcydem/simulation/simulation.hpp"
 
 namespace darcydem {
@@ -23,6 +25,10 @@ enum class ProbeQuantity {
   coordination,
   max_overlap,
   unbalanced_force,
+  pore_pressure,     ///< excess pore pressure at a point, Pa
+  fluid_inflow,      ///< flow into the grid through one side, m^3/s
+  fluid_imbalance,   ///< inflow - stored - pore change since the start, m^3
+  fluid_iterations,  ///< iterations of the last pressure solve
 };
 
 struct ProbeSpec {
@@ -31,6 +37,8 @@ struct ProbeSpec {
   std::int64_t particle = -1;  ///< creation index; -1: the topmost particle
   int component = 0;           ///< 0..D-1, or -1 for the norm
   std::size_t wall = 0;
+  std::vector<double> position;  ///< pore_pressure: the point, m
+  int side = 0;                  ///< fluid_inflow: x_min, x_max, y_min, ...
 };
 
 struct OutputSpec {
@@ -64,6 +72,19 @@ struct Stage {
   std::optional<double> unbalanced_force_below;  ///< -: stop once below
   std::int64_t check_interval = 100;             ///< steps between stop checks
   std::vector<WallChange<D>> walls;
+  std::vector<std::pair<int, FluidBoundary>> fluid_sides;  ///< changes of the fluid's boundaries
+  std::optional<bool> freeze_permeability;                 ///< hold (true) or resume updating k
+};
+
+/// [analysis] kind = "seepage_column": the paper's 1D upward seepage check.
+struct SeepageColumnSpec {
+  std::string settle_stage;            ///< stage that settles the column (m_v, n measured there)
+  std::string inflow_stage;            ///< stage with the inflow at the bottom
+  std::vector<double> pressure_times;  ///< s after the inflow starts
+  double uplift_interval = 1e-3;       ///< s between uplift samples
+  double uplift_tolerance = 0.02;      ///< RMS uplift error / final uplift
+  double pressure_tolerance = 0.03;    ///< max pressure error / steady bottom pressure
+  bool plots = true;                   ///< write PNG plots with matplotlib
 };
 
 template <int D>
@@ -74,6 +95,8 @@ struct Scene {
   TimeStepSpec time_step;
   OutputSpec output;
   std::vector<Stage<D>> stages;
+  std::unique_ptr<PoreFluid<D>> fluid;  ///< optional pore fluid ([fluid])
+  std::optional<SeepageColumnSpec> seepage_column;
 };
 
 /// Reads `simulation.dimension` (2 or 3) from a parsed scene.

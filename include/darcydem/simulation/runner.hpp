@@ -2,7 +2,9 @@
 // Runs a scene's stages in order and writes its output directory:
 //   probes.csv           time,<probe names>
 //   particles_NNNNN.vtu  snapshots, with particles.pvd as the series
+//   fluid_NNNNN.vti      pore-fluid snapshots (with [fluid]), fluid.pvd the series
 //   run.json             version, scene hash, steps, wall time, how it ended
+//   seepage files        with [analysis] kind = "seepage_column" (seepage_column.hpp)
 // The run can be interrupted (the caller's flag); what was computed is kept
 // and run.json says so.
 #include <atomic>
@@ -10,6 +12,7 @@
 #include <iosfwd>
 #include <string>
 
+#include "darcydem/analysis/seepage_column.hpp"
 #include "darcydem/scene/scene.hpp"
 
 namespace darcydem {
@@ -28,6 +31,7 @@ struct RunSummary {
   double wall_time = 0.0;       ///< s
   bool interrupted = false;
   std::vector<std::string> stages_completed;
+  std::optional<SeepageColumnResult> seepage_column;  ///< with [analysis] kind = "seepage_column"
 };
 
 /// Throws std::runtime_error when the output directory cannot be written.

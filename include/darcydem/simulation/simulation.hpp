@@ -15,6 +15,7 @@
 #include "darcydem/core/vec.hpp"
 #include "darcydem/neighbour/verlet_list.hpp"
 #include "darcydem/particles/particle_data.hpp"
+#include "darcydem/simulation/force_field.hpp"
 #include "darcydem/walls/wall.hpp"
 
 namespace darcydem {
@@ -37,6 +38,8 @@ class Simulation {
   double time_step = 0.0;  ///< s
   double time = 0.0;       ///< s
   std::uint64_t steps = 0;
+  /// Optional body-force field (the pore fluid), evaluated every step; not owned.
+  const ParticleForceField<D>* force_field = nullptr;
 
   /// Chooses the contact law loop, builds the neighbour lists and evaluates
   /// the initial forces. Call after setting everything up and before step().
@@ -57,6 +60,8 @@ class Simulation {
   [[nodiscard]] double elastic_energy() const;          ///< J, normal springs of linear contacts
   [[nodiscard]] const VerletList<D>& pair_list() const { return list_; }
   [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
+  /// Forces of the force field in the last evaluation (empty without one), N.
+  [[nodiscard]] const std::vector<Vec<D>>& field_forces() const { return field_force_; }
 
  private:
   template <class Law>
@@ -73,6 +78,7 @@ class Simulation {
   bool prepared_ = false;
   VerletList<D> list_;
   WallContactList<D> wall_list_;
+  std::vector<Vec<D>> field_force_;
 };
 
 }  // namespace darcydem

@@ -1,0 +1,36 @@
+#pragma once
+// Closed-form 1D upward seepage through a soil column (Terzaghi's
+// consolidation with a constant inflow q at the undrained-for-solids bottom
+// and a drained top), the paper's Eqs. 11-13 with the misprints fixed
+// (REFERENCE.md). z is the depth below the drained top, t the time since the
+// inflow started. With a compressible pore fluid the same series hold with
+// the Biot storage m_v + n/K_f in Cv; the final uplift keeps m_v alone.
+
+namespace darcydem {
+
+struct SeepageColumnParameters {
+  double height = 0.05;         ///< H, m
+  double inflow = 1e-3;         ///< q, m/s (Darcy velocity)
+  double conductivity = 1e-3;   ///< k, m/s
+  double compressibility = 1e-5;  ///< m_v, 1/Pa
+  double fluid_storage = 0.0;   ///< n / K_f, 1/Pa (0: incompressible)
+  double unit_weight = 9806.65;  ///< gamma_w, N/m^3
+
+  /// Cv = k / (gamma_w (m_v + n/K_f)), m^2/s.
+  [[nodiscard]] double consolidation_coefficient() const {
+    return conductivity / (unit_weight * (compressibility + fluid_storage));
+  }
+  /// Steady excess pressure at the bottom, H gamma_w q / k, Pa.
+  [[nodiscard]] double steady_bottom_pressure() const { return height * unit_weight * inflow / conductivity; }
+  /// Final uplift q H^2 m_v gamma_w / (2 k), m.
+  [[nodiscard]] double final_uplift() const {
+    return inflow * height * height * compressibility * unit_weight / (2.0 * conductivity);
+  }
+};
+
+/// Excess pore pressure at depth z and time t, Pa.
+double seepage_pressure(const SeepageColumnParameters& p, double depth, double time);
+/// Rise of the column's top at time t, m.
+double seepage_uplift(const SeepageColumnParameters& p, double time);
+
+}  // namespace darcydem

@@ -1,0 +1,52 @@
+#pragma once
+// Boundary conditions of the pore fluid on the sides of the grid's box.
+#include <string>
+#include <vector>
+
+namespace darcydem {
+
+/// A value that varies in time: piecewise linear through (times, values),
+/// held constant before the first and after the last point. Times count
+/// from `start` (the start of the stage that set it).
+struct TimeSeries {
+  std::vector<double> times{0.0};
+  std::vector<double> values{0.0};
+  double start = 0.0;  ///< s
+
+  [[nodiscard]] double at(double t) const {
+    const double s = t - start;
+    if (s <= times.front()) return values.front();
+    for (std::size_t i = 1; i < times.size(); ++i) {
+      if (s <= times[i]) {
+        const double f = (s - times[i - 1]) / (times[i] - times[i - 1]);
+        return values[i - 1] + f * (values[i] - values[i - 1]);
+      }
+    }
+    return values.back();
+  }
+  static TimeSeries constant(double v) { return TimeSeries{{0.0}, {v}, 0.0}; }
+};
+
+enum class FluidBoundaryType {
+  no_flow,  ///< impermeable: zero flux
+  drained,  ///< imposed excess pore pressure, Pa
+  flux,     ///< imposed inflow (superficial / Darcy velocity into the grid), m/s
+};
+
+struct FluidBoundary {
+  FluidBoundaryType type = FluidBoundaryType::no_flow;
+  TimeSeries value;  ///< Pa for drained, m/s (positive inwards) for flux
+};
+
+[[nodiscard]] inline std::string to_string(FluidBoundaryType t) {
+  switch (t) {
+    case FluidBoundaryType::drained:
+      return "drained";
+    case FluidBoundaryType::flux:
+      return "flux";
+    default:
+      return "no_flow";
+  }
+}
+
+}  // namespace darcydem

@@ -1,0 +1,80 @@
+#pragma once
+// The fixed Cartesian grid of the pore fluid: cells of equal size over a box,
+// independent of the DEM neighbour cells. Cell (i, j, k) has index
+// i + nx (j + ny k). In 2D the cells are 1 m thick, like the discs.
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+#include "darcydem/core/vec.hpp"
+
+namespace darcydem {
+
+template <int D>
+struct FluidGrid {
+  Vec<D> origin = Vec<D>::Zero();   ///< m, lower corner
+  Vec<D> spacing = Vec<D>::Ones();  ///< m, cell size along each axis
+  std::array<int, D> cells{};       ///< number of cells along each axis
+
+  [[nodiscard]] std::size_t size() const {
+    std::size_t n = 1;
+    for (int c : cells) n *= static_cast<std::size_t>(c);
+    return n;
+  }
+  /// m^3 (2D: area x 1 m).
+  [[nodiscard]] double cell_volume() const { return spacing.prod(); }
+  /// Area of a face normal to `axis`, m^2 (2D: length x 1 m).
+  [[nodiscard]] double face_area(int axis) const { return cell_volume() / spacing[axis]; }
+  [[nodiscard]] Vec<D> upper() const {
+    Vec<D> u = origin;
+    for (int k = 0; k < D; ++k) u[k] += spacing[k] * cells[k];
+    return u;
+  }
+  [[nodiscard]] std::size_t index(const std::array<int, D>& c) const {
+    std::size_t i = 0;
+    for (int k = D - 1; k >= 0; --k) i = i * static_cast<std::size_t>(cells[k]) + static_cast<std::size_t>(c[k]);
+    return i;
+  }
+  [[nodiscard]] std::array<int, D> coords(std::size_t i) const {
+    std::array<int, D> c{};
+    for (int k = 0; k < D; ++k) {
+      c[k] = static_cast<int>(i % static_cast<std::size_t>(cells[k]));
+      i /= static_cast<std::size_t>(cells[k]);
+    }
+    return c;
+  }
+  [[nodiscard]] Vec<D> centre(const std::array<int, D>& c) const {
+    Vec<D> x;
+    for (int k = 0; k < D; ++k) x[k] = origin[k] + (c[k] + 0.5) * spacing[k];
+    return x;
+  }
+  /// Cell coordinate along `axis` of position x (may be outside 0..n-1).
+  [[nodiscard]] int cell_along(int axis, double x) const {
+    return static_cast<int>(std::floor((x - origin[axis]) / spacing[axis]));
+  }
+  [[nodiscard]] bool inside(const std::array<int, D>& c) const {
+    for (int k = 0; k < D; ++k) {
+      if (c[k] < 0 || c[k] >= cells[k]) return false;
+    }
+    return true;
+  }
+  /// Number of faces normal to `axis` (including the two boundary layers).
+  [[nodiscard]] std::size_t face_count(int axis) const {
+    return size() / static_cast<std::size_t>(cells[axis]) * static_cast<std::size_t>(cells[axis] + 1);
+  }
+  /// Index of the face normal to `axis` at the lower side of cell c (c[axis]
+  /// may equal cells[axis]: the upper boundary face).
+  [[nodiscard]] std::size_t face_index(int axis, const std::array<int, D>& c) const {
+    std::size_t i = 0;
+    for (int k = D - 1; k >= 0; --k) {
+      const auto n = static_cast<std::size_t>(k == axis ? cells[k] + 1 : cells[k]);
+      i = i * n + static_cast<std::size_t>(c[k]);
+    }
+    return i;
+  }
+};
+
+/// The 2D faces of the grid's box: x_min, x_max, y_min, y_max, z_min, z_max.
+inline constexpr const char* side_names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+
+}  // namespace darcydem

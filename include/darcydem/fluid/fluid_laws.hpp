@@ -1,0 +1,66 @@
+#pragma once
+// Constitutive laws of the pore fluid: permeability and drag.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "darcydem/core/vec.hpp"
+
+namespace darcydem {
+
+/// g used to convert hydraulic conductivity k (m/s) to intrinsic
+/// permeability kappa = k mu / (rho_f g) (m^2), as in soil mechanics.
+inline constexpr double standard_gravity = 9.80665;  // m/s^2
+
+struct FluidProperties {
+  double density = 1000.0;     ///< rho_f, kg/m^3
+  double viscosity = 1.0e-3;   ///< mu, Pa s
+  double bulk_modulus = 2e9;   ///< K_f, Pa
+  [[nodiscard]] double unit_weight() const { return density * standard_gravity; }  ///< gamma_w, N/m^3
+};
+
+enum class PermeabilityModel { constant, kozeny_carman };
+
+template <int D>
+struct PermeabilitySpec {
+  PermeabilityModel model = PermeabilityModel::kozeny_carman;
+  Vec<D> intrinsic = Vec<D>::Ones();   ///< kappa per axis, m^2 (constant model)
+  double diameter = 1e-3;              ///< d, m (Kozeny-Carman)
+  Vec<D> anisotropy = Vec<D>::Ones();  ///< factor on kappa per axis (Kozeny-Carman)
+  double max_porosity = 0.9;           ///< porosity used at most (near-empty cells)
+  double min_porosity = 0.05;          ///< porosity used at least
+};
+
+/// Kozeny-Carman (the paper's Eq. 15 without rho_f g / mu): intrinsic
+/// permeability d^2 n^3 / (150 (1 - n)^2), m^2.
+inline double kozeny_carman(double diameter, double n) {
+  return diameter * diameter * n * n * n / (150.0 * (1.0 - n) * (1.0 - n));
+}
+
+enum class DragLaw {
+  darcy,  ///< beta = n^2 mu / kappa from the cell's own permeability
+  ergun,  ///< Ergun (n < 0.8) blended into Wen-Yu (n > 0.8)
+};
+
+/// Ergun's beta (the paper's Eq. 9): 150 mu (1-n)^2 / (d^2 n) + 1.75 rho_f (1-n) |slip| / d.
+inline double ergun_beta(double n, double d, double slip, const FluidProperties& f) {
+  return 150.0 * f.viscosity * (1.0 - n) * (1.0 - n) / (d * d * n) + 1.75 * f.density * (1.0 - n) * slip / d;
+}
+
+/// Wen and Yu's beta: 3/4 C_d rho_f n (1-n) |slip| n^-2.65 / d, with
+/// C_d = 24/Re (1 + 0.15 Re^0.687) (0.44 above Re = 1000), Re = rho_f n d |slip| / mu.
+inline double wen_yu_beta(double n, double d, double slip, const FluidProperties& f) {
+  const double re = f.density * n * d * slip / f.viscosity;
+  const double cd_re = re < 1000.0 ? 24.0 * (1.0 + 0.15 * std::pow(re, 0.687)) : 0.44 * re;
+  return 0.75 * cd_re * f.viscosity * (1.0 - n) * std::pow(n, -2.65) / (d * d);
+}
+
+/// Ergun below n = 0.8 and Wen-Yu above, switched continuously by the
+/// blending function of Huilin and Gidaspow (2003):
+/// phi = 1/2 + atan(262.5 ((1-n) - 0.2)) / pi.
+inline double ergun_wen_yu_beta(double n, double d, double slip, const FluidProperties& f) {
+  const double phi = 0.5 + std::atan(262.5 * ((1.0 - n) - 0.2)) / std::numbers::pi;
+  return phi * ergun_beta(n, d, slip, f) + (1.0 - phi) * wen_yu_beta(n, d, slip, f);
+}
+
+}  // namespace darcydem

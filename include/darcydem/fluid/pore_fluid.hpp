@@ -1,0 +1,147 @@
+#pragma once
+// The pore fluid: excess pore pressure on a fixed grid, coupled both ways
+// with the grains (the paper's algorithm, docs/ARCHITECTURE.md).
+//
+// One fluid step (every `steps_per_update` DEM steps), per cell c:
+//   1. solid volume Vs_c from the exact overlap of every grain with the cell;
+//      porosity n = 1 - Vs/V; mean solid velocity; permeability.
+//   2. Biot + Darcy, backward Euler, one SPD system for the grid:
+//        S_c (u_c - u_c_old) = dVs_c                       (Biot: (K_f/n) eps_v)
+//                            + dt sum_faces T_f (u_nb - u_c) (Darcy, implicit)
+//                            + dt (fluid carried across faces by the moving skeleton)
+//                            + dt (boundary inflow)
+//      with S_c = n V / K_f and T_f = (kappa_f / mu) A / h, kappa_f the
+//      harmonic mean of the two cells.
+//   3. face pressure gradients and Darcy fluxes q = -(kappa/mu) grad u.
+// Forces on each grain (every DEM step): -V_p grad u + drag + buoyancy.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Sparse>
+
+#include "darcydem/core/vec.hpp"
+#include "darcydem/fluid/fluid_boundary.hpp"
+#include "darcydem/fluid/fluid_grid.hpp"
+#include "darcydem/fluid/fluid_laws.hpp"
+#include "darcydem/fluid/pressure_solver.hpp"
+#include "darcydem/particles/particle_data.hpp"
+#include "darcydem/simulation/force_field.hpp"
+
+namespace darcydem {
+
+/// Fluid volumes of one fluid step and of the run so far (m^3).
+struct FluidBalance {
+  double inflow = 0.0;       ///< across the grid's sides, into the grid
+  double stored = 0.0;       ///< sum S (u - u_old): compression of the pore fluid
+  double pore_change = 0.0;  ///< increase of pore volume, -(change of solid volume)
+  [[nodiscard]] double imbalance() const { return inflow - stored - pore_change; }
+};
+
+template <int D>
+class PoreFluid final : public ParticleForceField<D> {
+ public:
+  FluidGrid<D> grid;
+  FluidProperties fluid;
+  PermeabilitySpec<D> permeability;
+  DragLaw drag = DragLaw::darcy;
+  int steps_per_update = 1;                  ///< DEM steps per fluid step
+  std::array<FluidBoundary, 2 * D> sides{};  ///< x_min, x_max, y_min, ...
+  /// Count the pore fluid carried across faces by the moving skeleton, so
+  /// that Darcy's flux is relative to the grains (false: the paper's scheme).
+  bool carry_with_solid = true;
+  /// Keep each cell's permeability as it is (a stage can freeze it, e.g. to
+  /// compare with a closed form that assumes a constant k).
+  bool permeability_frozen = false;
+
+  PoreFluid(PressureSolverKind solver = PressureSolverKind::cg, double tolerance = 1e-10);
+
+  /// Solid volumes, porosity and permeability from the particles; pressure
+  /// zero. Call once before the first update.
+  void initialize(const ParticleData<D>& particles);
+  /// One fluid step of length dt ending at `time`.
+  void update(const ParticleData<D>& particles, double dt, double time);
+
+  void particle_forces(const ParticleData<D>& particles, const Vec<D>& gravity,
+                       std::vector<Vec<D>>& force) const override;
+
+  /// Critical step of the coupled system: the DEM step with the undrained
+  /// stiffness K_f/n of the pore fluid added, and the drag relaxation time.
+  [[nodiscard]] double critical_time_step(const ParticleData<D>& particles, double dem_step) const;
+
+  // Fields, one value per cell.
+  [[nodiscard]] const std::vector<double>& pressure() const { return pressure_; }        ///< Pa (excess)
+  [[nodiscard]] const std::vector<double>& porosity() const { return porosity_; }        ///< -
+  [[nodiscard]] const std::vector<double>& solid_volume() const { return solid_; }       ///< m^3
+  [[nodiscard]] const std::vector<Vec<D>>& permeability_field() const { return kappa_; } ///< m^2
+  [[nodiscard]] const std::vector<Vec<D>>& solid_velocity() const { return solid_velocity_; }  ///< m/s
+  /// Darcy velocity at each cell centre (mean of the two faces), m/s.
+  [[nodiscard]] std::vector<Vec<D>> darcy_velocity() const;
+  /// Darcy flux through the faces normal to `axis`, along +axis, m/s.
+  [[nodiscard]] const std::vector<double>& face_flux(int axis) const { return flux_[axis]; }
+  /// Excess pressure at a point, interpolated between cell centres, Pa.
+  [[nodiscard]] double pressure_at(const Vec<D>& x) const;
+  /// Pressure gradient at a point (staggered interpolation), Pa/m.
+  [[nodiscard]] Vec<D> gradient_at(const Vec<D>& x) const;
+  /// Flow into the grid through one side in the last step, m^3/s.
+  [[nodiscard]] double side_inflow(int side) const { return side_inflow_[side]; }
+
+  [[nodiscard]] const FluidBalance& last_balance() const { return last_; }
+  [[nodiscard]] const FluidBalance& total_balance() const { return total_; }
+  [[nodiscard]] const SolveStats& last_solve() const { return last_solve_; }
+  [[nodiscard]] std::uint64_t updates() const { return updates_; }
+  [[nodiscard]] const PressureSolver& solver() const { return solver_; }
+
+  /// Solid volume of every particle in every cell it overlaps: calls
+  /// f(cell, particle, volume); with `sections`, also
+  /// section(axis, face coordinates, particle, area) for its cross-section on
+  /// every face it crosses. Exposed for tests and diagnostics.
+  template <class F, class G>
+  void for_each_overlap(const ParticleData<D>& particles, F&& f, G&& section, bool sections) const;
+  template <class F>
+  void for_each_overlap(const ParticleData<D>& particles, F&& f) const {
+    for_each_overlap(particles, f, [](int, const std::array<int, D>&, std::size_t, double) {}, false);
+  }
+
+ private:
+  void compute_solid(const ParticleData<D>& particles);
+  void compute_cell_properties();
+  void build_pattern();
+  void compute_face_fields(double time);
+  [[nodiscard]] double side_lambda(int axis, std::size_t cell) const;
+  template <class FaceValue>
+  [[nodiscard]] double staggered(int axis, const Vec<D>& x, FaceValue&& value) const;
+
+  struct Face {
+    std::uint32_t a, b;  ///< cells below and above along `axis`
+    int axis;
+    std::size_t index;        ///< in the face arrays of `axis`
+    std::size_t pos_ab, pos_ba;  ///< positions in the matrix values
+  };
+  struct BoundaryFace {
+    std::uint32_t cell;
+    int side;
+    std::size_t index;  ///< in the face arrays of the side's axis
+  };
+
+  std::vector<double> pressure_, pressure_old_, porosity_, solid_, solid_old_;
+  std::vector<Vec<D>> solid_flux_, solid_velocity_, kappa_;
+  std::array<std::vector<double>, D> grad_, flux_;
+  std::array<std::vector<double>, D> solid_face_flux_;  ///< m^3/s of solid through each face
+  std::vector<Face> faces_;
+  std::vector<BoundaryFace> boundary_faces_;
+  std::vector<std::size_t> diag_pos_;
+  std::array<double, 2 * D> side_inflow_{};
+  PressureSolver::Matrix matrix_;
+  Eigen::VectorXd rhs_, solution_;
+  PressureSolver solver_;
+  SolveStats last_solve_;
+  FluidBalance last_, total_;
+  std::uint64_t updates_ = 0;
+  double time_ = 0.0;
+  bool initialized_ = false;
+};
+
+}  // namespace darcydem
+
+#include "darcydem/fluid/pore_fluid_overlap.hpp"

@@ -1,0 +1,21 @@
+#pragma once
+// A body-force field acting on the particles, evaluated once per DEM step at
+// the new positions (after the drift) and half-step velocities, before the
+// second half kick. The pore fluid is one; user fields can be others.
+#include <vector>
+
+#include "darcydem/core/vec.hpp"
+#include "darcydem/particles/particle_data.hpp"
+
+namespace darcydem {
+
+template <int D>
+class ParticleForceField {
+ public:
+  virtual ~ParticleForceField() = default;
+  /// Writes the force on every particle into `force` (already sized N), N.
+  virtual void particle_forces(const ParticleData<D>& particles, const Vec<D>& gravity,
+                               std::vector<Vec<D>>& force) const = 0;
+};
+
+}  // namespace darcydem

@@ -1,0 +1,397 @@
+#include "darcydem/fluid/pore_fluid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace darcydem {
+
+template <int D>
+PoreFluid<D>::PoreFluid(PressureSolverKind solver, double tolerance) : solver_(solver, tolerance) {}
+
+template <int D>
+void PoreFluid<D>::initialize(const ParticleData<D>& particles) {
+  const std::size_t n = grid.size();
+  pressure_.assign(n, 0.0);
+  pressure_old_.assign(n, 0.0);
+  for (int k = 0; k < D; ++k) {
+    grad_[k].assign(grid.face_count(k), 0.0);
+    flux_[k].assign(grid.face_count(k), 0.0);
+  }
+  build_pattern();
+  compute_solid(particles);
+  solid_old_ = solid_;
+  compute_cell_properties();
+  compute_face_fields(0.0);
+  solution_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+  initialized_ = true;
+}
+
+template <int D>
+void PoreFluid<D>::compute_solid(const ParticleData<D>& particles) {
+  solid_.assign(grid.size(), 0.0);
+  solid_flux_.assign(grid.size(), Vec<D>::Zero());
+  for (int k = 0; k < D; ++k) solid_face_flux_[k].assign(grid.face_count(k), 0.0);
+  for_each_overlap(
+      particles,
+      [&](std::size_t cell, std::size_t i, double v) {
+        solid_[cell] += v;
+        solid_flux_[cell] += v * particles.velocity[i];
+      },
+      [&](int axis, const std::array<int, D>& face, std::size_t i, double area) {
+        solid_face_flux_[axis][grid.face_index(axis, face)] += area * particles.velocity[i][axis];
+      },
+      carry_with_solid);
+}
+
+template <int D>
+void PoreFluid<D>::compute_cell_properties() {
+  const std::size_t n = grid.size();
+  const double volume = grid.cell_volume();
+  porosity_.resize(n);
+  solid_velocity_.resize(n);
+  const bool update_kappa = !permeability_frozen || kappa_.size() != n;
+  kappa_.resize(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    porosity_[c] = 1.0 - solid_[c] / volume;
+    solid_velocity_[c] = solid_[c] > 1e-12 * volume ? Vec<D>(solid_flux_[c] / solid_[c]) : Vec<D>::Zero();
+    if (!update_kappa) continue;
+    if (permeability.model == PermeabilityModel::constant) {
+      kappa_[c] = permeability.intrinsic;
+    } else {
+      const double nc = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
+      kappa_[c] = kozeny_carman(permeability.diameter, nc) * permeability.anisotropy;
+    }
+  }
+}
+
+template <int D>
+void PoreFluid<D>::build_pattern() {
+  const std::size_t n = grid.size();
+  faces_.clear();
+  boundary_faces_.clear();
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (std::size_t c = 0; c < n; ++c) {
+    const auto cc = grid.coords(c);
+    triplets.emplace_back(static_cast<int>(c), static_cast<int>(c), 1.0);
+    for (int k = 0; k < D; ++k) {
+      if (cc[k] + 1 < grid.cells[k]) {
+        auto up = cc;
+        ++up[k];
+        const auto b = grid.index(up);
+        faces_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(b), k, grid.face_index(k, up), 0, 0});
+        triplets.emplace_back(static_cast<int>(c), static_cast<int>(b), 1.0);
+        triplets.emplace_back(static_cast<int>(b), static_cast<int>(c), 1.0);
+      }
+      if (cc[k] == 0) boundary_faces_.push_back({static_cast<std::uint32_t>(c), 2 * k, grid.face_index(k, cc)});
+      if (cc[k] + 1 == grid.cells[k]) {
+        auto up = cc;
+        ++up[k];
+        boundary_faces_.push_back({static_cast<std::uint32_t>(c), 2 * k + 1, grid.face_index(k, up)});
+      }
+    }
+  }
+  matrix_.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  matrix_.setFromTriplets(triplets.begin(), triplets.end());
+  matrix_.makeCompressed();
+  const double* base = matrix_.valuePtr();
+  auto pos = [&](std::size_t r, std::size_t c) {
+    return static_cast<std::size_t>(&matrix_.coeffRef(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) -
+                                    base);
+  };
+  diag_pos_.resize(n);
+  for (std::size_t c = 0; c < n; ++c) diag_pos_[c] = pos(c, c);
+  for (auto& f : faces_) {
+    f.pos_ab = pos(f.a, f.b);
+    f.pos_ba = pos(f.b, f.a);
+  }
+  rhs_.resize(static_cast<Eigen::Index>(n));
+}
+
+template <int D>
+double PoreFluid<D>::side_lambda(int axis, std::size_t cell) const {
+  return kappa_[cell][axis] / fluid.viscosity;
+}
+
+template <int D>
+void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double time) {
+  if (!initialized_) throw std::logic_error("PoreFluid::update before initialize");
+  const std::size_t n = grid.size();
+  compute_solid(particles);
+  compute_cell_properties();
+  const double volume = grid.cell_volume();
+  pressure_old_ = pressure_;
+
+  // Storage and Biot source.
+  double* values = matrix_.valuePtr();
+  std::fill(values, values + matrix_.nonZeros(), 0.0);
+  double solid_change = 0.0;
+  for (std::size_t c = 0; c < n; ++c) {
+    const double storage = std::max(porosity_[c], 1e-3) * volume / fluid.bulk_modulus;
+    values[diag_pos_[c]] = storage;
+    const double d_solid = solid_[c] - solid_old_[c];
+    solid_change += d_solid;
+    rhs_[static_cast<Eigen::Index>(c)] = storage * pressure_[c] + d_solid;
+  }
+  // Darcy conductances and the fluid carried by the moving skeleton.
+  for (const auto& f : faces_) {
+    const double la = side_lambda(f.axis, f.a);
+    const double lb = side_lambda(f.axis, f.b);
+    const double lambda = 2.0 * la * lb / (la + lb);
+    const double area = grid.face_area(f.axis);
+    const double t = dt * lambda * area / grid.spacing[f.axis];
+    values[diag_pos_[f.a]] += t;
+    values[diag_pos_[f.b]] += t;
+    values[f.pos_ab] -= t;
+    values[f.pos_ba] -= t;
+    if (!carry_with_solid) continue;
+    // Pore fluid carried across the face by the skeleton: the skeleton's
+    // volume flux (mean solid velocity of the two cells, weighted by their
+    // solid volumes, times the area) minus the solid that crosses the face
+    // (the grains' exact sections times their velocities). The Biot term
+    // accounts for the solid; this for the fluid that moves with it.
+    const double vs = solid_[f.a] + solid_[f.b];
+    const double v_mix = vs > 0.0 ? (solid_flux_[f.a][f.axis] + solid_flux_[f.b][f.axis]) / vs : 0.0;
+    const double carried = dt * (v_mix * area - solid_face_flux_[f.axis][f.index]);
+    rhs_[f.a] -= carried;
+    rhs_[f.b] += carried;
+  }
+  // Boundaries.
+  for (const auto& bf : boundary_faces_) {
+    const FluidBoundary& side = sides[bf.side];
+    const int axis = bf.side / 2;
+    const double area = grid.face_area(axis);
+    if (side.type == FluidBoundaryType::drained) {
+      const double t = dt * side_lambda(axis, bf.cell) * area / (0.5 * grid.spacing[axis]);
+      values[diag_pos_[bf.cell]] += t;
+      rhs_[bf.cell] += t * side.value.at(time);
+    } else if (side.type == FluidBoundaryType::flux) {
+      rhs_[bf.cell] += dt * side.value.at(time) * area;
+    }
+  }
+
+  for (std::size_t c = 0; c < n; ++c) solution_[static_cast<Eigen::Index>(c)] = pressure_[c];
+  last_solve_ = solver_.solve(matrix_, rhs_, solution_);
+  for (std::size_t c = 0; c < n; ++c) pressure_[c] = solution_[static_cast<Eigen::Index>(c)];
+
+  compute_face_fields(time);
+  // Balance: summed over the cells, the interior fluxes cancel and
+  // inflow = stored + pore change.
+  FluidBalance b;
+  for (std::size_t c = 0; c < n; ++c) {
+    b.stored += std::max(porosity_[c], 1e-3) * volume / fluid.bulk_modulus * (pressure_[c] - pressure_old_[c]);
+  }
+  b.pore_change = -solid_change;
+  for (int s = 0; s < 2 * D; ++s) b.inflow += side_inflow_[s] * dt;
+  last_ = b;
+  total_.inflow += b.inflow;
+  total_.stored += b.stored;
+  total_.pore_change += b.pore_change;
+  solid_old_ = solid_;
+  time_ = time;
+  ++updates_;
+}
+
+template <int D>
+void PoreFluid<D>::compute_face_fields(double time) {
+  for (const auto& f : faces_) {
+    const double la = side_lambda(f.axis, f.a);
+    const double lb = side_lambda(f.axis, f.b);
+    const double g = (pressure_[f.b] - pressure_[f.a]) / grid.spacing[f.axis];
+    grad_[f.axis][f.index] = g;
+    flux_[f.axis][f.index] = -2.0 * la * lb / (la + lb) * g;
+  }
+  side_inflow_.fill(0.0);
+  for (const auto& bf : boundary_faces_) {
+    const FluidBoundary& side = sides[bf.side];
+    const int axis = bf.side / 2;
+    const bool upper = (bf.side & 1) != 0;
+    const double lambda = side_lambda(axis, bf.cell);
+    double g = 0.0;
+    double inflow = 0.0;  // into the grid, m/s
+    if (side.type == FluidBoundaryType::drained) {
+      const double ub = side.value.at(time);
+      g = upper ? (ub - pressure_[bf.cell]) / (0.5 * grid.spacing[axis])
+                : (pressure_[bf.cell] - ub) / (0.5 * grid.spacing[axis]);
+      const double q = -lambda * g;  // along +axis
+      inflow = upper ? -q : q;
+    } else if (side.type == FluidBoundaryType::flux) {
+      inflow = side.value.at(time);
+      const double q = upper ? -inflow : inflow;
+      g = -q / lambda;
+    }
+    grad_[axis][bf.index] = g;
+    flux_[axis][bf.index] = -lambda * g;
+    side_inflow_[bf.side] += inflow * grid.face_area(axis);
+  }
+}
+
+template <int D>
+template <class FaceValue>
+double PoreFluid<D>::staggered(int axis, const Vec<D>& x, FaceValue&& value) const {
+  // Along `axis`: linear between the two faces of the cell holding x. Along
+  // the other axes: linear between cell centres, held beyond the outer ones.
+  std::array<int, D> base{};
+  std::array<double, D> frac{};
+  for (int k = 0; k < D; ++k) {
+    const double s = (x[k] - grid.origin[k]) / grid.spacing[k];
+    if (k == axis) {
+      base[k] = std::clamp(static_cast<int>(std::floor(s)), 0, grid.cells[k] - 1);
+      frac[k] = std::clamp(s - base[k], 0.0, 1.0);
+    } else {
+      const double t = s - 0.5;
+      int b = static_cast<int>(std::floor(t));
+      double fr = t - b;
+      if (b < 0) {
+        b = 0;
+        fr = 0.0;
+      } else if (b >= grid.cells[k] - 1) {
+        b = grid.cells[k] - 1;
+        fr = 0.0;
+      }
+      base[k] = b;
+      frac[k] = fr;
+    }
+  }
+  double sum = 0.0;
+  for (int corner = 0; corner < (1 << D); ++corner) {
+    double w = 1.0;
+    std::array<int, D> c = base;
+    bool skip = false;
+    for (int k = 0; k < D; ++k) {
+      const bool up = ((corner >> k) & 1) != 0;
+      w *= up ? frac[k] : 1.0 - frac[k];
+      if (up) {
+        ++c[k];
+        if (k != axis && c[k] >= grid.cells[k]) skip = true;
+      }
+    }
+    if (w == 0.0 || skip) continue;
+    sum += w * value(grid.face_index(axis, c));
+  }
+  return sum;
+}
+
+template <int D>
+Vec<D> PoreFluid<D>::gradient_at(const Vec<D>& x) const {
+  Vec<D> g;
+  for (int k = 0; k < D; ++k) g[k] = staggered(k, x, [&](std::size_t f) { return grad_[k][f]; });
+  return g;
+}
+
+template <int D>
+double PoreFluid<D>::pressure_at(const Vec<D>& x) const {
+  std::array<int, D> base{};
+  std::array<double, D> frac{};
+  for (int k = 0; k < D; ++k) {
+    const double t = (x[k] - grid.origin[k]) / grid.spacing[k] - 0.5;
+    int b = static_cast<int>(std::floor(t));
+    double fr = t - b;
+    if (b < 0) {
+      b = 0;
+      fr = 0.0;
+    } else if (b >= grid.cells[k] - 1) {
+      b = grid.cells[k] - 1;
+      fr = 0.0;
+    }
+    base[k] = b;
+    frac[k] = fr;
+  }
+  double sum = 0.0;
+  for (int corner = 0; corner < (1 << D); ++corner) {
+    double w = 1.0;
+    std::array<int, D> c = base;
+    for (int k = 0; k < D; ++k) {
+      const bool up = ((corner >> k) & 1) != 0;
+      w *= up ? frac[k] : 1.0 - frac[k];
+      if (up) ++c[k];
+    }
+    if (w == 0.0) continue;
+    sum += w * pressure_[grid.index(c)];
+  }
+  return sum;
+}
+
+template <int D>
+std::vector<Vec<D>> PoreFluid<D>::darcy_velocity() const {
+  std::vector<Vec<D>> v(grid.size());
+  for (std::size_t c = 0; c < grid.size(); ++c) {
+    auto cc = grid.coords(c);
+    for (int k = 0; k < D; ++k) {
+      auto up = cc;
+      ++up[k];
+      v[c][k] = 0.5 * (flux_[k][grid.face_index(k, cc)] + flux_[k][grid.face_index(k, up)]);
+    }
+  }
+  return v;
+}
+
+template <int D>
+void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravity,
+                                   std::vector<Vec<D>>& force) const {
+  const auto count = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static) if (count > 2000)
+  for (std::int64_t i = 0; i < count; ++i) {
+    const Vec<D>& x = p.position[i];
+    std::array<int, D> cell{};
+    for (int k = 0; k < D; ++k) cell[k] = grid.cell_along(k, x[k]);
+    if (!grid.inside(cell)) {
+      force[i].setZero();
+      continue;
+    }
+    const std::size_t c = grid.index(cell);
+    const double vp = particle_volume<D>(p.radius[i]);
+    Vec<D> f = -vp * (gradient_at(x) + fluid.density * gravity);
+    const double n = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
+    Vec<D> q;
+    for (int k = 0; k < D; ++k) q[k] = staggered(k, x, [&](std::size_t fi) { return flux_[k][fi]; });
+    const Vec<D> slip = solid_velocity_[c] + q / n - p.velocity[i];
+    if (drag == DragLaw::darcy) {
+      for (int k = 0; k < D; ++k) f[k] += n * n * fluid.viscosity / kappa_[c][k] / (1.0 - n) * slip[k] * vp;
+    } else {
+      const double beta = ergun_wen_yu_beta(n, 2.0 * p.radius[i], slip.norm(), fluid);
+      f += beta / (1.0 - n) * vp * slip;
+    }
+    force[i] = f;
+  }
+}
+
+template <int D>
+double PoreFluid<D>::critical_time_step(const ParticleData<D>& p, double dem_step) const {
+  double m_min = std::numeric_limits<double>::infinity();
+  double r_min = std::numeric_limits<double>::infinity();
+  double rho_min = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.inv_mass[i] == 0.0) continue;
+    const double m = 1.0 / p.inv_mass[i];
+    m_min = std::min(m_min, m);
+    r_min = std::min(r_min, p.radius[i]);
+    rho_min = std::min(rho_min, m / particle_volume<D>(p.radius[i]));
+  }
+  if (!std::isfinite(m_min)) return dem_step;
+  double n_min = 1.0;
+  double kappa_min = std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < grid.size(); ++c) {
+    if (solid_[c] <= 0.0) continue;
+    n_min = std::min(n_min, porosity_[c]);
+    kappa_min = std::min(kappa_min, kappa_[c].minCoeff());
+  }
+  n_min = std::clamp(n_min, permeability.min_porosity, permeability.max_porosity);
+  // Undrained stiffness of the pore fluid against a grain: modulus K_f/n
+  // over a cell, k = (K_f/n) A/h, taken along the cell's shortest side.
+  double geometry = 0.0;
+  for (int k = 0; k < D; ++k) geometry = std::max(geometry, grid.cell_volume() / (grid.spacing[k] * grid.spacing[k]));
+  const double k_fluid = fluid.bulk_modulus / n_min * geometry;
+  const double dt_stiff = 1.0 / std::sqrt(1.0 / (dem_step * dem_step) + k_fluid / m_min);
+  // Drag relaxation time m / (beta V_p / (1-n)), for the explicit drag.
+  const double beta = drag == DragLaw::darcy ? n_min * n_min * fluid.viscosity / kappa_min
+                                             : ergun_wen_yu_beta(n_min, 2.0 * r_min, 0.0, fluid);
+  const double dt_drag = rho_min * (1.0 - n_min) / beta;
+  return std::min(dt_stiff, dt_drag);
+}
+
+template class PoreFluid<2>;
+template class PoreFluid<3>;
+
+}  // namespace darcydem

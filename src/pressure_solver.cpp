@@ -1,0 +1,53 @@
+#include "darcydem/fluid/pressure_solver.hpp"
+
+#include <stdexcept>
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+#include <fmt/format.h>
+
+namespace darcydem {
+
+struct PressureSolver::Impl {
+  Eigen::SimplicialLDLT<Matrix> ldlt;
+  bool analysed = false;
+  Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper> cg;
+};
+
+PressureSolver::PressureSolver(PressureSolverKind kind, double tolerance)
+    : kind_(kind), tolerance_(tolerance), impl_(std::make_unique<Impl>()) {}
+PressureSolver::~PressureSolver() = default;
+PressureSolver::PressureSolver(PressureSolver&&) noexcept = default;
+PressureSolver& PressureSolver::operator=(PressureSolver&&) noexcept = default;
+
+SolveStats PressureSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  SolveStats stats;
+  const double b_norm = b.norm();
+  if (kind_ == PressureSolverKind::cholesky) {
+    if (!impl_->analysed) {
+      impl_->ldlt.analyzePattern(a);
+      impl_->analysed = true;
+    }
+    impl_->ldlt.factorize(a);
+    if (impl_->ldlt.info() != Eigen::Success) {
+      throw std::runtime_error("pore pressure: the Cholesky factorisation failed (matrix not positive definite)");
+    }
+    x = impl_->ldlt.solve(b);
+    stats.iterations = 1;
+  } else {
+    impl_->cg.setTolerance(tolerance_);
+    impl_->cg.setMaxIterations(std::max<Eigen::Index>(1000, 10 * a.rows()));
+    impl_->cg.compute(a);
+    x = impl_->cg.solveWithGuess(b, x);
+    stats.iterations = static_cast<int>(impl_->cg.iterations());
+    if (impl_->cg.info() != Eigen::Success) {
+      throw std::runtime_error(fmt::format("pore pressure: conjugate gradients did not converge in {} iterations "
+                                           "(error {:.3g}, tolerance {:.3g})",
+                                           impl_->cg.iterations(), impl_->cg.error(), tolerance_));
+    }
+  }
+  stats.residual = b_norm > 0.0 ? (a * x - b).norm() / b_norm : (a * x).norm();
+  return stats;
+}
+
+}  // namespace darcydem
