@@ -19,6 +19,13 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles) {
     grad_[k].assign(grid.face_count(k), 0.0);
     flux_[k].assign(grid.face_count(k), 0.0);
   }
+  for (int a = 0; a < D; ++a) {
+    std::size_t stride = 1;
+    for (int k = 0; k < D; ++k) {
+      face_stride_[a][k] = stride;
+      stride *= static_cast<std::size_t>(k == a ? grid.cells[k] + 1 : grid.cells[k]);
+    }
+  }
   build_pattern();
   compute_solid(particles);
   solid_old_ = solid_;
@@ -228,21 +235,21 @@ void PoreFluid<D>::compute_face_fields(double time) {
 }
 
 template <int D>
-template <class FaceValue>
-double PoreFluid<D>::staggered(int axis, const Vec<D>& x, FaceValue&& value) const {
-  // Along `axis`: linear between the two faces of the cell holding x. Along
-  // the other axes: linear between cell centres, held beyond the outer ones.
-  std::array<int, D> base{};
+typename PoreFluid<D>::Stencil PoreFluid<D>::stencil(int axis, const Vec<D>& x) const {
+  std::size_t base = 0;
   std::array<double, D> frac{};
+  std::array<std::size_t, D> step{};
   for (int k = 0; k < D; ++k) {
     const double s = (x[k] - grid.origin[k]) / grid.spacing[k];
+    int b = 0;
+    double fr = 0.0;
     if (k == axis) {
-      base[k] = std::clamp(static_cast<int>(std::floor(s)), 0, grid.cells[k] - 1);
-      frac[k] = std::clamp(s - base[k], 0.0, 1.0);
+      b = std::clamp(static_cast<int>(std::floor(s)), 0, grid.cells[k] - 1);
+      fr = std::clamp(s - b, 0.0, 1.0);
     } else {
       const double t = s - 0.5;
-      int b = static_cast<int>(std::floor(t));
-      double fr = t - b;
+      b = static_cast<int>(std::floor(t));
+      fr = t - b;
       if (b < 0) {
         b = 0;
         fr = 0.0;
@@ -250,33 +257,38 @@ double PoreFluid<D>::staggered(int axis, const Vec<D>& x, FaceValue&& value) con
         b = grid.cells[k] - 1;
         fr = 0.0;
       }
-      base[k] = b;
-      frac[k] = fr;
     }
+    base += static_cast<std::size_t>(b) * face_stride_[axis][k];
+    frac[k] = fr;
+    step[k] = fr > 0.0 ? face_stride_[axis][k] : 0;
   }
-  double sum = 0.0;
+  Stencil st;
   for (int corner = 0; corner < (1 << D); ++corner) {
     double w = 1.0;
-    std::array<int, D> c = base;
-    bool skip = false;
+    std::size_t idx = base;
     for (int k = 0; k < D; ++k) {
-      const bool up = ((corner >> k) & 1) != 0;
-      w *= up ? frac[k] : 1.0 - frac[k];
-      if (up) {
-        ++c[k];
-        if (k != axis && c[k] >= grid.cells[k]) skip = true;
+      if ((corner >> k) & 1) {
+        w *= frac[k];
+        idx += step[k];
+      } else {
+        w *= 1.0 - frac[k];
       }
     }
-    if (w == 0.0 || skip) continue;
-    sum += w * value(grid.face_index(axis, c));
+    st.index[corner] = idx;
+    st.weight[corner] = w;
   }
-  return sum;
+  return st;
 }
 
 template <int D>
 Vec<D> PoreFluid<D>::gradient_at(const Vec<D>& x) const {
   Vec<D> g;
-  for (int k = 0; k < D; ++k) g[k] = staggered(k, x, [&](std::size_t f) { return grad_[k][f]; });
+  for (int k = 0; k < D; ++k) {
+    const Stencil st = stencil(k, x);
+    double v = 0.0;
+    for (int c = 0; c < (1 << D); ++c) v += st.weight[c] * grad_[k][st.index[c]];
+    g[k] = v;
+  }
   return g;
 }
 
@@ -342,10 +354,21 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
     }
     const std::size_t c = grid.index(cell);
     const double vp = particle_volume<D>(p.radius[i]);
-    Vec<D> f = -vp * (gradient_at(x) + fluid.density * gravity);
-    const double n = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
+    Vec<D> grad;
     Vec<D> q;
-    for (int k = 0; k < D; ++k) q[k] = staggered(k, x, [&](std::size_t fi) { return flux_[k][fi]; });
+    for (int k = 0; k < D; ++k) {
+      const Stencil st = stencil(k, x);
+      double g = 0.0;
+      double fl = 0.0;
+      for (int corner = 0; corner < (1 << D); ++corner) {
+        g += st.weight[corner] * grad_[k][st.index[corner]];
+        fl += st.weight[corner] * flux_[k][st.index[corner]];
+      }
+      grad[k] = g;
+      q[k] = fl;
+    }
+    Vec<D> f = -vp * (grad + fluid.density * gravity);
+    const double n = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
     const Vec<D> slip = solid_velocity_[c] + q / n - p.velocity[i];
     if (drag == DragLaw::darcy) {
       for (int k = 0; k < D; ++k) f[k] += n * n * fluid.viscosity / kappa_[c][k] / (1.0 - n) * slip[k] * vp;

@@ -109,8 +109,14 @@ class PoreFluid final : public ParticleForceField<D> {
   void build_pattern();
   void compute_face_fields(double time);
   [[nodiscard]] double side_lambda(int axis, std::size_t cell) const;
-  template <class FaceValue>
-  [[nodiscard]] double staggered(int axis, const Vec<D>& x, FaceValue&& value) const;
+  /// Weights and face indices that interpolate a face field of `axis` at x:
+  /// linear between the two faces of the cell holding x along `axis`, linear
+  /// between cell centres along the others (held beyond the outer ones).
+  struct Stencil {
+    std::array<std::size_t, 1 << D> index{};
+    std::array<double, 1 << D> weight{};
+  };
+  [[nodiscard]] Stencil stencil(int axis, const Vec<D>& x) const;
 
   struct Face {
     std::uint32_t a, b;  ///< cells below and above along `axis`
@@ -131,6 +137,7 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<Face> faces_;
   std::vector<BoundaryFace> boundary_faces_;
   std::vector<std::size_t> diag_pos_;
+  std::array<std::array<std::size_t, D>, D> face_stride_{};  ///< [axis][j]: index step along j
   std::array<double, 2 * D> side_inflow_{};
   PressureSolver::Matrix matrix_;
   Eigen::VectorXd rhs_, solution_;

@@ -1,0 +1,68 @@
+// The closed-form seepage solution against REFERENCE.md's table (computed
+// independently for H = 0.05 m, m_v = 1.012e-5 1/Pa, k = 1.0009e-3 m/s,
+// q = 1e-3 m/s, n = 0.2121) and against its own limits.
+#include <gtest/gtest.h>
+
+#include "darcydem/analysis/seepage_analytic.hpp"
+
+using darcydem::SeepageColumnParameters;
+
+namespace {
+SeepageColumnParameters reference(double bulk_modulus) {
+  SeepageColumnParameters p;
+  p.height = 0.05;
+  p.inflow = 1e-3;
+  p.conductivity = 1.0009e-3;
+  p.compressibility = 1.012e-5;
+  p.fluid_storage = 0.2121 / bulk_modulus;
+  p.unit_weight = 1000.0 * 9.80665;
+  return p;
+}
+}  // namespace
+
+TEST(SeepageAnalytic, ReproducesReferenceTable) {
+  // REFERENCE.md gives S in mm to 4 decimals: tolerance half a unit of the
+  // last digit.
+  const double tol = 0.5e-4;
+  struct Row {
+    double kf;
+    double s[6];
+  };
+  const double times[6] = {0.01, 0.05, 0.1, 0.2, 0.5, 1.0};
+  const Row rows[] = {{1e7, {0.0100, 0.0462, 0.0766, 0.1064, 0.1231, 0.1239}},
+                      {1e5, {0.0083, 0.0393, 0.0678, 0.0993, 0.1219, 0.1239}},
+                      {1e4, {0.0032, 0.0161, 0.0315, 0.0567, 0.0983, 0.1188}}};
+  for (const auto& row : rows) {
+    const auto p = reference(row.kf);
+    for (int i = 0; i < 6; ++i) {
+      EXPECT_NEAR(darcydem::seepage_uplift(p, times[i]) * 1e3, row.s[i], tol) << "K_f=" << row.kf << " t=" << times[i];
+    }
+  }
+}
+
+TEST(SeepageAnalytic, LimitsAndSteadyState) {
+  const auto p = reference(1e7);
+  // Steady numbers of REFERENCE.md: 490 Pa at the bottom, uplift 0.124 mm.
+  EXPECT_NEAR(p.steady_bottom_pressure(), 490.0, 0.5);
+  EXPECT_NEAR(p.final_uplift() * 1e3, 0.124, 0.0005);
+  EXPECT_DOUBLE_EQ(darcydem::seepage_uplift(p, 0.0), 0.0);
+  EXPECT_NEAR(darcydem::seepage_uplift(p, 50.0), p.final_uplift(), 1e-12 * p.final_uplift());
+  for (double z : {0.0, 0.01, 0.025, 0.05}) {
+    EXPECT_NEAR(darcydem::seepage_pressure(p, z, 50.0), p.steady_bottom_pressure() * z / p.height, 1e-9);
+  }
+  // Early times: all the inflow goes into expansion, S = q t (incompressible fluid).
+  auto q = p;
+  q.fluid_storage = 0.0;
+  EXPECT_NEAR(darcydem::seepage_uplift(q, 1e-4), q.inflow * 1e-4, 0.01 * q.inflow * 1e-4);
+  // The drained top stays at zero, and the uplift is m_v times the integral
+  // of the pressure (trapezoid rule on 2000 intervals, error < 1e-6).
+  const double t = 0.05;
+  EXPECT_NEAR(darcydem::seepage_pressure(p, 0.0, t), 0.0, 1e-9);
+  double integral = 0.0;
+  const int n = 2000;
+  for (int i = 0; i <= n; ++i) {
+    const double w = (i == 0 || i == n) ? 0.5 : 1.0;
+    integral += w * darcydem::seepage_pressure(p, p.height * i / n, t) * p.height / n;
+  }
+  EXPECT_NEAR(p.compressibility * integral, darcydem::seepage_uplift(p, t), 1e-6 * p.final_uplift());
+}
