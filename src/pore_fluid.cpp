@@ -190,8 +190,14 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     b.stored += std::max(porosity_[c], 1e-3) * volume / fluid.bulk_modulus * (pressure_[c] - pressure_old_[c]);
   }
   b.pore_change = -solid_change;
-  for (int s = 0; s < 2 * D; ++s) b.inflow += side_inflow_[s] * dt;
+  for (int s = 0; s < 2 * D; ++s) {
+    b.inflow += side_inflow_[s] * dt;
+    b.gross += std::abs(side_inflow_[s] * dt);
+  }
+  for (std::size_t c = 0; c < n; ++c) b.gross += std::abs(solid_[c] - solid_old_[c]);
+  b.gross += std::abs(b.stored);
   last_ = b;
+  total_.gross += b.gross;
   total_.inflow += b.inflow;
   total_.stored += b.stored;
   total_.pore_change += b.pore_change;

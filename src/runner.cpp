@@ -189,8 +189,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         fluid_iterations += static_cast<std::uint64_t>(fluid->last_solve().iterations);
         fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);
         const auto& b = fluid->last_balance();
-        const double scale = std::max({std::abs(b.inflow), std::abs(b.stored), std::abs(b.pore_change), 1e-300});
-        fluid_worst_imbalance = std::max(fluid_worst_imbalance, std::abs(b.imbalance()) / scale);
+        if (b.gross > 0.0) fluid_worst_imbalance = std::max(fluid_worst_imbalance, std::abs(b.imbalance()) / b.gross);
       }
       if (seepage) seepage->after_step(scene);
       if (sim.time >= next_probe - 0.5 * dt) {
@@ -223,8 +222,9 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       const auto& tb = fluid->total_balance();
       *options.log << fmt::format(
           "fluid balance so far: inflow {:.6g} m^3 = stored {:.6g} + pore change {:.6g}; imbalance {:.3g} m^3 "
-          "(worst step {:.3g} relative); solver residual <= {:.3g}, {} iterations\n",
-          tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), fluid_worst_imbalance, fluid_residual,
+          "({:.3g} of the gross flow; worst step {:.3g}); solver residual <= {:.3g}, {} iterations\n",
+          tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), tb.gross > 0 ? std::abs(tb.imbalance()) / tb.gross : 0.0,
+          fluid_worst_imbalance, fluid_residual,
           fluid_iterations);
     }
     if (summary.interrupted) break;

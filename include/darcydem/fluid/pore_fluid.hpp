@@ -35,6 +35,7 @@ struct FluidBalance {
   double inflow = 0.0;       ///< across the grid's sides, into the grid
   double stored = 0.0;       ///< sum S (u - u_old): compression of the pore fluid
   double pore_change = 0.0;  ///< increase of pore volume, -(change of solid volume)
+  double gross = 0.0;        ///< sum of the magnitudes of all the terms (each side's flow too)
   [[nodiscard]] double imbalance() const { return inflow - stored - pore_change; }
 };
 
