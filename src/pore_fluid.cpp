@@ -1,5 +1,7 @@
 #include "darcydem/fluid/pore_fluid.hpp"
 
+#include "darcydem/core/parallel.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -349,14 +351,13 @@ template <int D>
 void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravity,
                                    std::vector<Vec<D>>& force) const {
   const auto count = static_cast<std::int64_t>(p.size());
-#pragma omp parallel for schedule(static) if (count > 2000)
-  for (std::int64_t i = 0; i < count; ++i) {
+  for_each_index(count, [&](std::int64_t i) {
     const Vec<D>& x = p.position[i];
     std::array<int, D> cell{};
     for (int k = 0; k < D; ++k) cell[k] = grid.cell_along(k, x[k]);
     if (!grid.inside(cell)) {
       force[i].setZero();
-      continue;
+      return;
     }
     const std::size_t c = grid.index(cell);
     const double vp = particle_volume<D>(p.radius[i]);
@@ -383,7 +384,7 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
       f += beta / (1.0 - n) * vp * slip;
     }
     force[i] = f;
-  }
+  });
 }
 
 template <int D>

@@ -7,6 +7,7 @@
 
 #include "darcydem/contact/contact_kernel.hpp"
 #include "darcydem/core/deterministic_sum.hpp"
+#include "darcydem/core/parallel.hpp"
 
 namespace darcydem {
 
@@ -70,9 +71,8 @@ void Simulation<D>::kick(double half_dt) {
   const double alpha = damping.local;
   const double beta = damping.viscous;
   auto& p = particles;
-#pragma omp parallel for schedule(static) if (n > 2000)
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (p.fixed[i] != 0) continue;
+  for_each_index(n, [&](std::int64_t i) {
+    if (p.fixed[i] != 0) return;
     Vec<D> f = p.force[i];
     AngVec<D> t = p.torque[i];
     if (alpha > 0.0) {
@@ -95,7 +95,7 @@ void Simulation<D>::kick(double half_dt) {
     }
     p.velocity[i] += a * half_dt;
     p.angular_velocity[i] += alpha_rot * half_dt;
-  }
+  });
 }
 
 template <int D>
@@ -103,8 +103,7 @@ void Simulation<D>::drift() {
   const auto n = static_cast<std::int64_t>(particles.size());
   const double dt = time_step;
   auto& p = particles;
-#pragma omp parallel for schedule(static) if (n > 2000)
-  for (std::int64_t i = 0; i < n; ++i) p.position[i] += p.velocity[i] * dt;
+  for_each_index(n, [&](std::int64_t i) { p.position[i] += p.velocity[i] * dt; });
 }
 
 template <int D>
@@ -134,8 +133,7 @@ void Simulation<D>::compute_forces_with() {
 
   // Pass 1: every pair once. Particle i keeps its share; j's share is stored
   // with the pair. Wall contacts of i are done here too.
-#pragma omp parallel for schedule(dynamic, 512) if (n > 2000)
-  for (std::int64_t i = 0; i < n; ++i) {
+  for_each_index_dynamic(n, [&](std::int64_t i) {
     const Vec<D> xi = p.position[i];
     const double ri = p.radius[i];
     Vec<D> f = Vec<D>::Zero();
@@ -192,7 +190,7 @@ void Simulation<D>::compute_forces_with() {
     }
     p.force[i] = f;
     p.torque[i] = t;
-  }
+  });
 
   // Pass 2: each particle adds the shares stored with the pairs, in order,
   // then gravity, external forces and the force field.
@@ -202,8 +200,7 @@ void Simulation<D>::compute_forces_with() {
     field_force_.resize(p.size());
     force_field->particle_forces(p, gravity, field_force_);
   }
-#pragma omp parallel for schedule(static) if (n > 2000)
-  for (std::int64_t j = 0; j < n; ++j) {
+  for_each_index(n, [&](std::int64_t j) {
     Vec<D> f = Vec<D>::Zero();
     AngVec<D> t = AngVec<D>::Zero();
     for (std::uint32_t q = L.reverse_offset[j]; q < L.reverse_offset[j + 1]; ++q) {
@@ -216,7 +213,7 @@ void Simulation<D>::compute_forces_with() {
     if (p.inv_mass[j] > 0.0) f += g / p.inv_mass[j];
     p.force[j] += f;
     p.torque[j] += t;
-  }
+  });
 
   for (auto& w : walls) w.force.setZero();
   for (std::int64_t i = 0; i < n; ++i) {

@@ -87,9 +87,11 @@ double VerletList<D>::max_displacement(const std::vector<Vec<D>>& position) cons
   if (reference_.size() != position.size()) return 1e300;
   double m2 = 0.0;
   const auto n = static_cast<std::int64_t>(position.size());
-#pragma omp parallel for reduction(max : m2) if (n > 2000)
-  for (std::int64_t i = 0; i < n; ++i) {
-    m2 = std::max(m2, (position[i] - reference_[i]).squaredNorm());
+  if (n > 2000) {
+#pragma omp parallel for reduction(max : m2)
+    for (std::int64_t i = 0; i < n; ++i) m2 = std::max(m2, (position[i] - reference_[i]).squaredNorm());
+  } else {
+    for (std::int64_t i = 0; i < n; ++i) m2 = std::max(m2, (position[i] - reference_[i]).squaredNorm());
   }
   return std::sqrt(m2);
 }
