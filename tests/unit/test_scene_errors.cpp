@@ -163,5 +163,65 @@ TEST(SceneErrors, BadDimension) {
   EXPECT_NE(msg.find("must be 2 (discs) or 3 (spheres), got 4"), std::string::npos) << msg;
 }
 
+// A good scene with a pore fluid, and its errors.
+std::string with_fluid(const std::string& extra = "") {
+  return std::string(kGood) + R"(
+[fluid]
+density = 1000.0
+viscosity = 1.0e-3
+bulk_modulus = 1e7
+drag = "darcy"
+
+[fluid.grid]
+origin = [-0.0005, 0.0]
+cells = [1, 2]
+size = [0.001, 0.002]
+
+[fluid.permeability]
+model = "kozeny_carman"
+
+[fluid.boundary]
+y_max = { type = "drained", pressure = 0.0 }
+)" + extra;
+}
+
+TEST(SceneErrors, GoodFluidSceneLoads) { EXPECT_EQ(load_error(with_fluid()), ""); }
+
+TEST(SceneErrors, FluidUnknownKeySuggestsTheNearOne) {
+  const auto msg = load_error(replace(with_fluid(), "viscosity = 1.0e-3", "viscosty = 1.0e-3"));
+  EXPECT_NE(msg.find("unknown key 'viscosty'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("Did you mean 'viscosity'?"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, FluidCellsNarrowerThanAGrainAreRefused) {
+  const auto msg = load_error(replace(with_fluid(), "size = [0.001, 0.002]", "size = [0.0005, 0.002]"));
+  EXPECT_NE(msg.find("[fluid.grid]"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("key 'size': cells must be at least one grain diameter wide"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, FluidBoundaryTypeAndValueAreChecked) {
+  auto msg = load_error(replace(with_fluid(), "type = \"drained\"", "type = \"drianed\""));
+  EXPECT_NE(msg.find("did you mean \"drained\"?"), std::string::npos) << msg;
+  msg = load_error(replace(with_fluid(), "pressure = 0.0 }", "inflow = 0.001 }"));
+  EXPECT_NE(msg.find("key 'inflow': does not apply to a drained side (give 'pressure')"), std::string::npos) << msg;
+  msg = load_error(replace(with_fluid(), "y_max = {", "y_top = {"));
+  EXPECT_NE(msg.find("unknown key 'y_top'"), std::string::npos) << msg;
+  msg = load_error(replace(with_fluid(), "pressure = 0.0 }", "pressure = { times = [0.0, 0.0], values = [1.0, 2.0] } }"));
+  EXPECT_NE(msg.find("key 'times': must increase strictly"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, FluidProbeWithoutFluidIsRefused) {
+  const auto msg = load_error(std::string(kGood) + "\n[[probe]]\nname = \"u\"\nquantity = \"pore_pressure\"\nposition = [0.0, 0.001]\n");
+  EXPECT_NE(msg.find("needs a pore fluid: the scene has no [fluid] table"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, TimeStepAboveTheCoupledCriticalStepIsRefused) {
+  // The dry critical step is 1.44e-4 s; with K_f = 1e7 Pa the pore fluid's
+  // undrained stiffness brings it to a few microseconds: 5e-5 s is refused.
+  const auto msg = load_error(replace(with_fluid(), "time_step = \"auto\"", "time_step = 5e-5"));
+  EXPECT_NE(msg.find("is larger than the critical time step"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("K_f/n"), std::string::npos) << msg;
+}
+
 }  // namespace
 }  // namespace darcydem

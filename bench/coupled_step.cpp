@@ -1,0 +1,129 @@
+// Benchmark: the cost the pore fluid adds to a DEM step, and the pressure
+// solve against the number of cells (issue 3).
+//
+//   BM_DemStep/N/threads            DEM alone on the benchmark packing (packing.hpp)
+//   BM_CoupledStep/cells/solver     the same packing (10^5 spheres) with a pore
+//                                   fluid updated every DEM step (fluid step,
+//                                   overlaps, solve, forces); solver 0 = Cholesky, 1 = CG
+//   BM_PressureSolve/cells/solver   one fluid update on a frozen packing alone
+//
+// The grid covers the packing's base and is as tall as needed for the cell
+// count (fluid above the bed), with cells at least one grain wide.
+// Counters: ms_per_step, fluid_share (fraction of the step spent in the
+// fluid), cg_iterations. JSON with
+//   bench_coupled_step --benchmark_out=bench/results/coupled_step.json
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "darcydem/fluid/pore_fluid.hpp"
+#include "packing.hpp"
+
+namespace {
+
+using darcydem::PoreFluid;
+using darcydem::Simulation;
+using darcydem::Vec;
+using Clock = std::chrono::steady_clock;
+
+constexpr std::int64_t kGrains = 100'000;
+
+/// A grid of about `cells` cells over the packing's base, at least 1 mm wide.
+void shape_grid(PoreFluid<3>& f, const Simulation<3>& sim, std::int64_t cells) {
+  Vec<3> lo = Vec<3>::Constant(1e300);
+  Vec<3> hi = Vec<3>::Constant(-1e300);
+  for (std::size_t i = 0; i < sim.particles.size(); ++i) {
+    lo = lo.cwiseMin(sim.particles.position[i] - Vec<3>::Constant(sim.particles.radius[i]));
+    hi = hi.cwiseMax(sim.particles.position[i] + Vec<3>::Constant(sim.particles.radius[i]));
+  }
+  const Vec<3> size = hi - lo;
+  // Cubic-ish cells of side h with nx ny nz ~ cells over the packing; if h
+  // would fall below a grain diameter, keep h = 1 mm and extend the grid
+  // upwards (fluid above the bed).
+  double h = std::cbrt(size.prod() / static_cast<double>(cells));
+  h = std::max(h, 1e-3);
+  for (int k = 0; k < 2; ++k) f.grid.cells[k] = std::max(1, static_cast<int>(size[k] / h));
+  f.grid.cells[2] = std::max(1, static_cast<int>(static_cast<double>(cells) / (f.grid.cells[0] * f.grid.cells[1])));
+  for (int k = 0; k < 2; ++k) f.grid.spacing[k] = size[k] / f.grid.cells[k];
+  f.grid.spacing[2] = std::max(1e-3, size[2] / f.grid.cells[2]);
+  f.grid.origin = lo;
+}
+
+std::unique_ptr<PoreFluid<3>> make_fluid(const Simulation<3>& sim, std::int64_t cells, int solver) {
+  auto f = std::make_unique<PoreFluid<3>>(solver == 0 ? darcydem::PressureSolverKind::cholesky
+                                                      : darcydem::PressureSolverKind::cg,
+                                          1e-8);
+  shape_grid(*f, sim, cells);
+  f->fluid = {1000.0, 1e-3, 1e5};
+  f->drag = darcydem::DragLaw::ergun;
+  f->permeability.model = darcydem::PermeabilityModel::kozeny_carman;
+  f->permeability.diameter = 1e-3;
+  f->sides[5] = {darcydem::FluidBoundaryType::drained, darcydem::TimeSeries::constant(0.0)};
+  f->sides[4] = {darcydem::FluidBoundaryType::flux, darcydem::TimeSeries::constant(1e-4)};
+  f->initialize(sim.particles);
+  return f;
+}
+
+void BM_DemStep(benchmark::State& state) {
+  omp_set_num_threads(static_cast<int>(state.range(1)));
+  auto sim = bench::make_packing(state.range(0));
+  for (auto _ : state) sim.step();
+  state.counters["particle_steps_per_second"] = benchmark::Counter(
+      static_cast<double>(sim.particles.size()) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void BM_CoupledStep(benchmark::State& state) {
+  omp_set_num_threads(1);
+  auto sim = bench::make_packing(kGrains);
+  auto fluid = make_fluid(sim, state.range(0), static_cast<int>(state.range(1)));
+  sim.force_field = fluid.get();
+  sim.prepare();
+  double fluid_seconds = 0.0;
+  long iterations = 0;
+  for (auto _ : state) {
+    sim.step();
+    const auto t0 = Clock::now();
+    fluid->update(sim.particles, sim.time_step, sim.time);
+    fluid_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    iterations += fluid->last_solve().iterations;
+  }
+  state.counters["cells"] = static_cast<double>(fluid->grid.size());
+  state.counters["fluid_update_ms"] = 1e3 * fluid_seconds / static_cast<double>(state.iterations());
+  state.counters["solver_iterations"] = static_cast<double>(iterations) / static_cast<double>(state.iterations());
+  state.counters["particle_steps_per_second"] = benchmark::Counter(
+      static_cast<double>(sim.particles.size()) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void BM_PressureSolve(benchmark::State& state) {
+  omp_set_num_threads(1);
+  // A frozen packing: only the fluid update runs (the overlaps, assembly
+  // and solve); a moving grain each step keeps the Biot source non-zero.
+  static auto sim = bench::make_packing(kGrains, 0);
+  auto fluid = make_fluid(sim, state.range(0), static_cast<int>(state.range(1)));
+  double t = 0.0;
+  for (auto _ : state) {
+    sim.particles.position[0].z() += 1e-7;
+    t += 1e-6;
+    fluid->update(sim.particles, 1e-6, t);
+  }
+  state.counters["cells"] = static_cast<double>(fluid->grid.size());
+  state.counters["solver_iterations"] = fluid->last_solve().iterations;
+}
+
+BENCHMARK(BM_DemStep)->Args({kGrains, 1})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
+BENCHMARK(BM_CoupledStep)
+    ->ArgsProduct({{1'000, 10'000, 100'000}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
+BENCHMARK(BM_PressureSolve)
+    ->ArgsProduct({{1'000, 10'000, 100'000}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
