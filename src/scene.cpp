@@ -414,18 +414,33 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     const std::string q = r.choice(
         "quantity", {"particle_position", "particle_velocity", "wall_position", "wall_force", "kinetic_energy",
                      "contact_count", "coordination", "max_overlap", "unbalanced_force", "pore_pressure",
-                     "fluid_inflow", "fluid_imbalance", "fluid_iterations"});
-    r.allow({"particle", "component", "wall", "position", "side"});
-    const bool fluid_probe = q == "pore_pressure" || q == "fluid_inflow" || q == "fluid_imbalance" ||
-                             q == "fluid_iterations";
+                     "pore_pressure_profile", "fluid_inflow", "fluid_imbalance", "fluid_iterations"});
+    r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points"});
+    const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
+                             q == "fluid_imbalance" || q == "fluid_iterations";
     if (fluid_probe && !scene.fluid) {
       r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
     }
-    for (auto k : {"position", "side"}) {
-      if (r.has(k) && !(q == "pore_pressure" && std::string(k) == "position") &&
-          !(q == "fluid_inflow" && std::string(k) == "side")) {
-        r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
+    for (std::string k : {"position", "side", "from", "to", "points"}) {
+      const bool applies = (q == "pore_pressure" && k == "position") || (q == "fluid_inflow" && k == "side") ||
+                           (q == "pore_pressure_profile" && (k == "from" || k == "to" || k == "points"));
+      if (r.has(k) && !applies) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
+    }
+    if (q == "pore_pressure_profile") {
+      // A line of points: one column per point, named NAME_0 .. NAME_{n-1}.
+      const auto from = r.numbers("from", D);
+      const auto to = r.numbers("to", D);
+      const auto count = r.integer("points");
+      if (count < 2 || count > 10000) r.fail("points", "must be 2..10000 points along the line");
+      for (std::int64_t k = 0; k < count; ++k) {
+        ProbeSpec pt;
+        pt.name = fmt::format("{}_{}", p.name, k);
+        pt.quantity = ProbeQuantity::pore_pressure;
+        const double f = static_cast<double>(k) / static_cast<double>(count - 1);
+        for (int a = 0; a < D; ++a) pt.position.push_back(from[a] + f * (to[a] - from[a]));
+        scene.output.probes.push_back(pt);
       }
+      return;
     }
     if (q == "pore_pressure") {
       p.quantity = ProbeQuantity::pore_pressure;

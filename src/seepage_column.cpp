@@ -270,7 +270,7 @@ SeepageColumnResult SeepageColumnAnalysis<D>::finish(const Scene<D>& scene, cons
         res.settlement * 1e3, p.compressibility, res.settled_porosity, p.conductivity, 100 * res.uplift_rms_error,
         100 * spec_.uplift_tolerance, 100 * res.pressure_max_error, 100 * spec_.pressure_tolerance, verdict);
   }
-  if (spec_.plots) {
+  if (spec_.plots && sample_time_.size() > 1) {
     const char* scripts = std::getenv("DARCYDEM_SCRIPTS_DIR");
     const char* python = std::getenv("DARCYDEM_PYTHON");
     const std::string script = std::string(scripts != nullptr ? scripts : DARCYDEM_SCRIPTS_DIR) + "/plot_seepage.py";

@@ -38,5 +38,21 @@ rows=$(wc -l < "$work/long/probes.csv" 2>/dev/null || echo 0)
 [ $rc -eq 130 ] && grep -q '"status": "interrupted"' "$work/long/run.json" && [ "$rows" -gt 10 ] \
   && ok "interrupt keeps output ($rows probe rows)" || bad "interrupt (rc $rc, rows $rows)"
 
+# A pore-fluid scene: fluid snapshots, the profile probe, the balance in run.json.
+bed="$src/examples/fluid_cases/hydrostatic_bed.toml"
+"$exe" run "$bed" --out "$work/bed" > "$work/bed.log" 2>&1; rc=$?
+[ $rc -eq 0 ] && [ -s "$work/bed/fluid.pvd" ] && [ -s "$work/bed/fluid_00000.vti" ] \
+  && grep -q 'Name="pressure"' "$work/bed/fluid_00000.vti" \
+  && head -1 "$work/bed/probes.csv" | grep -q ",pressure_profile_0,.*,pressure_profile_4$" \
+  && grep -q '"fluid": {"cells": 36' "$work/bed/run.json" && grep -q "fluid balance so far" "$work/bed.log" \
+  && ok "fluid run writes .vti snapshots, profile probes and the balance" || bad "fluid run ($rc)"
+
+# A seepage-column run interrupted in its first stage still writes its
+# analysis files, marked INCOMPLETE.
+timeout --preserve-status -s INT 2 "$exe" run "$src/examples/seepage_column/kf_1e4.toml" --out "$work/seep" \
+  > /dev/null 2>&1; rc=$?
+[ $rc -eq 130 ] && grep -q '"verdict": "INCOMPLETE"' "$work/seep/seepage.json" && [ -s "$work/seep/report.md" ] \
+  && ok "interrupted seepage run keeps its report" || bad "interrupted seepage run (rc $rc)"
+
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]
