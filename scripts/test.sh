@@ -9,7 +9,10 @@ if [ "${1:-}" = "--sanitize" ]; then
     -DCMAKE_BUILD_TYPE=RelWithDebInfo
   cd "$root/build-sanitize"
   # One thread: the sanitizers do not see through OpenMP's runtime reliably.
-  OMP_NUM_THREADS=1 ctest --output-on-failure -j "$(nproc)"
+  # The K_f = 1e7 seepage column (2.6 million steps, 4 minutes under the
+  # sanitizers) is left to the release run: the 1e5 and 1e4 columns run the
+  # same code and differ only in K_f and step count.
+  OMP_NUM_THREADS=1 ctest --output-on-failure -j "$(nproc)" -E "SeepageColumnKf1e7"
 else
   "$root/scripts/build.sh" "$root/build" -DDARCYDEM_WERROR=ON
   cd "$root/build"

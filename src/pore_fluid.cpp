@@ -62,9 +62,14 @@ void PoreFluid<D>::compute_cell_properties() {
   solid_velocity_.resize(n);
   const bool update_kappa = !permeability_frozen || kappa_.size() != n;
   kappa_.resize(n);
+  drag_coefficients_.resize(n);
   for (std::size_t c = 0; c < n; ++c) {
     porosity_[c] = 1.0 - solid_[c] / volume;
     solid_velocity_[c] = solid_[c] > 1e-12 * volume ? Vec<D>(solid_flux_[c] / solid_[c]) : Vec<D>::Zero();
+    if (drag == DragLaw::ergun) {
+      drag_coefficients_[c] =
+          ErgunWenYu::of(std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity), fluid);
+    }
     if (!update_kappa) continue;
     if (permeability.model == PermeabilityModel::constant) {
       kappa_[c] = permeability.intrinsic;
@@ -361,29 +366,31 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
     }
     const std::size_t c = grid.index(cell);
     const double vp = particle_volume<D>(p.radius[i]);
-    Vec<D> grad;
-    Vec<D> q;
+    const double n = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
+    // Component by component in plain arrays (assembling small Eigen
+    // vectors element-wise stalls on store-to-load forwarding here).
+    std::array<double, D> f{};
+    std::array<double, D> slip{};
+    double slip2 = 0.0;
     for (int k = 0; k < D; ++k) {
       const Stencil st = stencil(k, x);
       double g = 0.0;
-      double fl = 0.0;
+      double q = 0.0;
       for (int corner = 0; corner < (1 << D); ++corner) {
         g += st.weight[corner] * grad_[k][st.index[corner]];
-        fl += st.weight[corner] * flux_[k][st.index[corner]];
+        q += st.weight[corner] * flux_[k][st.index[corner]];
       }
-      grad[k] = g;
-      q[k] = fl;
+      f[k] = -vp * (g + fluid.density * gravity[k]);
+      slip[k] = solid_velocity_[c][k] + q / n - p.velocity[i][k];
+      slip2 += slip[k] * slip[k];
     }
-    Vec<D> f = -vp * (grad + fluid.density * gravity);
-    const double n = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
-    const Vec<D> slip = solid_velocity_[c] + q / n - p.velocity[i];
     if (drag == DragLaw::darcy) {
       for (int k = 0; k < D; ++k) f[k] += n * n * fluid.viscosity / kappa_[c][k] / (1.0 - n) * slip[k] * vp;
     } else {
-      const double beta = ergun_wen_yu_beta(n, 2.0 * p.radius[i], slip.norm(), fluid);
-      f += beta / (1.0 - n) * vp * slip;
+      const double beta = drag_coefficients_[c].beta(2.0 * p.radius[i], std::sqrt(slip2), fluid);
+      for (int k = 0; k < D; ++k) f[k] += beta / (1.0 - n) * vp * slip[k];
     }
-    force[i] = f;
+    for (int k = 0; k < D; ++k) force[i][k] = f[k];
   });
 }
 

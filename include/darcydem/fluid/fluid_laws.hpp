@@ -47,20 +47,49 @@ inline double ergun_beta(double n, double d, double slip, const FluidProperties&
   return 150.0 * f.viscosity * (1.0 - n) * (1.0 - n) / (d * d * n) + 1.75 * f.density * (1.0 - n) * slip / d;
 }
 
+/// C_d Re of Wen and Yu: 24 (1 + 0.15 Re^0.687), 0.44 Re above Re = 1000.
+inline double wen_yu_cd_re(double re) {
+  if (re <= 0.0) return 24.0;
+  return re < 1000.0 ? 24.0 * (1.0 + 0.15 * std::pow(re, 0.687)) : 0.44 * re;
+}
+
 /// Wen and Yu's beta: 3/4 C_d rho_f n (1-n) |slip| n^-2.65 / d, with
 /// C_d = 24/Re (1 + 0.15 Re^0.687) (0.44 above Re = 1000), Re = rho_f n d |slip| / mu.
 inline double wen_yu_beta(double n, double d, double slip, const FluidProperties& f) {
   const double re = f.density * n * d * slip / f.viscosity;
-  const double cd_re = re < 1000.0 ? 24.0 * (1.0 + 0.15 * std::pow(re, 0.687)) : 0.44 * re;
-  return 0.75 * cd_re * f.viscosity * (1.0 - n) * std::pow(n, -2.65) / (d * d);
+  return 0.75 * wen_yu_cd_re(re) * f.viscosity * (1.0 - n) * std::pow(n, -2.65) / (d * d);
 }
 
 /// Ergun below n = 0.8 and Wen-Yu above, switched continuously by the
-/// blending function of Huilin and Gidaspow (2003):
-/// phi = 1/2 + atan(262.5 ((1-n) - 0.2)) / pi.
+/// blending function of Huilin and Gidaspow (2003),
+/// phi = 1/2 + atan(262.5 ((1-n) - 0.2)) / pi. The parts that depend on the
+/// porosity alone are computed once per cell (`of`), the rest per grain.
+struct ErgunWenYu {
+  double n = 0.4;
+  double phi = 1.0;              ///< weight of Ergun
+  double ergun_viscous = 0.0;    ///< 150 mu (1-n)^2 / n
+  double ergun_inertial = 0.0;   ///< 1.75 rho_f (1-n)
+  double wen_yu = 0.0;           ///< 3/4 mu (1-n) n^-2.65
+
+  static ErgunWenYu of(double n, const FluidProperties& f) {
+    ErgunWenYu c;
+    c.n = n;
+    c.phi = 0.5 + std::atan(262.5 * ((1.0 - n) - 0.2)) / std::numbers::pi;
+    c.ergun_viscous = 150.0 * f.viscosity * (1.0 - n) * (1.0 - n) / n;
+    c.ergun_inertial = 1.75 * f.density * (1.0 - n);
+    c.wen_yu = 0.75 * f.viscosity * (1.0 - n) * std::pow(n, -2.65);
+    return c;
+  }
+  /// beta for a grain of diameter d at slip speed |v_f - v_p|, kg/(m^3 s).
+  [[nodiscard]] double beta(double d, double slip, const FluidProperties& f) const {
+    const double ergun = ergun_viscous / (d * d) + ergun_inertial * slip / d;
+    const double re = f.density * n * d * slip / f.viscosity;
+    return phi * ergun + (1.0 - phi) * wen_yu_cd_re(re) * wen_yu / (d * d);
+  }
+};
+
 inline double ergun_wen_yu_beta(double n, double d, double slip, const FluidProperties& f) {
-  const double phi = 0.5 + std::atan(262.5 * ((1.0 - n) - 0.2)) / std::numbers::pi;
-  return phi * ergun_beta(n, d, slip, f) + (1.0 - phi) * wen_yu_beta(n, d, slip, f);
+  return ErgunWenYu::of(n, f).beta(d, slip, f);
 }
 
 }  // namespace darcydem

@@ -133,6 +133,7 @@ class PoreFluid final : public ParticleForceField<D> {
 
   std::vector<double> pressure_, pressure_old_, porosity_, solid_, solid_old_;
   std::vector<Vec<D>> solid_flux_, solid_velocity_, kappa_;
+  std::vector<ErgunWenYu> drag_coefficients_;  ///< per cell, at its clamped porosity
   std::array<std::vector<double>, D> grad_, flux_;
   std::array<std::vector<double>, D> solid_face_flux_;  ///< m^3/s of solid through each face
   std::vector<Face> faces_;
