@@ -108,7 +108,11 @@ double wedge_volume(double r, double a, double b) {
   // Slices x = const from a to s_b: the disc of radius sqrt(r^2 - x^2) above
   // y = b, a circular segment.
   const double sb = std::sqrt(r * r - b * b);
-  return slice_integral(r, b, sb) - slice_integral(r, b, a) - b * (root_integral(sb, sb) - root_integral(sb, a));
+  // At the upper end z = s_b the slice closes (q = 0): the antiderivatives
+  // reduce to their limits, which saves four atan2 calls.
+  const double upper = b > 0.0 ? b / 3.0 * (0.5 * sb * sb - 2.0 * r * r) * (0.5 * pi) + r * r * r / 3.0 * pi
+                               : slice_integral(r, b, sb);
+  return upper - slice_integral(r, b, a) - b * (0.25 * pi * sb * sb - root_integral(sb, a));
 }
 
 double octant_volume(double r, double a, double b, double c) {

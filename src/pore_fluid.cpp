@@ -20,6 +20,8 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles) {
   for (int k = 0; k < D; ++k) {
     grad_[k].assign(grid.face_count(k), 0.0);
     flux_[k].assign(grid.face_count(k), 0.0);
+    face_gq_[k].assign(grid.face_count(k), {0.0, 0.0});
+    inv_spacing_[k] = 1.0 / grid.spacing[k];
   }
   for (int a = 0; a < D; ++a) {
     std::size_t stride = 1;
@@ -245,6 +247,9 @@ void PoreFluid<D>::compute_face_fields(double time) {
     flux_[axis][bf.index] = -lambda * g;
     side_inflow_[bf.side] += inflow * grid.face_area(axis);
   }
+  for (int k = 0; k < D; ++k) {
+    for (std::size_t f = 0; f < grad_[k].size(); ++f) face_gq_[k][f] = {grad_[k][f], flux_[k][f]};
+  }
 }
 
 template <int D>
@@ -291,6 +296,65 @@ typename PoreFluid<D>::Stencil PoreFluid<D>::stencil(int axis, const Vec<D>& x) 
     st.weight[corner] = w;
   }
   return st;
+}
+
+template <int D>
+void PoreFluid<D>::interpolate(const Vec<D>& x, std::array<double, D>& grad, std::array<double, D>& flux) const {
+  // Per coordinate: the cell holding x (for the axis's own faces) and the
+  // pair of cell centres around it (for the other axes), with fractions.
+  std::array<int, D> face_cell{};
+  std::array<double, D> face_frac{};
+  std::array<int, D> centre_cell{};
+  std::array<double, D> centre_frac{};
+  for (int k = 0; k < D; ++k) {
+    const double s = (x[k] - grid.origin[k]) * inv_spacing_[k];
+    const int last = grid.cells[k] - 1;
+    const int b = std::clamp(static_cast<int>(std::floor(s)), 0, last);
+    face_cell[k] = b;
+    face_frac[k] = std::clamp(s - b, 0.0, 1.0);
+    const double t = s - 0.5;
+    const int bc = static_cast<int>(std::floor(t));
+    if (bc < 0) {
+      centre_cell[k] = 0;
+      centre_frac[k] = 0.0;
+    } else if (bc >= last) {
+      centre_cell[k] = last;
+      centre_frac[k] = 0.0;
+    } else {
+      centre_cell[k] = bc;
+      centre_frac[k] = t - bc;
+    }
+  }
+  for (int a = 0; a < D; ++a) {
+    std::size_t base = 0;
+    std::array<double, D> fr{};
+    std::array<std::size_t, D> step{};
+    for (int k = 0; k < D; ++k) {
+      const int b = k == a ? face_cell[k] : centre_cell[k];
+      fr[k] = k == a ? face_frac[k] : centre_frac[k];
+      base += static_cast<std::size_t>(b) * face_stride_[a][k];
+      step[k] = fr[k] > 0.0 ? face_stride_[a][k] : 0;
+    }
+    const auto& gq = face_gq_[a];
+    double g = 0.0;
+    double q = 0.0;
+    for (int corner = 0; corner < (1 << D); ++corner) {
+      double w = 1.0;
+      std::size_t idx = base;
+      for (int k = 0; k < D; ++k) {
+        if ((corner >> k) & 1) {
+          w *= fr[k];
+          idx += step[k];
+        } else {
+          w *= 1.0 - fr[k];
+        }
+      }
+      g += w * gq[idx][0];
+      q += w * gq[idx][1];
+    }
+    grad[a] = g;
+    flux[a] = q;
+  }
 }
 
 template <int D>
@@ -371,17 +435,13 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
     // vectors element-wise stalls on store-to-load forwarding here).
     std::array<double, D> f{};
     std::array<double, D> slip{};
+    std::array<double, D> grad{};
+    std::array<double, D> q{};
+    interpolate(x, grad, q);
     double slip2 = 0.0;
     for (int k = 0; k < D; ++k) {
-      const Stencil st = stencil(k, x);
-      double g = 0.0;
-      double q = 0.0;
-      for (int corner = 0; corner < (1 << D); ++corner) {
-        g += st.weight[corner] * grad_[k][st.index[corner]];
-        q += st.weight[corner] * flux_[k][st.index[corner]];
-      }
-      f[k] = -vp * (g + fluid.density * gravity[k]);
-      slip[k] = solid_velocity_[c][k] + q / n - p.velocity[i][k];
+      f[k] = -vp * (grad[k] + fluid.density * gravity[k]);
+      slip[k] = solid_velocity_[c][k] + q[k] / n - p.velocity[i][k];
       slip2 += slip[k] * slip[k];
     }
     if (drag == DragLaw::darcy) {

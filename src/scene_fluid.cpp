@@ -85,7 +85,7 @@ template <int D>
 std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::string& file,
                                          const ParticleData<D>& particles) {
   TableReader r(table, "[fluid]", file);
-  const std::string solver = r.optional_choice("solver", {"cholesky", "cg"}).value_or("cholesky");
+  const std::string solver = r.optional_choice("solver", {"cholesky", "cg"}).value_or("cg");
   const double tolerance = r.check("tolerance", r.number_or("tolerance", 1e-10), positive, "> 0 (CG, relative)");
   auto fluid = std::make_unique<PoreFluid<D>>(
       solver == "cg" ? PressureSolverKind::cg : PressureSolverKind::cholesky, tolerance);

@@ -118,6 +118,8 @@ class PoreFluid final : public ParticleForceField<D> {
     std::array<double, 1 << D> weight{};
   };
   [[nodiscard]] Stencil stencil(int axis, const Vec<D>& x) const;
+  /// grad u and the Darcy flux at x together (the per-grain hot path).
+  void interpolate(const Vec<D>& x, std::array<double, D>& grad, std::array<double, D>& flux) const;
 
   struct Face {
     std::uint32_t a, b;  ///< cells below and above along `axis`
@@ -135,6 +137,8 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<Vec<D>> solid_flux_, solid_velocity_, kappa_;
   std::vector<ErgunWenYu> drag_coefficients_;  ///< per cell, at its clamped porosity
   std::array<std::vector<double>, D> grad_, flux_;
+  std::array<std::vector<std::array<double, 2>>, D> face_gq_;  ///< (grad, flux) side by side: one load per corner
+  Vec<D> inv_spacing_ = Vec<D>::Ones();
   std::array<std::vector<double>, D> solid_face_flux_;  ///< m^3/s of solid through each face
   std::vector<Face> faces_;
   std::vector<BoundaryFace> boundary_faces_;
