@@ -43,7 +43,7 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
     }
     case ProbeQuantity::fluid_inflow:
       return fluid != nullptr ? fluid->side_inflow(probe.side) : 0.0;
-    case ProbeQuantity::fluid_imbalance:
+    case ProbeQuantity::fluid_balance:
       return fluid != nullptr ? fluid->total_balance().imbalance() : 0.0;
     case ProbeQuantity::fluid_iterations:
       return fluid != nullptr ? fluid->last_solve().iterations : 0.0;

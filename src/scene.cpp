@@ -414,10 +414,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     const std::string q = r.choice(
         "quantity", {"particle_position", "particle_velocity", "wall_position", "wall_force", "kinetic_energy",
                      "contact_count", "coordination", "max_overlap", "unbalanced_force", "pore_pressure",
-                     "pore_pressure_profile", "fluid_inflow", "fluid_imbalance", "fluid_iterations"});
+                     "pore_pressure_profile", "fluid_inflow", "fluid_balance", "fluid_iterations"});
     r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points"});
     const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
-                             q == "fluid_imbalance" || q == "fluid_iterations";
+                             q == "fluid_balance" || q == "fluid_iterations";
     if (fluid_probe && !scene.fluid) {
       r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
     }
@@ -450,8 +450,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       const auto names = std::vector<std::string>(side_names, side_names + 2 * D);
       const std::string side = r.choice("side", names);
       p.side = static_cast<int>(std::find(names.begin(), names.end(), side) - names.begin());
-    } else if (q == "fluid_imbalance" || q == "fluid_iterations") {
-      p.quantity = q == "fluid_imbalance" ? ProbeQuantity::fluid_imbalance : ProbeQuantity::fluid_iterations;
+    } else if (q == "fluid_balance" || q == "fluid_iterations") {
+      p.quantity = q == "fluid_balance" ? ProbeQuantity::fluid_balance : ProbeQuantity::fluid_iterations;
     } else if (q == "particle_position" || q == "particle_velocity") {
       p.quantity =
           q == "particle_position" ? ProbeQuantity::particle_position : ProbeQuantity::particle_velocity;
