@@ -45,16 +45,16 @@ void shape_grid(PoreFluid<3>& f, const Simulation<3>& sim, std::int64_t cells) {
   double h = std::cbrt(size.prod() / static_cast<double>(cells));
   h = std::max(h, 1e-3);
   for (int k = 0; k < 2; ++k) f.grid.cells[k] = std::max(1, static_cast<int>(size[k] / h));
-  f.grid.cells[2] = std::max(1, static_cast<int>(static_cast<double>(cells) / (f.grid.cells[0] * f.grid.cells[1])));
+  f.grid.cells[2] =
+      std::max(1, static_cast<int>(static_cast<double>(cells) / (f.grid.cells[0] * f.grid.cells[1])));
   for (int k = 0; k < 2; ++k) f.grid.spacing[k] = size[k] / f.grid.cells[k];
   f.grid.spacing[2] = std::max(1e-3, size[2] / f.grid.cells[2]);
   f.grid.origin = lo;
 }
 
 std::unique_ptr<PoreFluid<3>> make_fluid(const Simulation<3>& sim, std::int64_t cells, int solver) {
-  auto f = std::make_unique<PoreFluid<3>>(solver == 0 ? darcydem::PressureSolverKind::cholesky
-                                                      : darcydem::PressureSolverKind::cg,
-                                          1e-8);
+  auto f = std::make_unique<PoreFluid<3>>(
+      solver == 0 ? darcydem::PressureSolverKind::cholesky : darcydem::PressureSolverKind::cg, 1e-8);
   shape_grid(*f, sim, cells);
   f->fluid = {1000.0, 1e-3, 1e5};
   f->drag = darcydem::DragLaw::ergun;
@@ -70,8 +70,9 @@ void BM_DemStep(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
   auto sim = bench::make_packing(state.range(0));
   for (auto _ : state) sim.step();
-  state.counters["particle_steps_per_second"] = benchmark::Counter(
-      static_cast<double>(sim.particles.size()) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["particle_steps_per_second"] =
+      benchmark::Counter(static_cast<double>(sim.particles.size()) * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate);
 }
 
 void BM_CoupledStep(benchmark::State& state) {
@@ -91,9 +92,11 @@ void BM_CoupledStep(benchmark::State& state) {
   }
   state.counters["cells"] = static_cast<double>(fluid->grid.size());
   state.counters["fluid_update_ms"] = 1e3 * fluid_seconds / static_cast<double>(state.iterations());
-  state.counters["solver_iterations"] = static_cast<double>(iterations) / static_cast<double>(state.iterations());
-  state.counters["particle_steps_per_second"] = benchmark::Counter(
-      static_cast<double>(sim.particles.size()) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["solver_iterations"] =
+      static_cast<double>(iterations) / static_cast<double>(state.iterations());
+  state.counters["particle_steps_per_second"] =
+      benchmark::Counter(static_cast<double>(sim.particles.size()) * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate);
 }
 
 void BM_PressureSolve(benchmark::State& state) {

@@ -33,9 +33,7 @@ double slice_integral(double r, double beta, double z) {
          2.0 * r * r * r / 3.0 * std::atan2(z * beta, r * q);
 }
 
-double full_measure(int dim, double r) {
-  return dim == 2 ? pi * r * r : 4.0 / 3.0 * pi * r * r * r;
-}
+double full_measure(int dim, double r) { return dim == 2 ? pi * r * r : 4.0 / 3.0 * pi * r * r * r; }
 
 /// Measure of the ball in {x_k > a_k} over the `count` constraints in `a`.
 double upper(int dim, double r, std::array<double, 3> a, int count) {

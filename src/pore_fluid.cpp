@@ -69,8 +69,8 @@ void PoreFluid<D>::compute_cell_properties() {
     porosity_[c] = 1.0 - solid_[c] / volume;
     solid_velocity_[c] = solid_[c] > 1e-12 * volume ? Vec<D>(solid_flux_[c] / solid_[c]) : Vec<D>::Zero();
     if (drag == DragLaw::ergun) {
-      drag_coefficients_[c] =
-          ErgunWenYu::of(std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity), fluid);
+      drag_coefficients_[c] = ErgunWenYu::of(
+          std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity), fluid);
     }
     if (!update_kappa) continue;
     if (permeability.model == PermeabilityModel::constant) {
@@ -96,11 +96,13 @@ void PoreFluid<D>::build_pattern() {
         auto up = cc;
         ++up[k];
         const auto b = grid.index(up);
-        faces_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(b), k, grid.face_index(k, up), 0, 0});
+        faces_.push_back(
+            {static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(b), k, grid.face_index(k, up), 0, 0});
         triplets.emplace_back(static_cast<int>(c), static_cast<int>(b), 1.0);
         triplets.emplace_back(static_cast<int>(b), static_cast<int>(c), 1.0);
       }
-      if (cc[k] == 0) boundary_faces_.push_back({static_cast<std::uint32_t>(c), 2 * k, grid.face_index(k, cc)});
+      if (cc[k] == 0)
+        boundary_faces_.push_back({static_cast<std::uint32_t>(c), 2 * k, grid.face_index(k, cc)});
       if (cc[k] + 1 == grid.cells[k]) {
         auto up = cc;
         ++up[k];
@@ -113,8 +115,8 @@ void PoreFluid<D>::build_pattern() {
   matrix_.makeCompressed();
   const double* base = matrix_.valuePtr();
   auto pos = [&](std::size_t r, std::size_t c) {
-    return static_cast<std::size_t>(&matrix_.coeffRef(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) -
-                                    base);
+    return static_cast<std::size_t>(
+        &matrix_.coeffRef(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) - base);
   };
   diag_pos_.resize(n);
   for (std::size_t c = 0; c < n; ++c) diag_pos_[c] = pos(c, c);
@@ -196,7 +198,8 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   // inflow = stored + pore change.
   FluidBalance b;
   for (std::size_t c = 0; c < n; ++c) {
-    b.stored += std::max(porosity_[c], 1e-3) * volume / fluid.bulk_modulus * (pressure_[c] - pressure_old_[c]);
+    b.stored +=
+        std::max(porosity_[c], 1e-3) * volume / fluid.bulk_modulus * (pressure_[c] - pressure_old_[c]);
   }
   b.pore_change = -solid_change;
   for (int s = 0; s < 2 * D; ++s) {
@@ -299,7 +302,8 @@ typename PoreFluid<D>::Stencil PoreFluid<D>::stencil(int axis, const Vec<D>& x) 
 }
 
 template <int D>
-void PoreFluid<D>::interpolate(const Vec<D>& x, std::array<double, D>& grad, std::array<double, D>& flux) const {
+void PoreFluid<D>::interpolate(const Vec<D>& x, std::array<double, D>& grad,
+                               std::array<double, D>& flux) const {
   // Per coordinate: the cell holding x (for the axis's own faces) and the
   // pair of cell centres around it (for the other axes), with fractions.
   std::array<int, D> face_cell{};
@@ -478,7 +482,8 @@ double PoreFluid<D>::critical_time_step(const ParticleData<D>& p, double dem_ste
   // Undrained stiffness of the pore fluid against a grain: modulus K_f/n
   // over a cell, k = (K_f/n) A/h, taken along the cell's shortest side.
   double geometry = 0.0;
-  for (int k = 0; k < D; ++k) geometry = std::max(geometry, grid.cell_volume() / (grid.spacing[k] * grid.spacing[k]));
+  for (int k = 0; k < D; ++k)
+    geometry = std::max(geometry, grid.cell_volume() / (grid.spacing[k] * grid.spacing[k]));
   const double k_fluid = fluid.bulk_modulus / n_min * geometry;
   const double dt_stiff = 1.0 / std::sqrt(1.0 / (dem_step * dem_step) + k_fluid / m_min);
   // Drag relaxation time m / (beta V_p / (1-n)), for the explicit drag.

@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
+#include <fmt/format.h>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
-#include <fmt/format.h>
 
 namespace darcydem {
 
@@ -30,7 +30,8 @@ SolveStats PressureSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eige
     }
     impl_->ldlt.factorize(a);
     if (impl_->ldlt.info() != Eigen::Success) {
-      throw std::runtime_error("pore pressure: the Cholesky factorisation failed (matrix not positive definite)");
+      throw std::runtime_error(
+          "pore pressure: the Cholesky factorisation failed (matrix not positive definite)");
     }
     x = impl_->ldlt.solve(b);
     stats.iterations = 1;
@@ -41,9 +42,10 @@ SolveStats PressureSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eige
     x = impl_->cg.solveWithGuess(b, x);
     stats.iterations = static_cast<int>(impl_->cg.iterations());
     if (impl_->cg.info() != Eigen::Success) {
-      throw std::runtime_error(fmt::format("pore pressure: conjugate gradients did not converge in {} iterations "
-                                           "(error {:.3g}, tolerance {:.3g})",
-                                           impl_->cg.iterations(), impl_->cg.error(), tolerance_));
+      throw std::runtime_error(
+          fmt::format("pore pressure: conjugate gradients did not converge in {} iterations "
+                      "(error {:.3g}, tolerance {:.3g})",
+                      impl_->cg.iterations(), impl_->cg.error(), tolerance_));
     }
   }
   stats.residual = b_norm > 0.0 ? (a * x - b).norm() / b_norm : (a * x).norm();

@@ -131,7 +131,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   int snapshot_index = 0;
   auto write_probes = [&] {
     probes << fmt::format("{:.10g}", sim.time);
-    for (const auto& p : scene.output.probes) probes << fmt::format(",{:.10g}", evaluate_probe(p, sim, scene.fluid.get()));
+    for (const auto& p : scene.output.probes)
+      probes << fmt::format(",{:.10g}", evaluate_probe(p, sim, scene.fluid.get()));
     probes << "\n";
   };
   auto write_snapshot = [&] {
@@ -161,15 +162,17 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   if (options.log != nullptr) {
     *options.log << fmt::format("darcydem {}: {} particles, {}D, time step {:.4g} s (critical {:.4g} s)\n",
                                 version_string, sim.particles.size(), D, dt,
-                                fluid != nullptr ? fluid->critical_time_step(sim.particles, sim.critical_time_step())
-                                                 : sim.critical_time_step());
+                                fluid != nullptr
+                                    ? fluid->critical_time_step(sim.particles, sim.critical_time_step())
+                                    : sim.critical_time_step());
     if (fluid != nullptr) {
       std::string sides;
-      for (int k = 0; k < 2 * D; ++k) sides += fmt::format(" {}={}", side_names[k], to_string(fluid->sides[k].type));
+      for (int k = 0; k < 2 * D; ++k)
+        sides += fmt::format(" {}={}", side_names[k], to_string(fluid->sides[k].type));
       *options.log << fmt::format(
           "pore fluid: {} cells, K_f = {:.4g} Pa, {} solver, fluid step every {} DEM steps; sides:{}\n",
-          fluid->grid.size(), fluid->fluid.bulk_modulus, to_string(fluid->solver().kind()), fluid->steps_per_update,
-          sides);
+          fluid->grid.size(), fluid->fluid.bulk_modulus, to_string(fluid->solver().kind()),
+          fluid->steps_per_update, sides);
     }
   }
   std::uint64_t fluid_iterations = 0;
@@ -189,7 +192,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         fluid_iterations += static_cast<std::uint64_t>(fluid->last_solve().iterations);
         fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);
         const auto& b = fluid->last_balance();
-        if (b.gross > 0.0) fluid_worst_imbalance = std::max(fluid_worst_imbalance, std::abs(b.imbalance()) / b.gross);
+        if (b.gross > 0.0)
+          fluid_worst_imbalance = std::max(fluid_worst_imbalance, std::abs(b.imbalance()) / b.gross);
       }
       if (seepage) seepage->after_step(scene);
       if (sim.time >= next_probe - 0.5 * dt) {
@@ -221,10 +225,11 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     if (fluid != nullptr && options.log != nullptr) {
       const auto& tb = fluid->total_balance();
       *options.log << fmt::format(
-          "fluid balance so far: inflow {:.6g} m^3 = stored {:.6g} + pore change {:.6g}; imbalance {:.3g} m^3 "
+          "fluid balance so far: inflow {:.6g} m^3 = stored {:.6g} + pore change {:.6g}; imbalance {:.3g} "
+          "m^3 "
           "({:.3g} of the gross flow; worst step {:.3g}); solver residual <= {:.3g}, {} iterations\n",
-          tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), tb.gross > 0 ? std::abs(tb.imbalance()) / tb.gross : 0.0,
-          fluid_worst_imbalance, fluid_residual,
+          tb.inflow, tb.stored, tb.pore_change, tb.imbalance(),
+          tb.gross > 0 ? std::abs(tb.imbalance()) / tb.gross : 0.0, fluid_worst_imbalance, fluid_residual,
           fluid_iterations);
     }
     if (summary.interrupted) break;
@@ -254,20 +259,21 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
        << fmt::format("  \"threads\": {},\n", omp_get_max_threads());
   if (fluid != nullptr) {
     const auto& tb = fluid->total_balance();
-    json << fmt::format("  \"fluid\": {{\"cells\": {}, \"updates\": {}, \"solver\": \"{}\", \"iterations\": {}, "
-                        "\"max_residual\": {:.6g}, \"inflow\": {:.17g}, \"stored\": {:.17g}, \"pore_change\": {:.17g}, "
-                        "\"imbalance\": {:.6g}, \"worst_step_imbalance\": {:.6g}}},\n",
-                        fluid->grid.size(), fluid->updates(), to_string(fluid->solver().kind()), fluid_iterations,
-                        fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), fluid_worst_imbalance);
+    json << fmt::format(
+        "  \"fluid\": {{\"cells\": {}, \"updates\": {}, \"solver\": \"{}\", \"iterations\": {}, "
+        "\"max_residual\": {:.6g}, \"inflow\": {:.17g}, \"stored\": {:.17g}, \"pore_change\": {:.17g}, "
+        "\"imbalance\": {:.6g}, \"worst_step_imbalance\": {:.6g}}},\n",
+        fluid->grid.size(), fluid->updates(), to_string(fluid->solver().kind()), fluid_iterations,
+        fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), fluid_worst_imbalance);
   }
   if (summary.seepage_column) {
     const auto& r = *summary.seepage_column;
-    json << fmt::format("  \"seepage_column\": {{\"uplift_rms_error\": {:.6g}, \"pressure_max_error\": {:.6g}, "
-                        "\"passed\": {}}},\n",
-                        r.uplift_rms_error, r.pressure_max_error, r.passed ? "true" : "false");
+    json << fmt::format(
+        "  \"seepage_column\": {{\"uplift_rms_error\": {:.6g}, \"pressure_max_error\": {:.6g}, "
+        "\"passed\": {}}},\n",
+        r.uplift_rms_error, r.pressure_max_error, r.passed ? "true" : "false");
   }
-  json
-       << fmt::format("  \"status\": \"{}\",\n", summary.interrupted ? "interrupted" : "completed")
+  json << fmt::format("  \"status\": \"{}\",\n", summary.interrupted ? "interrupted" : "completed")
        << fmt::format("  \"stages_completed\": [{}]\n", stages) << "}\n";
   return summary;
 }

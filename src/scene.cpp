@@ -16,8 +16,8 @@
 namespace darcydem {
 namespace {
 
-const std::vector<std::string> kTopLevel = {"simulation", "material", "contact", "wall",   "particles",
-                                            "output",     "probe",    "stage",   "fluid",  "analysis"};
+const std::vector<std::string> kTopLevel = {"simulation", "material", "contact", "wall",  "particles",
+                                            "output",     "probe",    "stage",   "fluid", "analysis"};
 
 auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
 auto non_negative = [](double v) { return v >= 0.0 && std::isfinite(v); };
@@ -411,10 +411,11 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       r.fail("name", fmt::format("probe \"{}\" is defined twice", p.name));
     }
     probe_names.push_back(p.name);
-    const std::string q = r.choice(
-        "quantity", {"particle_position", "particle_velocity", "wall_position", "wall_force", "kinetic_energy",
-                     "contact_count", "coordination", "max_overlap", "unbalanced_force", "pore_pressure",
-                     "pore_pressure_profile", "fluid_inflow", "fluid_balance", "fluid_iterations"});
+    const std::string q =
+        r.choice("quantity",
+                 {"particle_position", "particle_velocity", "wall_position", "wall_force", "kinetic_energy",
+                  "contact_count", "coordination", "max_overlap", "unbalanced_force", "pore_pressure",
+                  "pore_pressure_profile", "fluid_inflow", "fluid_balance", "fluid_iterations"});
     r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points"});
     const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
                              q == "fluid_balance" || q == "fluid_iterations";
@@ -422,7 +423,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
     }
     for (std::string k : {"position", "side", "from", "to", "points"}) {
-      const bool applies = (q == "pore_pressure" && k == "position") || (q == "fluid_inflow" && k == "side") ||
+      const bool applies = (q == "pore_pressure" && k == "position") ||
+                           (q == "fluid_inflow" && k == "side") ||
                            (q == "pore_pressure_profile" && (k == "from" || k == "to" || k == "points"));
       if (r.has(k) && !applies) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
     }
@@ -570,7 +572,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       const std::string n = r.string(key);
       if (std::find(stage_names.begin(), stage_names.end(), n) == stage_names.end()) {
         std::string hint;
-        if (auto h = did_you_mean(n, stage_names); !h.empty()) hint = fmt::format(" (did you mean \"{}\"?)", h);
+        if (auto h = did_you_mean(n, stage_names); !h.empty())
+          hint = fmt::format(" (did you mean \"{}\"?)", h);
         r.fail(key, fmt::format("no stage named \"{}\"{}", n, hint));
       }
       return n;
@@ -581,16 +584,18 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     for (double x : a.pressure_times) r.check("pressure_times", x, positive, "> 0 s after the inflow starts");
     a.uplift_interval = r.check("uplift_interval", r.number_or("uplift_interval", 1e-3), positive, "> 0 s");
     a.uplift_tolerance = r.check("uplift_tolerance", r.number_or("uplift_tolerance", 0.02), positive, "> 0");
-    a.pressure_tolerance = r.check("pressure_tolerance", r.number_or("pressure_tolerance", 0.03), positive, "> 0");
+    a.pressure_tolerance =
+        r.check("pressure_tolerance", r.number_or("pressure_tolerance", 0.03), positive, "> 0");
     a.plots = r.boolean_or("plots", true);
     const auto& inflow = *std::find_if(scene.stages.begin(), scene.stages.end(),
                                        [&](const Stage<D>& st) { return st.name == a.inflow_stage; });
-    const bool has_flux = std::any_of(inflow.fluid_sides.begin(), inflow.fluid_sides.end(), [](const auto& fs) {
-      return fs.first == 2 * (D - 1) && fs.second.type == FluidBoundaryType::flux;
-    });
+    const bool has_flux = std::any_of(
+        inflow.fluid_sides.begin(), inflow.fluid_sides.end(),
+        [](const auto& fs) { return fs.first == 2 * (D - 1) && fs.second.type == FluidBoundaryType::flux; });
     if (!has_flux) {
       r.fail("inflow_stage", fmt::format("stage \"{}\" must set a flux on the bottom side ({}) in its "
-                                         "fluid.boundary", a.inflow_stage, side_names[2 * (D - 1)]));
+                                         "fluid.boundary",
+                                         a.inflow_stage, side_names[2 * (D - 1)]));
     }
     r.finish();
     scene.seepage_column = a;
@@ -603,19 +608,21 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
 
   // Time step: the first stage's gravity does not matter for the critical
   // step; the pore fluid's undrained stiffness and drag do.
-  const double critical = scene.fluid ? scene.fluid->critical_time_step(sim.particles, sim.critical_time_step())
-                                      : sim.critical_time_step();
+  const double critical = scene.fluid
+                              ? scene.fluid->critical_time_step(sim.particles, sim.critical_time_step())
+                              : sim.critical_time_step();
   if (scene.time_step.automatic) {
     sim.time_step = scene.time_step.safety_factor * critical;
   } else {
     if (scene.time_step.value > critical) {
       const toml::table* t = root["simulation"].as_table();
       TableReader r(*t, "[simulation]", file);
-      r.fail("time_step", fmt::format("{:.4g} s is larger than the critical time step {:.4g} s "
-                                      "(sqrt(m_min/k_max) or the Rayleigh step, with the pore fluid's K_f/n and drag "
-                                      "if any); use a smaller "
-                                      "value or \"auto\"",
-                                      scene.time_step.value, critical));
+      r.fail("time_step",
+             fmt::format("{:.4g} s is larger than the critical time step {:.4g} s "
+                         "(sqrt(m_min/k_max) or the Rayleigh step, with the pore fluid's K_f/n and drag "
+                         "if any); use a smaller "
+                         "value or \"auto\"",
+                         scene.time_step.value, critical));
     }
     sim.time_step = scene.time_step.value;
   }

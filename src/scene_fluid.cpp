@@ -45,7 +45,8 @@ TimeSeries read_series(TableReader& r, std::string_view key, const std::string& 
 }  // namespace
 
 template <int D>
-std::vector<std::pair<int, FluidBoundary>> read_fluid_sides(const toml::table& table, const std::string& where,
+std::vector<std::pair<int, FluidBoundary>> read_fluid_sides(const toml::table& table,
+                                                            const std::string& where,
                                                             const std::string& file) {
   std::vector<std::pair<int, FluidBoundary>> out;
   const auto names = side_list<D>();
@@ -86,7 +87,8 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
                                          const ParticleData<D>& particles) {
   TableReader r(table, "[fluid]", file);
   const std::string solver = r.optional_choice("solver", {"cholesky", "cg"}).value_or("cg");
-  const double tolerance = r.check("tolerance", r.number_or("tolerance", 1e-10), positive, "> 0 (CG, relative)");
+  const double tolerance =
+      r.check("tolerance", r.number_or("tolerance", 1e-10), positive, "> 0 (CG, relative)");
   auto fluid = std::make_unique<PoreFluid<D>>(
       solver == "cg" ? PressureSolverKind::cg : PressureSolverKind::cholesky, tolerance);
   fluid->fluid.density = r.check("density", r.number("density"), positive, "> 0 kg/m^3");
@@ -121,9 +123,10 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
       fluid->grid.cells[k] = static_cast<int>(cells[k]);
       g.check("size", size[k], positive, "> 0 m along each axis (the size of one cell)");
       if (size[k] < 2.0 * r_max * (1.0 - 1e-12)) {
-        g.fail("size", fmt::format("cells must be at least one grain diameter wide: {:.4g} m along {} is less "
-                                   "than the largest diameter {:.4g} m",
-                                   size[k], "xyz"[k], 2.0 * r_max));
+        g.fail("size",
+               fmt::format("cells must be at least one grain diameter wide: {:.4g} m along {} is less "
+                           "than the largest diameter {:.4g} m",
+                           size[k], "xyz"[k], 2.0 * r_max));
       }
       fluid->grid.spacing[k] = size[k];
     }
@@ -134,7 +137,8 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   // [fluid.permeability]
   {
     const toml::table* t = r.optional_table("permeability");
-    if (t == nullptr) r.fail_table("missing required table [fluid.permeability] (model = \"kozeny_carman\" or \"constant\")");
+    if (t == nullptr)
+      r.fail_table("missing required table [fluid.permeability] (model = \"kozeny_carman\" or \"constant\")");
     TableReader p(*t, "[fluid.permeability]", file);
     auto& spec = fluid->permeability;
     const std::string model = p.choice("model", {"kozeny_carman", "constant"});
@@ -143,10 +147,12 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
       spec.model = PermeabilityModel::kozeny_carman;
       spec.diameter = p.check("diameter", p.number_or("diameter", d_mean), positive, "> 0 m");
       if (auto a = p.optional_numbers("anisotropy", D)) {
-        for (int k = 0; k < D; ++k) spec.anisotropy[k] = p.check("anisotropy", (*a)[k], positive, "> 0 on every axis");
+        for (int k = 0; k < D; ++k)
+          spec.anisotropy[k] = p.check("anisotropy", (*a)[k], positive, "> 0 on every axis");
       }
       for (auto k : {"hydraulic_conductivity", "intrinsic"}) {
-        if (p.has(k)) p.fail(k, "does not apply to model \"kozeny_carman\" (it computes k from the porosity)");
+        if (p.has(k))
+          p.fail(k, "does not apply to model \"kozeny_carman\" (it computes k from the porosity)");
       }
     } else {
       spec.model = PermeabilityModel::constant;
@@ -154,7 +160,8 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
         if (p.has(k)) p.fail(k, "does not apply to model \"constant\"");
       }
       if (p.has("hydraulic_conductivity") == p.has("intrinsic")) {
-        p.fail_table("give exactly one of 'hydraulic_conductivity' (k, m/s, per axis) or 'intrinsic' (m^2, per axis)");
+        p.fail_table(
+            "give exactly one of 'hydraulic_conductivity' (k, m/s, per axis) or 'intrinsic' (m^2, per axis)");
       }
       if (p.has("hydraulic_conductivity")) {
         const auto k = p.numbers("hydraulic_conductivity", D);
@@ -164,13 +171,16 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
         }
       } else {
         const auto k = p.numbers("intrinsic", D);
-        for (int a = 0; a < D; ++a) spec.intrinsic[a] = p.check("intrinsic", k[a], positive, "> 0 m^2 on every axis");
+        for (int a = 0; a < D; ++a)
+          spec.intrinsic[a] = p.check("intrinsic", k[a], positive, "> 0 m^2 on every axis");
       }
     }
-    spec.max_porosity = p.check("max_porosity", p.number_or("max_porosity", 0.9),
-                                [](double v) { return v > 0.0 && v < 1.0; }, "in (0, 1)");
-    spec.min_porosity = p.check("min_porosity", p.number_or("min_porosity", 0.05),
-                                [&](double v) { return v > 0.0 && v < spec.max_porosity; }, "in (0, max_porosity)");
+    spec.max_porosity = p.check(
+        "max_porosity", p.number_or("max_porosity", 0.9), [](double v) { return v > 0.0 && v < 1.0; },
+        "in (0, 1)");
+    spec.min_porosity = p.check(
+        "min_porosity", p.number_or("min_porosity", 0.05),
+        [&](double v) { return v > 0.0 && v < spec.max_porosity; }, "in (0, max_porosity)");
     p.finish();
   }
 
@@ -183,11 +193,15 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   return fluid;
 }
 
-template std::vector<std::pair<int, FluidBoundary>> read_fluid_sides<2>(const toml::table&, const std::string&,
+template std::vector<std::pair<int, FluidBoundary>> read_fluid_sides<2>(const toml::table&,
+                                                                        const std::string&,
                                                                         const std::string&);
-template std::vector<std::pair<int, FluidBoundary>> read_fluid_sides<3>(const toml::table&, const std::string&,
+template std::vector<std::pair<int, FluidBoundary>> read_fluid_sides<3>(const toml::table&,
+                                                                        const std::string&,
                                                                         const std::string&);
-template std::unique_ptr<PoreFluid<2>> read_fluid<2>(const toml::table&, const std::string&, const ParticleData<2>&);
-template std::unique_ptr<PoreFluid<3>> read_fluid<3>(const toml::table&, const std::string&, const ParticleData<3>&);
+template std::unique_ptr<PoreFluid<2>> read_fluid<2>(const toml::table&, const std::string&,
+                                                     const ParticleData<2>&);
+template std::unique_ptr<PoreFluid<3>> read_fluid<3>(const toml::table&, const std::string&,
+                                                     const ParticleData<3>&);
 
 }  // namespace darcydem

@@ -143,9 +143,11 @@ SeepageColumnResult SeepageColumnAnalysis<D>::finish(const Scene<D>& scene, cons
   p.unit_weight = fluid.fluid.unit_weight();
   p.compressibility = 2.0 * res.settlement * area_ / (submerged_weight * h0);
   if (fluid.permeability.model == PermeabilityModel::kozeny_carman) {
-    const double n = std::clamp(res.settled_porosity, fluid.permeability.min_porosity, fluid.permeability.max_porosity);
+    const double n =
+        std::clamp(res.settled_porosity, fluid.permeability.min_porosity, fluid.permeability.max_porosity);
     res.kozeny_carman_conductivity = kozeny_carman(fluid.permeability.diameter, n) *
-                                     fluid.permeability.anisotropy[D - 1] * p.unit_weight / fluid.fluid.viscosity;
+                                     fluid.permeability.anisotropy[D - 1] * p.unit_weight /
+                                     fluid.fluid.viscosity;
   }
   // k of the column as the run has it: its cells' permeabilities in series.
   p.conductivity = kappa_effective_ * p.unit_weight / fluid.fluid.viscosity;
@@ -198,7 +200,8 @@ SeepageColumnResult SeepageColumnAnalysis<D>::finish(const Scene<D>& scene, cons
     const double t_end = sample_time_.empty() ? 1.0 : sample_time_.back();
     for (int i = 0; i <= 1000; ++i) {
       const double t = t_end * i / 1000.0;
-      f << fmt::format("{:.6g},{:.10g},{:.10g}\n", t, seepage_uplift(p, t), seepage_uplift(incompressible, t));
+      f << fmt::format("{:.6g},{:.10g},{:.10g}\n", t, seepage_uplift(p, t),
+                       seepage_uplift(incompressible, t));
     }
   }
   {
@@ -206,14 +209,16 @@ SeepageColumnResult SeepageColumnAnalysis<D>::finish(const Scene<D>& scene, cons
     f << "time,depth,pressure\n";
     for (const auto& pr : profiles_) {
       for (double d : pr.depth)
-        f << fmt::format("{:.6g},{:.10g},{:.10g}\n", pr.nominal_time, d, seepage_pressure(p, d, pr.actual_time));
+        f << fmt::format("{:.6g},{:.10g},{:.10g}\n", pr.nominal_time, d,
+                         seepage_pressure(p, d, pr.actual_time));
     }
   }
   const std::string verdict = res.passed ? "PASS" : (res.complete ? "FAIL" : "INCOMPLETE");
   {
     auto f = open_for_writing(out / "report.md");
     f << fmt::format("# Seepage column: {}\n\n", scene.file);
-    f << fmt::format("Fluid bulk modulus K_f = {:.4g} Pa. Verdict: **{}**.\n\n", fluid.fluid.bulk_modulus, verdict);
+    f << fmt::format("Fluid bulk modulus K_f = {:.4g} Pa. Verdict: **{}**.\n\n", fluid.fluid.bulk_modulus,
+                     verdict);
     f << "## Stage 1: settling under gravity and buoyancy (measured)\n\n";
     f << "| quantity | this run | paper |\n|---|---|---|\n";
     f << fmt::format("| settlement | {:.4f} mm | 0.16 mm |\n", res.settlement * 1e3);
@@ -224,20 +229,24 @@ SeepageColumnResult SeepageColumnAnalysis<D>::finish(const Scene<D>& scene, cons
                      res.kozeny_carman_conductivity);
     f << fmt::format("| k of the grid's cells in series (used below) | {:.4e} m/s | |\n", p.conductivity);
     f << fmt::format("| Cv = k/(gw (m_v + n/K_f)) | {:.5f} m^2/s | |\n", p.consolidation_coefficient());
-    f << fmt::format("| Cv0 = k/(gw m_v) | {:.5f} m^2/s | 0.01008 |\n\n", incompressible.consolidation_coefficient());
+    f << fmt::format("| Cv0 = k/(gw m_v) | {:.5f} m^2/s | 0.01008 |\n\n",
+                     incompressible.consolidation_coefficient());
     f << "## Stage 2: inflow at the bottom\n\n";
     f << fmt::format("Inflow q = {:.4g} m/s, column H = {:.4g} m.\n\n", p.inflow, p.height);
     f << "| quantity | simulated | analytical | \n|---|---|---|\n";
-    f << fmt::format("| final uplift | {:.5f} mm | {:.5f} mm (steady) |\n", res.final_uplift_simulated * 1e3, s_final * 1e3);
+    f << fmt::format("| final uplift | {:.5f} mm | {:.5f} mm (steady) |\n", res.final_uplift_simulated * 1e3,
+                     s_final * 1e3);
     f << fmt::format("| steady bottom pressure | | {:.2f} Pa |\n\n", p_ref);
     f << "| error | value | tolerance |\n|---|---|---|\n";
-    f << fmt::format("| RMS uplift error over 0..1 s / final uplift | {:.3f} % | {:.1f} % |\n", 100 * res.uplift_rms_error,
-                     100 * spec_.uplift_tolerance);
+    f << fmt::format("| RMS uplift error over 0..1 s / final uplift | {:.3f} % | {:.1f} % |\n",
+                     100 * res.uplift_rms_error, 100 * spec_.uplift_tolerance);
     f << fmt::format("| max pressure error / steady bottom pressure | {:.3f} % | {:.1f} % |\n\n",
                      100 * res.pressure_max_error, 100 * spec_.pressure_tolerance);
-    f << "Uplift samples (mm):\n\n| t (s) | simulated | analytical (storage m_v + n/K_f) | paper's (incompressible) |\n|---|---|---|---|\n";
+    f << "Uplift samples (mm):\n\n| t (s) | simulated | analytical (storage m_v + n/K_f) | paper's "
+         "(incompressible) |\n|---|---|---|---|\n";
     for (double t : {0.01, 0.05, 0.1, 0.2, 0.5, 1.0}) {
-      auto it = std::find_if(sample_time_.begin(), sample_time_.end(), [&](double s) { return std::abs(s - t) < 1e-9; });
+      auto it = std::find_if(sample_time_.begin(), sample_time_.end(),
+                             [&](double s) { return std::abs(s - t) < 1e-9; });
       if (it == sample_time_.end()) continue;
       const double sim_s = sample_uplift_[static_cast<std::size_t>(it - sample_time_.begin())];
       f << fmt::format("| {} | {:.4f} | {:.4f} | {:.4f} |\n", t, sim_s * 1e3, seepage_uplift(p, t) * 1e3,
@@ -265,22 +274,27 @@ SeepageColumnResult SeepageColumnAnalysis<D>::finish(const Scene<D>& scene, cons
   }
   if (log != nullptr) {
     *log << fmt::format(
-        "seepage column: settlement {:.4f} mm, m_v {:.4e} 1/Pa, n {:.4f}, k {:.4e} m/s; uplift RMS error {:.3f} % "
+        "seepage column: settlement {:.4f} mm, m_v {:.4e} 1/Pa, n {:.4f}, k {:.4e} m/s; uplift RMS error "
+        "{:.3f} % "
         "(<= {:.1f} %), pressure max error {:.3f} % (<= {:.1f} %): {}\n",
-        res.settlement * 1e3, p.compressibility, res.settled_porosity, p.conductivity, 100 * res.uplift_rms_error,
-        100 * spec_.uplift_tolerance, 100 * res.pressure_max_error, 100 * spec_.pressure_tolerance, verdict);
+        res.settlement * 1e3, p.compressibility, res.settled_porosity, p.conductivity,
+        100 * res.uplift_rms_error, 100 * spec_.uplift_tolerance, 100 * res.pressure_max_error,
+        100 * spec_.pressure_tolerance, verdict);
   }
   if (spec_.plots && sample_time_.size() > 1) {
     const char* scripts = std::getenv("DARCYDEM_SCRIPTS_DIR");
     const char* python = std::getenv("DARCYDEM_PYTHON");
-    const std::string script = std::string(scripts != nullptr ? scripts : DARCYDEM_SCRIPTS_DIR) + "/plot_seepage.py";
-    const std::string cmd = fmt::format("{} {} {}", shell_quote(python != nullptr ? python : "/usr/bin/python3"),
-                                        shell_quote(script), shell_quote(out.string()));
+    const std::string script =
+        std::string(scripts != nullptr ? scripts : DARCYDEM_SCRIPTS_DIR) + "/plot_seepage.py";
+    const std::string cmd =
+        fmt::format("{} {} {}", shell_quote(python != nullptr ? python : "/usr/bin/python3"),
+                    shell_quote(script), shell_quote(out.string()));
     const int rc = std::system(cmd.c_str());
     if (rc != 0 && log != nullptr) {
-      *log << fmt::format("warning: the plots were not made ({} returned {}); the CSV files and report.md are "
-                          "written. Install python3-matplotlib (scripts/install-deps.sh).\n",
-                          cmd, rc);
+      *log << fmt::format(
+          "warning: the plots were not made ({} returned {}); the CSV files and report.md are "
+          "written. Install python3-matplotlib (scripts/install-deps.sh).\n",
+          cmd, rc);
     }
   }
   return res;

@@ -70,9 +70,12 @@ void write_fluid_vti(const std::string& path, const PoreFluid<D>& f) {
     const double hz = D == 3 ? g.spacing[2] : 1.0;
     const std::string extent = fmt::format("0 {} 0 {} 0 {}", g.cells[0], g.cells[1], nz);
     out.print(
-        "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
-    out.print("  <ImageData WholeExtent=\"{}\" Origin=\"{:.17g} {:.17g} {:.17g}\" Spacing=\"{:.17g} {:.17g} {:.17g}\">\n",
-              extent, g.origin[0], g.origin[1], oz, g.spacing[0], g.spacing[1], hz);
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\" "
+        "byte_order=\"LittleEndian\">\n");
+    out.print(
+        "  <ImageData WholeExtent=\"{}\" Origin=\"{:.17g} {:.17g} {:.17g}\" Spacing=\"{:.17g} {:.17g} "
+        "{:.17g}\">\n",
+        extent, g.origin[0], g.origin[1], oz, g.spacing[0], g.spacing[1], hz);
     out.print("    <Piece Extent=\"{}\">\n      <CellData Scalars=\"pressure\">\n", extent);
     auto scalars = [&](const char* name, const std::vector<double>& v) {
       out.print("        <DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", name);
@@ -81,10 +84,12 @@ void write_fluid_vti(const std::string& path, const PoreFluid<D>& f) {
     };
     scalars("pressure", f.pressure());
     scalars("porosity", f.porosity());
-    write_vector_array<D>(out, "permeability", g.size(), [&](std::size_t i) { return f.permeability_field()[i]; });
+    write_vector_array<D>(out, "permeability", g.size(),
+                          [&](std::size_t i) { return f.permeability_field()[i]; });
     const auto q = f.darcy_velocity();
     write_vector_array<D>(out, "darcy_velocity", g.size(), [&](std::size_t i) { return q[i]; });
-    write_vector_array<D>(out, "solid_velocity", g.size(), [&](std::size_t i) { return f.solid_velocity()[i]; });
+    write_vector_array<D>(out, "solid_velocity", g.size(),
+                          [&](std::size_t i) { return f.solid_velocity()[i]; });
     out.print("      </CellData>\n    </Piece>\n  </ImageData>\n</VTKFile>\n");
     out.close();
   } catch (const std::system_error& e) {

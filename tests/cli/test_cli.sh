@@ -49,7 +49,7 @@ bed="$src/examples/fluid_cases/hydrostatic_bed.toml"
 
 # A seepage-column run interrupted in its first stage still writes its
 # analysis files, marked INCOMPLETE.
-timeout --preserve-status -s INT 2 "$exe" run "$src/examples/seepage_column/kf_1e4.toml" --out "$work/seep" \
+timeout --preserve-status -s INT 2 "$exe" run "$src/examples/seepage_column/kf_1e7.toml" --out "$work/seep" \
   > /dev/null 2>&1; rc=$?
 [ $rc -eq 130 ] && grep -q '"verdict": "INCOMPLETE"' "$work/seep/seepage.json" && [ -s "$work/seep/report.md" ] \
   && ok "interrupted seepage run keeps its report" || bad "interrupted seepage run (rc $rc)"

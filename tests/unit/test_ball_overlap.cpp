@@ -90,7 +90,8 @@ TEST(BallOverlap, DiscCornerAgainstStripIntegral) {
   for (double a : {0.0, 0.1, 0.35, 0.6}) {
     for (double b : {0.0, 0.2, 0.5, 0.75}) {
       const double xb = std::sqrt(std::max(0.0, r * r - b * b));
-      const double ref = tanh_sinh([&](double x) { return std::sqrt(r * r - x * x) - b; }, a, std::max(a, xb));
+      const double ref =
+          tanh_sinh([&](double x) { return std::sqrt(r * r - x * x) - b; }, a, std::max(a, xb));
       EXPECT_NEAR(bo::corner_area(r, a, b), ref, 1e-13) << "a=" << a << " b=" << b;
     }
   }

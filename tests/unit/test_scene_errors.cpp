@@ -203,15 +203,19 @@ TEST(SceneErrors, FluidBoundaryTypeAndValueAreChecked) {
   auto msg = load_error(replace(with_fluid(), "type = \"drained\"", "type = \"drianed\""));
   EXPECT_NE(msg.find("did you mean \"drained\"?"), std::string::npos) << msg;
   msg = load_error(replace(with_fluid(), "pressure = 0.0 }", "inflow = 0.001 }"));
-  EXPECT_NE(msg.find("key 'inflow': does not apply to a drained side (give 'pressure')"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("key 'inflow': does not apply to a drained side (give 'pressure')"), std::string::npos)
+      << msg;
   msg = load_error(replace(with_fluid(), "y_max = {", "y_top = {"));
   EXPECT_NE(msg.find("unknown key 'y_top'"), std::string::npos) << msg;
-  msg = load_error(replace(with_fluid(), "pressure = 0.0 }", "pressure = { times = [0.0, 0.0], values = [1.0, 2.0] } }"));
+  msg = load_error(
+      replace(with_fluid(), "pressure = 0.0 }", "pressure = { times = [0.0, 0.0], values = [1.0, 2.0] } }"));
   EXPECT_NE(msg.find("key 'times': must increase strictly"), std::string::npos) << msg;
 }
 
 TEST(SceneErrors, FluidProbeWithoutFluidIsRefused) {
-  const auto msg = load_error(std::string(kGood) + "\n[[probe]]\nname = \"u\"\nquantity = \"pore_pressure\"\nposition = [0.0, 0.001]\n");
+  const auto msg =
+      load_error(std::string(kGood) +
+                 "\n[[probe]]\nname = \"u\"\nquantity = \"pore_pressure\"\nposition = [0.0, 0.001]\n");
   EXPECT_NE(msg.find("needs a pore fluid: the scene has no [fluid] table"), std::string::npos) << msg;
 }
 

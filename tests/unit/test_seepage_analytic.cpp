@@ -35,7 +35,8 @@ TEST(SeepageAnalytic, ReproducesReferenceTable) {
   for (const auto& row : rows) {
     const auto p = reference(row.kf);
     for (int i = 0; i < 6; ++i) {
-      EXPECT_NEAR(darcydem::seepage_uplift(p, times[i]) * 1e3, row.s[i], tol) << "K_f=" << row.kf << " t=" << times[i];
+      EXPECT_NEAR(darcydem::seepage_uplift(p, times[i]) * 1e3, row.s[i], tol)
+          << "K_f=" << row.kf << " t=" << times[i];
     }
   }
 }

@@ -142,7 +142,8 @@ TEST(Generators, RandomPackingThatCannotFitSaysSo) {
 }
 
 TEST(Generators, CsvRoundTripAndBadRow) {
-  const auto path = std::filesystem::temp_directory_path() / ("darcydem_packing_" + std::to_string(getpid()) + ".csv");
+  const auto path =
+      std::filesystem::temp_directory_path() / ("darcydem_packing_" + std::to_string(getpid()) + ".csv");
   {
     std::ofstream f(path);
     f << "x,y,z,radius\n0.001,0.002,0.003,0.0005\n-1e-3,0,2.5e-3,4e-4\n";

@@ -18,7 +18,8 @@ using namespace darcydem;
 namespace {
 
 std::string temp_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("darcydem_test_" + name + "_" + std::to_string(getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("darcydem_test_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   return dir.string();
 }
@@ -31,9 +32,11 @@ void seepage_column(const std::string& kf) {
   const auto summary = run_scene(scene, options);
   ASSERT_TRUE(summary.seepage_column.has_value());
   const auto& r = *summary.seepage_column;
-  std::printf("K_f = %s Pa: settlement %.5f mm, m_v %.4e 1/Pa, n %.4f, k %.4e m/s, uplift RMS %.3f %%, pressure max %.3f %%\n",
-              kf.c_str(), r.settlement * 1e3, r.parameters.compressibility, r.settled_porosity, r.parameters.conductivity,
-              100 * r.uplift_rms_error, 100 * r.pressure_max_error);
+  std::printf(
+      "K_f = %s Pa: settlement %.5f mm, m_v %.4e 1/Pa, n %.4f, k %.4e m/s, uplift RMS %.3f %%, pressure max "
+      "%.3f %%\n",
+      kf.c_str(), r.settlement * 1e3, r.parameters.compressibility, r.settled_porosity,
+      r.parameters.conductivity, 100 * r.uplift_rms_error, 100 * r.pressure_max_error);
   EXPECT_TRUE(r.complete);
   // Issue 3's tolerances: RMS uplift error <= 2 % of the final uplift over
   // 0..1 s; pressure at every cell and time within 3 % of the steady bottom

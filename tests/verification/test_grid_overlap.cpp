@@ -69,7 +69,8 @@ TEST(GridOverlap, GrainsInAFullGridAddUpToTheirVolume) {
   double total = 0.0;
   for (int i = 0; i < 200; ++i) {
     const double r = 0.2 + 0.0012 * i;
-    const Vec<3> x(0.5 + std::fmod(0.37 * i, 4.0), 0.5 + std::fmod(0.53 * i, 3.5), 0.5 + std::fmod(0.71 * i, 4.5));
+    const Vec<3> x(0.5 + std::fmod(0.37 * i, 4.0), 0.5 + std::fmod(0.53 * i, 3.5),
+                   0.5 + std::fmod(0.71 * i, 4.5));
     p.add(x, r, 1000.0, 0, false);
     total += particle_volume<3>(r);
   }

@@ -71,8 +71,9 @@ void expect_force_balance(DragLaw drag, PermeabilityModel model, double q) {
   const double buoyancy = f.fluid.density * g * solid;
   const double thrust = bottom_thrust(f, q);
   const double expected = thrust + buoyancy;
-  std::printf("force balance: %zu grains, seepage force %.6e N against pressure drop x area %.6e N (%.3f %%)\n",
-              p.size(), total.z() - buoyancy, thrust, 100.0 * (total.z() - buoyancy - thrust) / thrust);
+  std::printf(
+      "force balance: %zu grains, seepage force %.6e N against pressure drop x area %.6e N (%.3f %%)\n",
+      p.size(), total.z() - buoyancy, thrust, 100.0 * (total.z() - buoyancy - thrust) / thrust);
   // Issue 3: within 1 %. The sum over grains of V_p grad u / (1 - n) equals
   // the integral of grad u only on average over each cell, hence not exact.
   EXPECT_NEAR(total.z(), expected, 0.01 * expected);
@@ -130,7 +131,9 @@ TEST(PoreFluid, DarcyLawThroughUniformPermeability) {
   EXPECT_NEAR(f.side_inflow(5), -q * area, 1e-9 * q * area);
 }
 
-TEST(PoreFluid, ForceBalanceDarcyDrag) { expect_force_balance(DragLaw::darcy, PermeabilityModel::constant, 1e-3); }
+TEST(PoreFluid, ForceBalanceDarcyDrag) {
+  expect_force_balance(DragLaw::darcy, PermeabilityModel::constant, 1e-3);
+}
 
 TEST(PoreFluid, ForceBalanceErgunWithKozenyCarman) {
   // Ergun's viscous term and Kozeny-Carman share the constant 150, so they

@@ -9,12 +9,12 @@
 namespace darcydem {
 
 struct SeepageColumnParameters {
-  double height = 0.05;         ///< H, m
-  double inflow = 1e-3;         ///< q, m/s (Darcy velocity)
-  double conductivity = 1e-3;   ///< k, m/s
+  double height = 0.05;           ///< H, m
+  double inflow = 1e-3;           ///< q, m/s (Darcy velocity)
+  double conductivity = 1e-3;     ///< k, m/s
   double compressibility = 1e-5;  ///< m_v, 1/Pa
-  double fluid_storage = 0.0;   ///< n / K_f, 1/Pa (0: incompressible)
-  double unit_weight = 9806.65;  ///< gamma_w, N/m^3
+  double fluid_storage = 0.0;     ///< n / K_f, 1/Pa (0: incompressible)
+  double unit_weight = 9806.65;   ///< gamma_w, N/m^3
 
   /// Cv = k / (gamma_w (m_v + n/K_f)), m^2/s.
   [[nodiscard]] double consolidation_coefficient() const {

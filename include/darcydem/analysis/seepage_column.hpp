@@ -16,16 +16,17 @@
 namespace darcydem {
 
 struct SeepageColumnResult {
-  double settlement = 0.0;         ///< m, in the settling stage
-  double initial_porosity = 0.0;   ///< -
-  double settled_porosity = 0.0;   ///< -
-  double kozeny_carman_conductivity = 0.0;  ///< k from Eq. 15 at the settled porosity, m/s (0: constant model)
-  SeepageColumnParameters parameters;  ///< as measured (with the fluid storage n/K_f)
-  double uplift_rms_error = 0.0;   ///< RMS(S_sim - S_analytic) / final uplift over 0..1 s
-  double pressure_max_error = 0.0; ///< max |u_sim - u_analytic| / steady bottom pressure
+  double settlement = 0.0;        ///< m, in the settling stage
+  double initial_porosity = 0.0;  ///< -
+  double settled_porosity = 0.0;  ///< -
+  double kozeny_carman_conductivity =
+      0.0;                              ///< k from Eq. 15 at the settled porosity, m/s (0: constant model)
+  SeepageColumnParameters parameters;   ///< as measured (with the fluid storage n/K_f)
+  double uplift_rms_error = 0.0;        ///< RMS(S_sim - S_analytic) / final uplift over 0..1 s
+  double pressure_max_error = 0.0;      ///< max |u_sim - u_analytic| / steady bottom pressure
   double final_uplift_simulated = 0.0;  ///< m, at the last sample
-  bool complete = false;           ///< both stages ran to the end
-  bool passed = false;             ///< complete and both errors within tolerance
+  bool complete = false;                ///< both stages ran to the end
+  bool passed = false;                  ///< complete and both errors within tolerance
 };
 
 template <int D>
@@ -50,7 +51,8 @@ class SeepageColumnAnalysis {
   double top_initial_ = 0.0, top_settled_ = 0.0;
   bool settle_done_ = false, inflow_active_ = false, inflow_done_ = false;
   double t0_ = 0.0, top_at_inflow_ = 0.0, inflow_ = 0.0, next_sample_ = 0.0;
-  double kappa_effective_ = 0.0;  ///< series (harmonic) mean of the layers' vertical kappa at the inflow start
+  double kappa_effective_ =
+      0.0;  ///< series (harmonic) mean of the layers' vertical kappa at the inflow start
   std::size_t next_profile_ = 0;
   std::vector<double> sample_time_, sample_uplift_;
   std::vector<Profile> profiles_;

@@ -32,7 +32,8 @@ struct FluidGrid {
   }
   [[nodiscard]] std::size_t index(const std::array<int, D>& c) const {
     std::size_t i = 0;
-    for (int k = D - 1; k >= 0; --k) i = i * static_cast<std::size_t>(cells[k]) + static_cast<std::size_t>(c[k]);
+    for (int k = D - 1; k >= 0; --k)
+      i = i * static_cast<std::size_t>(cells[k]) + static_cast<std::size_t>(c[k]);
     return i;
   }
   [[nodiscard]] std::array<int, D> coords(std::size_t i) const {

@@ -13,9 +13,9 @@ namespace darcydem {
 inline constexpr double standard_gravity = 9.80665;  // m/s^2
 
 struct FluidProperties {
-  double density = 1000.0;     ///< rho_f, kg/m^3
-  double viscosity = 1.0e-3;   ///< mu, Pa s
-  double bulk_modulus = 2e9;   ///< K_f, Pa
+  double density = 1000.0;                                                         ///< rho_f, kg/m^3
+  double viscosity = 1.0e-3;                                                       ///< mu, Pa s
+  double bulk_modulus = 2e9;                                                       ///< K_f, Pa
   [[nodiscard]] double unit_weight() const { return density * standard_gravity; }  ///< gamma_w, N/m^3
 };
 
@@ -66,10 +66,10 @@ inline double wen_yu_beta(double n, double d, double slip, const FluidProperties
 /// porosity alone are computed once per cell (`of`), the rest per grain.
 struct ErgunWenYu {
   double n = 0.4;
-  double phi = 1.0;              ///< weight of Ergun
-  double ergun_viscous = 0.0;    ///< 150 mu (1-n)^2 / n
-  double ergun_inertial = 0.0;   ///< 1.75 rho_f (1-n)
-  double wen_yu = 0.0;           ///< 3/4 mu (1-n) n^-2.65
+  double phi = 1.0;             ///< weight of Ergun
+  double ergun_viscous = 0.0;   ///< 150 mu (1-n)^2 / n
+  double ergun_inertial = 0.0;  ///< 1.75 rho_f (1-n)
+  double wen_yu = 0.0;          ///< 3/4 mu (1-n) n^-2.65
 
   static ErgunWenYu of(double n, const FluidProperties& f) {
     ErgunWenYu c;

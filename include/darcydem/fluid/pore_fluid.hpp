@@ -71,10 +71,10 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] double critical_time_step(const ParticleData<D>& particles, double dem_step) const;
 
   // Fields, one value per cell.
-  [[nodiscard]] const std::vector<double>& pressure() const { return pressure_; }        ///< Pa (excess)
-  [[nodiscard]] const std::vector<double>& porosity() const { return porosity_; }        ///< -
-  [[nodiscard]] const std::vector<double>& solid_volume() const { return solid_; }       ///< m^3
-  [[nodiscard]] const std::vector<Vec<D>>& permeability_field() const { return kappa_; } ///< m^2
+  [[nodiscard]] const std::vector<double>& pressure() const { return pressure_; }         ///< Pa (excess)
+  [[nodiscard]] const std::vector<double>& porosity() const { return porosity_; }         ///< -
+  [[nodiscard]] const std::vector<double>& solid_volume() const { return solid_; }        ///< m^3
+  [[nodiscard]] const std::vector<Vec<D>>& permeability_field() const { return kappa_; }  ///< m^2
   [[nodiscard]] const std::vector<Vec<D>>& solid_velocity() const { return solid_velocity_; }  ///< m/s
   /// Darcy velocity at each cell centre (mean of the two faces), m/s.
   [[nodiscard]] std::vector<Vec<D>> darcy_velocity() const;
@@ -101,7 +101,8 @@ class PoreFluid final : public ParticleForceField<D> {
   void for_each_overlap(const ParticleData<D>& particles, F&& f, G&& section, bool sections) const;
   template <class F>
   void for_each_overlap(const ParticleData<D>& particles, F&& f) const {
-    for_each_overlap(particles, f, [](int, const std::array<int, D>&, std::size_t, double) {}, false);
+    for_each_overlap(
+        particles, f, [](int, const std::array<int, D>&, std::size_t, double) {}, false);
   }
 
  private:
@@ -124,7 +125,7 @@ class PoreFluid final : public ParticleForceField<D> {
   struct Face {
     std::uint32_t a, b;  ///< cells below and above along `axis`
     int axis;
-    std::size_t index;        ///< in the face arrays of `axis`
+    std::size_t index;           ///< in the face arrays of `axis`
     std::size_t pos_ab, pos_ba;  ///< positions in the matrix values
   };
   struct BoundaryFace {
@@ -137,7 +138,8 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<Vec<D>> solid_flux_, solid_velocity_, kappa_;
   std::vector<ErgunWenYu> drag_coefficients_;  ///< per cell, at its clamped porosity
   std::array<std::vector<double>, D> grad_, flux_;
-  std::array<std::vector<std::array<double, 2>>, D> face_gq_;  ///< (grad, flux) side by side: one load per corner
+  std::array<std::vector<std::array<double, 2>>, D>
+      face_gq_;  ///< (grad, flux) side by side: one load per corner
   Vec<D> inv_spacing_ = Vec<D>::Ones();
   std::array<std::vector<double>, D> solid_face_flux_;  ///< m^3/s of solid through each face
   std::vector<Face> faces_;

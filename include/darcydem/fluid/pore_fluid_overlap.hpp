@@ -58,7 +58,9 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, F&& f, G&& section
         if ((t >> j) & 1) d[n++] = dist[j];
       }
       if constexpr (D == 2) {
-        m[t] = n == 0 ? particle_volume<2>(r) : n == 1 ? bo::segment_area(r, d[0]) : bo::corner_area(r, d[0], d[1]);
+        m[t] = n == 0   ? particle_volume<2>(r)
+               : n == 1 ? bo::segment_area(r, d[0])
+                        : bo::corner_area(r, d[0], d[1]);
       } else {
         m[t] = n == 0   ? particle_volume<3>(r)
                : n == 1 ? bo::cap_volume(r, d[0])
@@ -88,7 +90,9 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, F&& f, G&& section
           if constexpr (D == 2) {
             ms[t] = n == 0 ? 2.0 * rho : std::max(0.0, rho - d[0]);
           } else {
-            ms[t] = n == 0 ? std::numbers::pi * rho * rho : n == 1 ? bo::segment_area(rho, d[0]) : bo::corner_area(rho, d[0], d[1]);
+            ms[t] = n == 0   ? std::numbers::pi * rho * rho
+                    : n == 1 ? bo::segment_area(rho, d[0])
+                             : bo::corner_area(rho, d[0], d[1]);
           }
         }
         const int oall = (1 << no) - 1;

@@ -27,7 +27,7 @@ enum class ProbeQuantity {
   unbalanced_force,
   pore_pressure,     ///< excess pore pressure at a point, Pa
   fluid_inflow,      ///< flow into the grid through one side, m^3/s
-  fluid_balance,   ///< inflow - stored - pore change since the start, m^3
+  fluid_balance,     ///< inflow - stored - pore change since the start, m^3
   fluid_iterations,  ///< iterations of the last pressure solve
 };
 

@@ -16,7 +16,8 @@ namespace darcydem {
 /// Boundary changes of one table of sides (x_min = {...}, ...), as
 /// (side index, condition) pairs.
 template <int D>
-std::vector<std::pair<int, FluidBoundary>> read_fluid_sides(const toml::table& table, const std::string& where,
+std::vector<std::pair<int, FluidBoundary>> read_fluid_sides(const toml::table& table,
+                                                            const std::string& where,
                                                             const std::string& file);
 
 /// The pore fluid of a [fluid] table, initialised on the particles.
