@@ -33,6 +33,14 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
     std::cout << fmt::format("{}: OK ({}D, {} particles, {} walls, {} stages, time step {:.4g} s)\n", file, D,
                              scene.simulation.particles.size(), scene.simulation.walls.size(),
                              scene.stages.size(), scene.simulation.time_step);
+    if (scene.fluid) {
+      const auto& f = *scene.fluid;
+      std::cout << fmt::format(
+          "  pore fluid: {} cells, K_f = {:.4g} Pa, {} solver; critical step {:.4g} s (dry {:.4g} s)\n",
+          f.grid.size(), f.fluid.bulk_modulus, darcydem::to_string(f.solver().kind()),
+          f.critical_time_step(scene.simulation.particles, scene.simulation.critical_time_step()),
+          scene.simulation.critical_time_step());
+    }
     return 0;
   }
   darcydem::RunOptions options;
