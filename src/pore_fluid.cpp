@@ -256,52 +256,6 @@ void PoreFluid<D>::compute_face_fields(double time) {
 }
 
 template <int D>
-typename PoreFluid<D>::Stencil PoreFluid<D>::stencil(int axis, const Vec<D>& x) const {
-  std::size_t base = 0;
-  std::array<double, D> frac{};
-  std::array<std::size_t, D> step{};
-  for (int k = 0; k < D; ++k) {
-    const double s = (x[k] - grid.origin[k]) / grid.spacing[k];
-    int b = 0;
-    double fr = 0.0;
-    if (k == axis) {
-      b = std::clamp(static_cast<int>(std::floor(s)), 0, grid.cells[k] - 1);
-      fr = std::clamp(s - b, 0.0, 1.0);
-    } else {
-      const double t = s - 0.5;
-      b = static_cast<int>(std::floor(t));
-      fr = t - b;
-      if (b < 0) {
-        b = 0;
-        fr = 0.0;
-      } else if (b >= grid.cells[k] - 1) {
-        b = grid.cells[k] - 1;
-        fr = 0.0;
-      }
-    }
-    base += static_cast<std::size_t>(b) * face_stride_[axis][k];
-    frac[k] = fr;
-    step[k] = fr > 0.0 ? face_stride_[axis][k] : 0;
-  }
-  Stencil st;
-  for (int corner = 0; corner < (1 << D); ++corner) {
-    double w = 1.0;
-    std::size_t idx = base;
-    for (int k = 0; k < D; ++k) {
-      if ((corner >> k) & 1) {
-        w *= frac[k];
-        idx += step[k];
-      } else {
-        w *= 1.0 - frac[k];
-      }
-    }
-    st.index[corner] = idx;
-    st.weight[corner] = w;
-  }
-  return st;
-}
-
-template <int D>
 void PoreFluid<D>::interpolate(const Vec<D>& x, std::array<double, D>& grad,
                                std::array<double, D>& flux) const {
   // Per coordinate: the cell holding x (for the axis's own faces) and the
@@ -363,13 +317,11 @@ void PoreFluid<D>::interpolate(const Vec<D>& x, std::array<double, D>& grad,
 
 template <int D>
 Vec<D> PoreFluid<D>::gradient_at(const Vec<D>& x) const {
+  std::array<double, D> grad{};
+  std::array<double, D> flux{};
+  interpolate(x, grad, flux);
   Vec<D> g;
-  for (int k = 0; k < D; ++k) {
-    const Stencil st = stencil(k, x);
-    double v = 0.0;
-    for (int c = 0; c < (1 << D); ++c) v += st.weight[c] * grad_[k][st.index[c]];
-    g[k] = v;
-  }
+  for (int k = 0; k < D; ++k) g[k] = grad[k];
   return g;
 }
 

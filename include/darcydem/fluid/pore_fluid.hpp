@@ -111,15 +111,10 @@ class PoreFluid final : public ParticleForceField<D> {
   void build_pattern();
   void compute_face_fields(double time);
   [[nodiscard]] double side_lambda(int axis, std::size_t cell) const;
-  /// Weights and face indices that interpolate a face field of `axis` at x:
-  /// linear between the two faces of the cell holding x along `axis`, linear
-  /// between cell centres along the others (held beyond the outer ones).
-  struct Stencil {
-    std::array<std::size_t, 1 << D> index{};
-    std::array<double, 1 << D> weight{};
-  };
-  [[nodiscard]] Stencil stencil(int axis, const Vec<D>& x) const;
-  /// grad u and the Darcy flux at x together (the per-grain hot path).
+  /// grad u and the Darcy flux at x together (the per-grain hot path):
+  /// for the component along an axis, linear between the two faces of the
+  /// cell holding x along that axis, and between cell centres along the
+  /// others (held beyond the outer ones), as on a staggered (MAC) grid.
   void interpolate(const Vec<D>& x, std::array<double, D>& grad, std::array<double, D>& flux) const;
 
   struct Face {
