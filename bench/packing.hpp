@@ -63,4 +63,63 @@ inline Simulation<3> make_packing(std::int64_t target, int settle_steps = 300) {
   return sim;
 }
 
+/// The workload: the same spheres and contacts dropped from a loose
+/// simple-cubic lattice (spacing 1.1 d, each centre jittered by up to
+/// +-0.045 d so the columns buckle) into a box under gravity, and settled
+/// with local damping 0.7 until the top layer has landed and the bed has
+/// come to rest (1.5 x the free-fall time of the top layer, plus 3000 steps).
+inline Simulation<3> make_dropped_packing(std::int64_t target) {
+  Simulation<3> sim;
+  darcydem::Material grain{"grain", 2650.0, 0.0, 0.0};
+  sim.materials.push_back(grain);
+  darcydem::ContactSpec spec;
+  spec.normal_stiffness = 1000.0;
+  spec.friction = 0.5;
+  spec.restitution = 0.5;
+  sim.contact_table = darcydem::ContactTable(1);
+  sim.contact_table.set(0, 0, darcydem::make_pair_parameters(grain, grain, spec));
+  const double d = 1e-3;
+  const double r = 0.5 * d;
+  const double s = 1.1 * d;
+  const int n = std::max(2, static_cast<int>(std::ceil(std::cbrt(static_cast<double>(target) / 2.0))));
+  std::uint64_t state = 12345;
+  auto jitter = [&] {  // a small deterministic generator (splitmix64)
+    state += 0x9E3779B97F4A7C15ULL;
+    std::uint64_t z = state;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return (static_cast<double>(z >> 11) * 0x1.0p-53 - 0.5) * 0.09 * d;
+  };
+  int layers = 0;
+  for (int k = 0; static_cast<std::int64_t>(sim.particles.size()) < target; ++k, ++layers) {
+    for (int j = 0; j < n && static_cast<std::int64_t>(sim.particles.size()) < target; ++j) {
+      for (int i = 0; i < n && static_cast<std::int64_t>(sim.particles.size()) < target; ++i) {
+        const Vec<3> x(0.5 * s + i * s + jitter(), 0.5 * s + j * s + jitter(), 0.5 * s + k * s + jitter());
+        sim.particles.add(x, r, 2650.0, 0, false);
+      }
+    }
+  }
+  const double side = n * s;
+  auto wall = [&](Vec<3> p, Vec<3> nrm) {
+    darcydem::Wall<3> w;
+    w.point = p;
+    w.normal = nrm;
+    sim.walls.push_back(w);
+  };
+  wall(Vec<3>(0, 0, 0), Vec<3>(0, 0, 1));
+  wall(Vec<3>(0, 0, 0), Vec<3>(1, 0, 0));
+  wall(Vec<3>(side, 0, 0), Vec<3>(-1, 0, 0));
+  wall(Vec<3>(0, 0, 0), Vec<3>(0, 1, 0));
+  wall(Vec<3>(0, side, 0), Vec<3>(0, -1, 0));
+  sim.gravity = Vec<3>(0, 0, -9.81);
+  sim.damping.local = 0.7;
+  sim.time_step = 0.2 * sim.critical_time_step();
+  sim.prepare();
+  const double fall = std::sqrt(2.0 * layers * (s - d) / 9.81);
+  const auto steps = static_cast<std::int64_t>(1.5 * fall / sim.time_step) + 3000;
+  for (std::int64_t k = 0; k < steps; ++k) sim.step();
+  return sim;
+}
+
 }  // namespace bench
