@@ -13,6 +13,7 @@
 #include <sys/resource.h>
 
 #include <cmath>
+#include <map>
 
 #include "packing.hpp"
 
@@ -63,12 +64,18 @@ void BM_DensePacking(benchmark::State& state) {
 }
 
 // The workload: dropped from a loose lattice and settled (the
-// settling is not timed; it takes minutes at 10^5, so 10^6 is not run).
+// settling is not timed). It takes 7 minutes at 10^4 on 2 cores and would
+// take over an hour at 10^5, so only 10^4 is run; the FCC stack below
+// stands in for the dense regime at 10^5 and 10^6.
 void BM_DroppedPacking(benchmark::State& state) {
   const auto n = state.range(0);
   const int threads = static_cast<int>(state.range(1));
-  omp_set_num_threads(2);  // settle on both cores, then time with `threads`
-  auto sim = bench::make_dropped_packing(n);
+  // Settle once per size on both cores (kept for the next thread count),
+  // then time with `threads`.
+  static std::map<std::int64_t, Simulation<3>> settled;
+  omp_set_num_threads(2);
+  if (settled.count(n) == 0) settled.emplace(n, bench::make_dropped_packing(n));
+  auto sim = settled.at(n);
   omp_set_num_threads(threads);
   const auto builds0 = sim.list_builds();
   for (auto _ : state) sim.step();
@@ -84,7 +91,7 @@ void BM_DroppedPacking(benchmark::State& state) {
 }
 
 BENCHMARK(BM_DroppedPacking)
-    ->ArgsProduct({{10'000, 100'000}, {1, 2}})
+    ->ArgsProduct({{10'000}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0)
     ->UseRealTime();
