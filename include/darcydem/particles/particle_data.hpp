@@ -22,7 +22,7 @@ struct ParticleData {
   std::vector<AngVec<D>> angular_velocity;  ///< rad/s
   std::vector<Vec<D>> force;                ///< N, total of the last force evaluation
   std::vector<AngVec<D>> torque;            ///< N m
-  std::vector<Vec<D>> external_force;       ///< N, added every step (fluid coupling, user)
+  std::vector<Vec<D>> external_force;       ///< N, added every step (user loads)
 
   [[nodiscard]] std::size_t size() const { return position.size(); }
 
