@@ -177,7 +177,6 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   }
   std::uint64_t fluid_iterations = 0;
   double fluid_residual = 0.0;
-  double fluid_worst_imbalance = 0.0;
 
   for (const auto& stage : scene.stages) {
     apply_stage(sim, fluid, stage);
@@ -191,9 +190,6 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         fluid->update(sim.particles, fluid->steps_per_update * dt, sim.time);
         fluid_iterations += static_cast<std::uint64_t>(fluid->last_solve().iterations);
         fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);
-        const auto& b = fluid->last_balance();
-        if (b.gross > 0.0)
-          fluid_worst_imbalance = std::max(fluid_worst_imbalance, std::abs(b.imbalance()) / b.gross);
       }
       if (seepage) seepage->after_step(scene);
       if (sim.time >= next_probe - 0.5 * dt) {
@@ -227,10 +223,9 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       *options.log << fmt::format(
           "fluid balance so far: inflow {:.6g} m^3 = stored {:.6g} + pore change {:.6g}; imbalance {:.3g} "
           "m^3 "
-          "({:.3g} of the gross flow; worst step {:.3g}); solver residual <= {:.3g}, {} iterations\n",
+          "({:.3g} of the gross flow); solver residual <= {:.3g}, {} iterations\n",
           tb.inflow, tb.stored, tb.pore_change, tb.imbalance(),
-          tb.gross > 0 ? std::abs(tb.imbalance()) / tb.gross : 0.0, fluid_worst_imbalance, fluid_residual,
-          fluid_iterations);
+          tb.gross > 0 ? std::abs(tb.imbalance()) / tb.gross : 0.0, fluid_residual, fluid_iterations);
     }
     if (summary.interrupted) break;
     summary.stages_completed.push_back(stage.name);
@@ -262,9 +257,9 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     json << fmt::format(
         "  \"fluid\": {{\"cells\": {}, \"updates\": {}, \"solver\": \"{}\", \"iterations\": {}, "
         "\"max_residual\": {:.6g}, \"inflow\": {:.17g}, \"stored\": {:.17g}, \"pore_change\": {:.17g}, "
-        "\"imbalance\": {:.6g}, \"worst_step_imbalance\": {:.6g}}},\n",
+        "\"imbalance\": {:.6g}, \"gross_flow\": {:.6g}}},\n",
         fluid->grid.size(), fluid->updates(), to_string(fluid->solver().kind()), fluid_iterations,
-        fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), fluid_worst_imbalance);
+        fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), tb.gross);
   }
   if (summary.seepage_column) {
     const auto& r = *summary.seepage_column;

@@ -85,3 +85,39 @@ TEST(FluidScenes, HydrostaticBed) {
   const double stress = submerged / (0.006 * 0.006);
   for (double u : scene.fluid->pressure()) EXPECT_LT(std::abs(u), 1e-6 * stress);
 }
+
+TEST(FluidScenes, UpwardSeepageThroughABed) {
+  // Steady upward flow through a settled bed: the floor carries the
+  // submerged weight minus the seepage force, W' - u_b A, u_b the excess
+  // pressure on the bottom face (cell value plus the half-cell drop that
+  // carries the inflow). 1 %: the force balance of the drag and pressure
+  // forces over the grains holds to ~0.75 % (test_pore_fluid.cpp).
+  auto scene = darcydem::testing::load_scene<3>("examples/fluid_cases/upward_seepage_bed.toml");
+  RunOptions options;
+  options.out_dir = temp_dir("upward_seepage");
+  run_scene(scene, options);
+  const auto& sim = scene.simulation;
+  const auto& f = *scene.fluid;
+  double submerged = 0.0;
+  for (std::size_t i = 0; i < sim.particles.size(); ++i) {
+    const double v = particle_volume<3>(sim.particles.radius[i]);
+    submerged += (1.0 / sim.particles.inv_mass[i] - f.fluid.density * v) * 9.80665;
+  }
+  const double q = f.sides[4].value.at(sim.time);
+  double thrust = 0.0;
+  for (int i = 0; i < f.grid.cells[0]; ++i) {
+    for (int j = 0; j < f.grid.cells[1]; ++j) {
+      const std::size_t c = f.grid.index({i, j, 0});
+      const double half_drop = q * f.fluid.viscosity / f.permeability_field()[c][2] * 0.5 * f.grid.spacing[2];
+      thrust += (f.pressure()[c] + half_drop) * f.grid.spacing[0] * f.grid.spacing[1];
+    }
+  }
+  const double floor = -sim.walls[0].force.z();
+  std::printf(
+      "upward seepage: floor %.6e N, submerged weight %.6e N - seepage %.6e N = %.6e N (%.3f %% of W')\n",
+      floor, submerged, thrust, submerged - thrust, 100.0 * (floor - (submerged - thrust)) / submerged);
+  EXPECT_GT(thrust, 0.3 * submerged);  // a real load: the gradient is about half the critical one
+  EXPECT_NEAR(floor, submerged - thrust, 0.01 * thrust);
+  // In = out once steady.
+  EXPECT_NEAR(f.side_inflow(5), -f.side_inflow(4), 1e-6 * f.side_inflow(4));
+}
