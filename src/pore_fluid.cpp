@@ -267,11 +267,11 @@ void PoreFluid<D>::interpolate(const Vec<D>& x, std::array<double, D>& grad,
   for (int k = 0; k < D; ++k) {
     const double s = (x[k] - grid.origin[k]) * inv_spacing_[k];
     const int last = grid.cells[k] - 1;
-    const int b = std::clamp(static_cast<int>(std::floor(s)), 0, last);
+    const int b = FluidGrid<D>::clamp_cell(std::floor(s), 0, last);
     face_cell[k] = b;
     face_frac[k] = std::clamp(s - b, 0.0, 1.0);
     const double t = s - 0.5;
-    const int bc = static_cast<int>(std::floor(t));
+    const int bc = FluidGrid<D>::clamp_cell(std::floor(t), -1, last);
     if (bc < 0) {
       centre_cell[k] = 0;
       centre_frac[k] = 0.0;
@@ -331,7 +331,7 @@ double PoreFluid<D>::pressure_at(const Vec<D>& x) const {
   std::array<double, D> frac{};
   for (int k = 0; k < D; ++k) {
     const double t = (x[k] - grid.origin[k]) / grid.spacing[k] - 0.5;
-    int b = static_cast<int>(std::floor(t));
+    int b = FluidGrid<D>::clamp_cell(std::floor(t), -1, grid.cells[k] - 1);
     double fr = t - b;
     if (b < 0) {
       b = 0;

@@ -178,59 +178,74 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   std::uint64_t fluid_iterations = 0;
   double fluid_residual = 0.0;
 
-  for (const auto& stage : scene.stages) {
-    apply_stage(sim, fluid, stage);
-    if (seepage) seepage->stage_started(scene, stage.name);
-    const auto n_steps = static_cast<std::uint64_t>(std::max(1.0, std::round(stage.duration / dt)));
-    const double t_end = sim.time + static_cast<double>(n_steps) * dt;
-    bool stopped_early = false;
-    for (std::uint64_t s = 0; s < n_steps; ++s) {
-      sim.step();
-      if (fluid != nullptr && sim.steps % static_cast<std::uint64_t>(fluid->steps_per_update) == 0) {
-        fluid->update(sim.particles, fluid->steps_per_update * dt, sim.time);
-        fluid_iterations += static_cast<std::uint64_t>(fluid->last_solve().iterations);
-        fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);
-      }
-      if (seepage) seepage->after_step(scene);
-      if (sim.time >= next_probe - 0.5 * dt) {
-        write_probes();
-        next_probe += scene.output.probe_interval;
-        if (next_probe < sim.time) next_probe = sim.time + scene.output.probe_interval;
-      }
-      if (sim.time >= next_snapshot - 0.5 * dt) {
-        write_snapshot();
-        next_snapshot += scene.output.snapshot_interval;
-      }
-      if ((s + 1) % static_cast<std::uint64_t>(stage.check_interval) == 0 && stop_condition_met(sim, stage)) {
-        stopped_early = true;
-        break;
-      }
-      if ((s & 255U) == 0) {
-        if (options.interrupt != nullptr && options.interrupt->load()) {
-          summary.interrupted = true;
+  // A failure in a step (a blown-up simulation, a solver that does not
+  // converge) ends the run, but what was computed is kept: probes, the last
+  // snapshot, the analysis and run.json with the reason; then it is rethrown.
+  std::string failure;
+  try {
+    for (const auto& stage : scene.stages) {
+      apply_stage(sim, fluid, stage);
+      if (seepage) seepage->stage_started(scene, stage.name);
+      const auto n_steps = static_cast<std::uint64_t>(std::max(1.0, std::round(stage.duration / dt)));
+      const double t_end = sim.time + static_cast<double>(n_steps) * dt;
+      bool stopped_early = false;
+      for (std::uint64_t s = 0; s < n_steps; ++s) {
+        sim.step();
+        if (fluid != nullptr && sim.steps % static_cast<std::uint64_t>(fluid->steps_per_update) == 0) {
+          fluid->update(sim.particles, fluid->steps_per_update * dt, sim.time);
+          fluid_iterations += static_cast<std::uint64_t>(fluid->last_solve().iterations);
+          fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);
+        }
+        if (seepage) seepage->after_step(scene);
+        if (sim.time >= next_probe - 0.5 * dt) {
+          write_probes();
+          next_probe += scene.output.probe_interval;
+          if (next_probe < sim.time) next_probe = sim.time + scene.output.probe_interval;
+        }
+        if (sim.time >= next_snapshot - 0.5 * dt) {
+          write_snapshot();
+          next_snapshot += scene.output.snapshot_interval;
+        }
+        if ((s + 1) % static_cast<std::uint64_t>(stage.check_interval) == 0 &&
+            stop_condition_met(sim, stage)) {
+          stopped_early = true;
           break;
         }
-        progress.update(stage.name, sim.time, t_end, sim.steps);
+        if ((s & 255U) == 0) {
+          if (options.interrupt != nullptr && options.interrupt->load()) {
+            summary.interrupted = true;
+            break;
+          }
+          progress.update(stage.name, sim.time, t_end, sim.steps);
+        }
+      }
+      progress.update(stage.name, sim.time, t_end, sim.steps, true);
+      progress.end_line();
+      write_probes();
+      write_snapshot();
+      if (seepage) seepage->stage_ended(scene, stage.name, !summary.interrupted);
+      if (fluid != nullptr && options.log != nullptr) {
+        const auto& tb = fluid->total_balance();
+        *options.log << fmt::format(
+            "fluid balance so far: inflow {:.6g} m^3 = stored {:.6g} + pore change {:.6g}; imbalance {:.3g} "
+            "m^3 "
+            "({:.3g} of the gross flow); solver residual <= {:.3g}, {} iterations\n",
+            tb.inflow, tb.stored, tb.pore_change, tb.imbalance(),
+            tb.gross > 0 ? std::abs(tb.imbalance()) / tb.gross : 0.0, fluid_residual, fluid_iterations);
+      }
+      if (summary.interrupted) break;
+      summary.stages_completed.push_back(stage.name);
+      if (options.log != nullptr && stopped_early) {
+        *options.log << fmt::format("stage {}: stop condition met at t = {:.6g} s\n", stage.name, sim.time);
       }
     }
-    progress.update(stage.name, sim.time, t_end, sim.steps, true);
-    progress.end_line();
-    write_probes();
-    write_snapshot();
-    if (seepage) seepage->stage_ended(scene, stage.name, !summary.interrupted);
-    if (fluid != nullptr && options.log != nullptr) {
-      const auto& tb = fluid->total_balance();
-      *options.log << fmt::format(
-          "fluid balance so far: inflow {:.6g} m^3 = stored {:.6g} + pore change {:.6g}; imbalance {:.3g} "
-          "m^3 "
-          "({:.3g} of the gross flow); solver residual <= {:.3g}, {} iterations\n",
-          tb.inflow, tb.stored, tb.pore_change, tb.imbalance(),
-          tb.gross > 0 ? std::abs(tb.imbalance()) / tb.gross : 0.0, fluid_residual, fluid_iterations);
-    }
-    if (summary.interrupted) break;
-    summary.stages_completed.push_back(stage.name);
-    if (options.log != nullptr && stopped_early) {
-      *options.log << fmt::format("stage {}: stop condition met at t = {:.6g} s\n", stage.name, sim.time);
+  } catch (const std::exception& e) {
+    failure = fmt::format("at t = {:.6g} s (step {}): {}", sim.time, sim.steps, e.what());
+    try {
+      write_probes();
+      write_snapshot();
+    } catch (const std::exception&) {
+      // the state may not be writable (non-finite); what was written stays
     }
   }
   probes.flush();
@@ -268,8 +283,13 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         "\"passed\": {}}},\n",
         r.uplift_rms_error, r.pressure_max_error, r.passed ? "true" : "false");
   }
-  json << fmt::format("  \"status\": \"{}\",\n", summary.interrupted ? "interrupted" : "completed")
-       << fmt::format("  \"stages_completed\": [{}]\n", stages) << "}\n";
+  json << fmt::format("  \"status\": \"{}\",\n",
+                      !failure.empty() ? "failed" : (summary.interrupted ? "interrupted" : "completed"));
+  if (!failure.empty()) json << fmt::format("  \"failure\": {},\n", json_string(failure));
+  json << fmt::format("  \"stages_completed\": [{}]\n", stages) << "}\n";
+  json.close();
+  if (!failure.empty())
+    throw std::runtime_error(failure + " (the output written so far is kept in " + out.string() + ")");
   return summary;
 }
 

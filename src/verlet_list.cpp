@@ -1,6 +1,8 @@
 #include "darcydem/neighbour/verlet_list.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <cstddef>
 
 namespace darcydem {
@@ -82,6 +84,12 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
   ++builds_;
 }
 
+namespace {
+/// NaN would be ignored by max(): report it as an infinite displacement, so
+/// the list is rebuilt and the rebuild reports the blown-up state.
+inline double finite_or_inf(double v) { return std::isnan(v) ? std::numeric_limits<double>::infinity() : v; }
+}  // namespace
+
 template <int D>
 double VerletList<D>::max_displacement(const std::vector<Vec<D>>& position) const {
   if (reference_.size() != position.size()) return 1e300;
@@ -89,9 +97,11 @@ double VerletList<D>::max_displacement(const std::vector<Vec<D>>& position) cons
   const auto n = static_cast<std::int64_t>(position.size());
   if (n > 2000) {
 #pragma omp parallel for reduction(max : m2)
-    for (std::int64_t i = 0; i < n; ++i) m2 = std::max(m2, (position[i] - reference_[i]).squaredNorm());
+    for (std::int64_t i = 0; i < n; ++i)
+      m2 = std::max(m2, finite_or_inf((position[i] - reference_[i]).squaredNorm()));
   } else {
-    for (std::int64_t i = 0; i < n; ++i) m2 = std::max(m2, (position[i] - reference_[i]).squaredNorm());
+    for (std::int64_t i = 0; i < n; ++i)
+      m2 = std::max(m2, finite_or_inf((position[i] - reference_[i]).squaredNorm()));
   }
   return std::sqrt(m2);
 }

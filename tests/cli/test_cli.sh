@@ -54,5 +54,12 @@ timeout --preserve-status -s INT 2 "$exe" run "$src/examples/seepage_column/kf_1
 [ $rc -eq 130 ] && grep -q '"verdict": "INCOMPLETE"' "$work/seep/seepage.json" && [ -s "$work/seep/report.md" ] \
   && ok "interrupted seepage run keeps its report" || bad "interrupted seepage run (rc $rc)"
 
+# A run that blows up (absurd gravity): exit 1, a message with the time, and
+# run.json written with status "failed" next to the probes so far.
+sed -e 's/^gravity = \[0.0, -9.80665\]/gravity = [0.0, -1e308]/' "$scene" > "$work/blow.toml"
+"$exe" run "$work/blow.toml" --out "$work/blow" > /dev/null 2>"$work/blow.err"; rc=$?
+[ $rc -eq 1 ] && grep -q "the simulation blew up" "$work/blow.err" && grep -q '"status": "failed"' "$work/blow/run.json" \
+  && [ -s "$work/blow/probes.csv" ] && ok "a blown-up run fails cleanly and keeps its output" || bad "blow-up (rc $rc)"
+
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]

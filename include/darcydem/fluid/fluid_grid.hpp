@@ -2,6 +2,7 @@
 // The fixed Cartesian grid of the pore fluid: cells of equal size over a box,
 // independent of the DEM neighbour cells. Cell (i, j, k) has index
 // i + nx (j + ny k). In 2D the cells are 1 m thick, like the discs.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -49,9 +50,15 @@ struct FluidGrid {
     for (int k = 0; k < D; ++k) x[k] = origin[k] + (c[k] + 0.5) * spacing[k];
     return x;
   }
-  /// Cell coordinate along `axis` of position x (may be outside 0..n-1).
+  /// Cell coordinate along `axis` of position x: -1 below the grid, n above
+  /// (clamped before the conversion, so a grain far away is still safe).
   [[nodiscard]] int cell_along(int axis, double x) const {
-    return static_cast<int>(std::floor((x - origin[axis]) / spacing[axis]));
+    const double s = std::floor((x - origin[axis]) / spacing[axis]);
+    return static_cast<int>(std::clamp(s, -1.0, static_cast<double>(cells[axis])));
+  }
+  /// Clamps a (possibly huge) floating cell coordinate into [lo, hi] and converts it.
+  [[nodiscard]] static int clamp_cell(double s, int lo, int hi) {
+    return static_cast<int>(std::clamp(s, static_cast<double>(lo), static_cast<double>(hi)));
   }
   [[nodiscard]] bool inside(const std::array<int, D>& c) const {
     for (int k = 0; k < D; ++k) {
