@@ -3,6 +3,8 @@
 // q = 1e-3 m/s, n = 0.2121) and against its own limits.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "darcydem/analysis/seepage_analytic.hpp"
 
 using darcydem::SeepageColumnParameters;
@@ -66,4 +68,22 @@ TEST(SeepageAnalytic, LimitsAndSteadyState) {
     integral += w * darcydem::seepage_pressure(p, p.height * i / n, t) * p.height / n;
   }
   EXPECT_NEAR(p.compressibility * integral, darcydem::seepage_uplift(p, t), 1e-6 * p.final_uplift());
+}
+
+TEST(SeepageAnalytic, ConsolidationDegree) {
+  // Terzaghi's one-way drainage: U(Tv = 0.197) = 0.5 and U(Tv = 0.848) = 0.9
+  // (the textbook values, to the 3 digits they are quoted with), and the
+  // early U = 2 sqrt(Tv / pi) (1 % at Tv = 1e-3).
+  auto p = reference(1e7);
+  p.fluid_storage = 0.0;
+  const double cv = p.consolidation_coefficient();
+  auto at_tv = [&](double tv) { return darcydem::consolidation_degree(p, tv * p.height * p.height / cv); };
+  EXPECT_NEAR(at_tv(0.197), 0.5, 0.001);
+  EXPECT_NEAR(at_tv(0.848), 0.9, 0.001);
+  EXPECT_NEAR(at_tv(1e-3), 2.0 * std::sqrt(1e-3 / 3.14159265358979),
+              0.01 * 2.0 * std::sqrt(1e-3 / 3.14159265358979));
+  // A compressible fluid takes the share B = m_v / (m_v + n/K_f) at once.
+  auto q = reference(1e5);
+  const double b = q.compressibility / (q.compressibility + q.fluid_storage);
+  EXPECT_NEAR(darcydem::consolidation_degree(q, 1e-12), 1.0 - b, 1e-3);
 }

@@ -7,8 +7,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <numbers>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "darcydem/simulation/runner.hpp"
 #include "scene_loading.hpp"
@@ -120,4 +124,84 @@ TEST(FluidScenes, UpwardSeepageThroughABed) {
   EXPECT_NEAR(floor, submerged - thrust, 0.01 * thrust);
   // In = out once steady.
   EXPECT_NEAR(f.side_inflow(5), -f.side_inflow(4), 1e-6 * f.side_inflow(4));
+}
+
+namespace {
+/// Columns of a probes.csv by name.
+std::map<std::string, std::vector<double>> read_probes(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+  std::map<std::string, std::vector<double>> columns;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::string cell;
+    for (const auto& name : names) {
+      std::getline(row, cell, ',');
+      columns[name].push_back(std::stod(cell));
+    }
+  }
+  return columns;
+}
+}  // namespace
+
+TEST(FluidScenes, TerzaghiConsolidation) {
+  // examples/fluid_cases/consolidation_column.toml: the paper's column, then
+  // a permeable lid loads it with F = 0.5 N. Expected (independent of the
+  // run): the final settlement of the top disc is the linear-spring closed
+  // form 50 F / k_n (the load adds F to the 50 contacts below it), and its
+  // course is Terzaghi's U(Tv) with m_v = S_f / (dsigma H), the grid's k in
+  // series and the storage n/K_f. Tolerances: final 0.5 %; RMS over 0..1 s
+  // 2 % of S_f (as for the seepage uplift; the time origin, the lid's first
+  // contact, is known to half a probe interval, 0.05 ms).
+  auto scene = darcydem::testing::load_scene<2>("examples/fluid_cases/consolidation_column.toml");
+  RunOptions options;
+  options.out_dir = temp_dir("consolidation");
+  run_scene(scene, options);
+  const auto& f = *scene.fluid;
+  const auto probes = read_probes(options.out_dir + "/probes.csv");
+  const auto& t = probes.at("time");
+  const auto& top = probes.at("top_y");
+  const auto& load = probes.at("lid_load");
+  const double stage_start = 1.5;
+  std::size_t i0 = 0;
+  while (t[i0] < stage_start - 1e-9) ++i0;
+  std::size_t ic = i0;
+  while (load[ic] <= 0.0) ++ic;
+  const double t_contact = 0.5 * (t[ic - 1] + t[ic]);
+  const double y0 = top[i0 - 1];
+
+  const double force = 0.5, kn = 1e5, width = 0.001;
+  const double final_settlement = 50.0 * force / kn;
+  EXPECT_NEAR(y0 - top.back(), final_settlement, 0.005 * final_settlement);
+
+  SeepageColumnParameters p;
+  p.height = f.grid.upper().y() - f.grid.origin.y();
+  p.unit_weight = f.fluid.unit_weight();
+  p.compressibility = final_settlement / (force / width * p.height);
+  // k: the cells in series; n: the mean of the cells below the top one,
+  // which is partly empty (the column is 0.4 mm shorter than the grid).
+  double resistance = 0.0;
+  double porosity = 0.0;
+  const std::size_t cells = f.grid.size();
+  for (std::size_t c = 0; c < cells; ++c) {
+    resistance += f.grid.spacing.y() / f.permeability_field()[c].y();
+    if (c + 1 < cells) porosity += f.porosity()[c] / static_cast<double>(cells - 1);
+  }
+  p.conductivity = p.height / resistance * p.unit_weight / f.fluid.viscosity;
+  p.fluid_storage = porosity / f.fluid.bulk_modulus;
+  double sq = 0.0;
+  int n = 0;
+  for (std::size_t j = i0; j < t.size() && t[j] - t_contact <= 1.0; ++j) {
+    const double e = (y0 - top[j]) - final_settlement * consolidation_degree(p, t[j] - t_contact);
+    sq += e * e;
+    ++n;
+  }
+  const double rms = std::sqrt(sq / n) / final_settlement;
+  std::printf("Terzaghi consolidation: final %.6f mm (closed form %.6f mm), RMS error %.3f %% of it\n",
+              (y0 - top.back()) * 1e3, final_settlement * 1e3, 100.0 * rms);
+  EXPECT_LT(rms, 0.02);
 }

@@ -33,4 +33,12 @@ double seepage_pressure(const SeepageColumnParameters& p, double depth, double t
 /// Rise of the column's top at time t, m.
 double seepage_uplift(const SeepageColumnParameters& p, double time);
 
+/// Terzaghi's 1D consolidation of the same column under a load applied at
+/// t = 0 (top drained, bottom sealed, drainage path H): the fraction of the
+/// final settlement reached at time t,
+///   U = 1 - B sum_m 8 / ((2m+1)^2 pi^2) exp(-(2m+1)^2 pi^2 Tv / 4),
+/// with B = m_v / (m_v + n/K_f) the share of the load the pore fluid takes
+/// at once (1 for an incompressible fluid). `inflow` is not used.
+double consolidation_degree(const SeepageColumnParameters& p, double time);
+
 }  // namespace darcydem
