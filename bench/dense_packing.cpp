@@ -40,15 +40,8 @@ std::size_t footprint(const Simulation<3>& sim) {
          p.size() * (sizeof(Vec<3>) + 2 * sizeof(std::uint32_t));
 }
 
-void BM_DensePacking(benchmark::State& state) {
-  const auto n = state.range(0);
-  const int threads = static_cast<int>(state.range(1));
-  omp_set_num_threads(threads);
-  auto sim = make_packing(n);
-  const auto builds0 = sim.list_builds();
-  for (auto _ : state) {
-    sim.step();
-  }
+/// The counters both packings report.
+void report(benchmark::State& state, const Simulation<3>& sim, int threads, std::size_t builds0) {
   const double particles = static_cast<double>(sim.particles.size());
   state.counters["particle_steps_per_second"] =
       benchmark::Counter(particles * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
@@ -58,6 +51,18 @@ void BM_DensePacking(benchmark::State& state) {
   state.counters["pairs_per_particle"] = static_cast<double>(sim.pair_list().pair_count()) / particles;
   state.counters["contacts_per_particle"] = static_cast<double>(sim.contact_count()) / particles;
   state.counters["list_builds"] = static_cast<double>(sim.list_builds() - builds0);
+}
+
+void BM_DensePacking(benchmark::State& state) {
+  const auto n = state.range(0);
+  const int threads = static_cast<int>(state.range(1));
+  omp_set_num_threads(threads);
+  auto sim = make_packing(n);
+  const auto builds0 = sim.list_builds();
+  for (auto _ : state) {
+    sim.step();
+  }
+  report(state, sim, threads, builds0);
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   state.counters["peak_rss_bytes"] = static_cast<double>(usage.ru_maxrss) * 1024.0;
@@ -79,15 +84,9 @@ void BM_DroppedPacking(benchmark::State& state) {
   omp_set_num_threads(threads);
   const auto builds0 = sim.list_builds();
   for (auto _ : state) sim.step();
-  const double particles = static_cast<double>(sim.particles.size());
-  state.counters["particle_steps_per_second"] =
-      benchmark::Counter(particles * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
-  state.counters["threads"] = threads;
-  state.counters["bytes_per_particle"] = static_cast<double>(footprint(sim)) / particles;
-  state.counters["pairs_per_particle"] = static_cast<double>(sim.pair_list().pair_count()) / particles;
-  state.counters["contacts_per_particle"] = static_cast<double>(sim.contact_count()) / particles;
-  state.counters["list_builds"] = static_cast<double>(sim.list_builds() - builds0);
-  state.counters["kinetic_energy_per_particle"] = sim.kinetic_energy() / particles;
+  report(state, sim, threads, builds0);
+  state.counters["kinetic_energy_per_particle"] =
+      sim.kinetic_energy() / static_cast<double>(sim.particles.size());
 }
 
 BENCHMARK(BM_DroppedPacking)

@@ -15,7 +15,8 @@ namespace bench {
 using darcydem::Simulation;
 using darcydem::Vec;
 
-inline Simulation<3> make_packing(std::int64_t target, int settle_steps = 300) {
+/// One material (d = 1 mm grains) with the benchmark's linear contacts.
+inline Simulation<3> grain_simulation() {
   Simulation<3> sim;
   darcydem::Material grain{"grain", 2650.0, 0.0, 0.0};
   sim.materials.push_back(grain);
@@ -25,6 +26,31 @@ inline Simulation<3> make_packing(std::int64_t target, int settle_steps = 300) {
   spec.restitution = 0.5;
   sim.contact_table = darcydem::ContactTable(1);
   sim.contact_table.set(0, 0, darcydem::make_pair_parameters(grain, grain, spec));
+  return sim;
+}
+
+/// A floor and four side walls around [0, side]^2, gravity, local damping
+/// 0.7, dt = 0.2 x critical; prepares the simulation.
+inline void close_box(Simulation<3>& sim, double side) {
+  auto wall = [&](Vec<3> p, Vec<3> nrm) {
+    darcydem::Wall<3> w;
+    w.point = p;
+    w.normal = nrm;
+    sim.walls.push_back(w);
+  };
+  wall(Vec<3>(0, 0, 0), Vec<3>(0, 0, 1));
+  wall(Vec<3>(0, 0, 0), Vec<3>(1, 0, 0));
+  wall(Vec<3>(side, 0, 0), Vec<3>(-1, 0, 0));
+  wall(Vec<3>(0, 0, 0), Vec<3>(0, 1, 0));
+  wall(Vec<3>(0, side, 0), Vec<3>(0, -1, 0));
+  sim.gravity = Vec<3>(0, 0, -9.81);
+  sim.damping.local = 0.7;
+  sim.time_step = 0.2 * sim.critical_time_step();
+  sim.prepare();
+}
+
+inline Simulation<3> make_packing(std::int64_t target, int settle_steps = 300) {
+  Simulation<3> sim = grain_simulation();
   const double d = 1e-3;
   const double r = 0.5 * d;
   const double a = std::sqrt(2.0) * d;  // FCC cube edge for touching spheres
@@ -44,21 +70,7 @@ inline Simulation<3> make_packing(std::int64_t target, int settle_steps = 300) {
     }
   }
   const double side = n * a + 0.5 * a;
-  auto wall = [&](Vec<3> p, Vec<3> nrm) {
-    darcydem::Wall<3> w;
-    w.point = p;
-    w.normal = nrm;
-    sim.walls.push_back(w);
-  };
-  wall(Vec<3>(0, 0, 0), Vec<3>(0, 0, 1));
-  wall(Vec<3>(0, 0, 0), Vec<3>(1, 0, 0));
-  wall(Vec<3>(side, 0, 0), Vec<3>(-1, 0, 0));
-  wall(Vec<3>(0, 0, 0), Vec<3>(0, 1, 0));
-  wall(Vec<3>(0, side, 0), Vec<3>(0, -1, 0));
-  sim.gravity = Vec<3>(0, 0, -9.81);
-  sim.damping.local = 0.7;
-  sim.time_step = 0.2 * sim.critical_time_step();
-  sim.prepare();
+  close_box(sim, side);
   for (int s = 0; s < settle_steps; ++s) sim.step();  // settle onto the contacts
   return sim;
 }
@@ -72,15 +84,7 @@ inline Simulation<3> make_packing(std::int64_t target, int settle_steps = 300) {
 /// that: after 30 000 steps a bed of 10^5 still has only 0.7 contacts per
 /// grain; grains rolling freely on top are not damped at all.
 inline Simulation<3> make_dropped_packing(std::int64_t target) {
-  Simulation<3> sim;
-  darcydem::Material grain{"grain", 2650.0, 0.0, 0.0};
-  sim.materials.push_back(grain);
-  darcydem::ContactSpec spec;
-  spec.normal_stiffness = 1000.0;
-  spec.friction = 0.5;
-  spec.restitution = 0.5;
-  sim.contact_table = darcydem::ContactTable(1);
-  sim.contact_table.set(0, 0, darcydem::make_pair_parameters(grain, grain, spec));
+  Simulation<3> sim = grain_simulation();
   const double d = 1e-3;
   const double r = 0.5 * d;
   const double s = 1.1 * d;
@@ -103,21 +107,7 @@ inline Simulation<3> make_dropped_packing(std::int64_t target) {
     }
   }
   const double side = n * s;
-  auto wall = [&](Vec<3> p, Vec<3> nrm) {
-    darcydem::Wall<3> w;
-    w.point = p;
-    w.normal = nrm;
-    sim.walls.push_back(w);
-  };
-  wall(Vec<3>(0, 0, 0), Vec<3>(0, 0, 1));
-  wall(Vec<3>(0, 0, 0), Vec<3>(1, 0, 0));
-  wall(Vec<3>(side, 0, 0), Vec<3>(-1, 0, 0));
-  wall(Vec<3>(0, 0, 0), Vec<3>(0, 1, 0));
-  wall(Vec<3>(0, side, 0), Vec<3>(0, -1, 0));
-  sim.gravity = Vec<3>(0, 0, -9.81);
-  sim.damping.local = 0.7;
-  sim.time_step = 0.2 * sim.critical_time_step();
-  sim.prepare();
+  close_box(sim, side);
   const double m = 2650.0 * darcydem::particle_volume<3>(r);
   const double threshold = 0.5 * m * 1e-3 * 1e-3 * static_cast<double>(sim.particles.size());
   for (std::int64_t k = 1; k <= 300'000; ++k) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "darcydem/core/vec.hpp"
+
 namespace darcydem::ball_overlap {
 namespace {
 
@@ -33,8 +35,6 @@ double slice_integral(double r, double beta, double z) {
          2.0 * r * r * r / 3.0 * std::atan2(z * beta, r * q);
 }
 
-double full_measure(int dim, double r) { return dim == 2 ? pi * r * r : 4.0 / 3.0 * pi * r * r * r; }
-
 /// Measure of the ball in {x_k > a_k} over the `count` constraints in `a`.
 double upper(int dim, double r, std::array<double, 3> a, int count) {
   // Vacuous constraints go; any constraint beyond the ball empties it.
@@ -60,7 +60,7 @@ double upper(int dim, double r, std::array<double, 3> a, int count) {
   if (dim == 2) {
     switch (count) {
       case 0:
-        return full_measure(2, r);
+        return particle_volume<2>(r);
       case 1:
         return segment_area(r, a[0]);
       default:
@@ -69,7 +69,7 @@ double upper(int dim, double r, std::array<double, 3> a, int count) {
   }
   switch (count) {
     case 0:
-      return full_measure(3, r);
+      return particle_volume<3>(r);
     case 1:
       return cap_volume(r, a[0]);
     case 2:
@@ -97,7 +97,7 @@ double corner_area(double r, double a, double b) {
 
 double cap_volume(double r, double a) {
   if (a >= r) return 0.0;
-  if (a <= -r) return full_measure(3, r);
+  if (a <= -r) return particle_volume<3>(r);
   return pi * (r - a) * (r - a) * (2.0 * r + a) / 3.0;
 }
 

@@ -18,8 +18,6 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles) {
   pressure_.assign(n, 0.0);
   pressure_old_.assign(n, 0.0);
   for (int k = 0; k < D; ++k) {
-    grad_[k].assign(grid.face_count(k), 0.0);
-    flux_[k].assign(grid.face_count(k), 0.0);
     face_gq_[k].assign(grid.face_count(k), {0.0, 0.0});
     inv_spacing_[k] = 1.0 / grid.spacing[k];
   }
@@ -61,23 +59,21 @@ void PoreFluid<D>::compute_cell_properties() {
   const std::size_t n = grid.size();
   const double volume = grid.cell_volume();
   porosity_.resize(n);
+  porosity_used_.resize(n);
   solid_velocity_.resize(n);
   const bool update_kappa = !permeability_frozen || kappa_.size() != n;
   kappa_.resize(n);
   drag_coefficients_.resize(n);
   for (std::size_t c = 0; c < n; ++c) {
     porosity_[c] = 1.0 - solid_[c] / volume;
+    porosity_used_[c] = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
     solid_velocity_[c] = solid_[c] > 1e-12 * volume ? Vec<D>(solid_flux_[c] / solid_[c]) : Vec<D>::Zero();
-    if (drag == DragLaw::ergun) {
-      drag_coefficients_[c] = ErgunWenYu::of(
-          std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity), fluid);
-    }
+    if (drag == DragLaw::ergun) drag_coefficients_[c] = ErgunWenYu::of(porosity_used_[c], fluid);
     if (!update_kappa) continue;
     if (permeability.model == PermeabilityModel::constant) {
       kappa_[c] = permeability.intrinsic;
     } else {
-      const double nc = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
-      kappa_[c] = kozeny_carman(permeability.diameter, nc) * permeability.anisotropy;
+      kappa_[c] = kozeny_carman(permeability.diameter, porosity_used_[c]) * permeability.anisotropy;
     }
   }
 }
@@ -138,18 +134,19 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   const std::size_t n = grid.size();
   compute_solid(particles);
   compute_cell_properties();
-  const double volume = grid.cell_volume();
   pressure_old_ = pressure_;
 
   // Storage and Biot source.
   double* values = matrix_.valuePtr();
   std::fill(values, values + matrix_.nonZeros(), 0.0);
   double solid_change = 0.0;
+  double solid_moved = 0.0;  // sum of |dVs|, for the balance's gross flow
   for (std::size_t c = 0; c < n; ++c) {
-    const double storage = std::max(porosity_[c], 1e-3) * volume / fluid.bulk_modulus;
+    const double storage = storage_of(c);
     values[diag_pos_[c]] = storage;
     const double d_solid = solid_[c] - solid_old_[c];
     solid_change += d_solid;
+    solid_moved += std::abs(d_solid);
     rhs_[static_cast<Eigen::Index>(c)] = storage * pressure_[c] + d_solid;
   }
   // Darcy conductances and the fluid carried by the moving skeleton.
@@ -198,15 +195,14 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   // inflow = stored + pore change.
   FluidBalance b;
   for (std::size_t c = 0; c < n; ++c) {
-    b.stored +=
-        std::max(porosity_[c], 1e-3) * volume / fluid.bulk_modulus * (pressure_[c] - pressure_old_[c]);
+    b.stored += storage_of(c) * (pressure_[c] - pressure_old_[c]);
   }
   b.pore_change = -solid_change;
   for (int s = 0; s < 2 * D; ++s) {
     b.inflow += side_inflow_[s] * dt;
     b.gross += std::abs(side_inflow_[s] * dt);
   }
-  for (std::size_t c = 0; c < n; ++c) b.gross += std::abs(solid_[c] - solid_old_[c]);
+  b.gross += solid_moved;
   b.gross += std::abs(b.stored);
   last_ = b;
   total_.gross += b.gross;
@@ -224,8 +220,7 @@ void PoreFluid<D>::compute_face_fields(double time) {
     const double la = side_lambda(f.axis, f.a);
     const double lb = side_lambda(f.axis, f.b);
     const double g = (pressure_[f.b] - pressure_[f.a]) / grid.spacing[f.axis];
-    grad_[f.axis][f.index] = g;
-    flux_[f.axis][f.index] = -2.0 * la * lb / (la + lb) * g;
+    face_gq_[f.axis][f.index] = {g, -2.0 * la * lb / (la + lb) * g};
   }
   side_inflow_.fill(0.0);
   for (const auto& bf : boundary_faces_) {
@@ -246,12 +241,24 @@ void PoreFluid<D>::compute_face_fields(double time) {
       const double q = upper ? -inflow : inflow;
       g = -q / lambda;
     }
-    grad_[axis][bf.index] = g;
-    flux_[axis][bf.index] = -lambda * g;
+    face_gq_[axis][bf.index] = {g, -lambda * g};
     side_inflow_[bf.side] += inflow * grid.face_area(axis);
   }
-  for (int k = 0; k < D; ++k) {
-    for (std::size_t f = 0; f < grad_[k].size(); ++f) face_gq_[k][f] = {grad_[k][f], flux_[k][f]};
+}
+
+template <int D>
+void PoreFluid<D>::centre_coordinate(int k, double s, int& cell, double& frac) const {
+  // Between the centres of cells `cell` and `cell + 1`; held at the outer
+  // centres beyond them.
+  const double t = s - 0.5;
+  const int last = grid.cells[k] - 1;
+  const int b = FluidGrid<D>::clamp_cell(std::floor(t), -1, last);
+  if (b < 0 || b >= last) {
+    cell = b < 0 ? 0 : last;
+    frac = 0.0;
+  } else {
+    cell = b;
+    frac = t - b;
   }
 }
 
@@ -270,18 +277,7 @@ void PoreFluid<D>::interpolate(const Vec<D>& x, std::array<double, D>& grad,
     const int b = FluidGrid<D>::clamp_cell(std::floor(s), 0, last);
     face_cell[k] = b;
     face_frac[k] = std::clamp(s - b, 0.0, 1.0);
-    const double t = s - 0.5;
-    const int bc = FluidGrid<D>::clamp_cell(std::floor(t), -1, last);
-    if (bc < 0) {
-      centre_cell[k] = 0;
-      centre_frac[k] = 0.0;
-    } else if (bc >= last) {
-      centre_cell[k] = last;
-      centre_frac[k] = 0.0;
-    } else {
-      centre_cell[k] = bc;
-      centre_frac[k] = t - bc;
-    }
+    centre_coordinate(k, s, centre_cell[k], centre_frac[k]);
   }
   for (int a = 0; a < D; ++a) {
     std::size_t base = 0;
@@ -329,20 +325,8 @@ template <int D>
 double PoreFluid<D>::pressure_at(const Vec<D>& x) const {
   std::array<int, D> base{};
   std::array<double, D> frac{};
-  for (int k = 0; k < D; ++k) {
-    const double t = (x[k] - grid.origin[k]) / grid.spacing[k] - 0.5;
-    int b = FluidGrid<D>::clamp_cell(std::floor(t), -1, grid.cells[k] - 1);
-    double fr = t - b;
-    if (b < 0) {
-      b = 0;
-      fr = 0.0;
-    } else if (b >= grid.cells[k] - 1) {
-      b = grid.cells[k] - 1;
-      fr = 0.0;
-    }
-    base[k] = b;
-    frac[k] = fr;
-  }
+  for (int k = 0; k < D; ++k)
+    centre_coordinate(k, (x[k] - grid.origin[k]) * inv_spacing_[k], base[k], frac[k]);
   double sum = 0.0;
   for (int corner = 0; corner < (1 << D); ++corner) {
     double w = 1.0;
@@ -366,7 +350,7 @@ std::vector<Vec<D>> PoreFluid<D>::darcy_velocity() const {
     for (int k = 0; k < D; ++k) {
       auto up = cc;
       ++up[k];
-      v[c][k] = 0.5 * (flux_[k][grid.face_index(k, cc)] + flux_[k][grid.face_index(k, up)]);
+      v[c][k] = 0.5 * (face_gq_[k][grid.face_index(k, cc)][1] + face_gq_[k][grid.face_index(k, up)][1]);
     }
   }
   return v;
@@ -386,7 +370,7 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
     }
     const std::size_t c = grid.index(cell);
     const double vp = particle_volume<D>(p.radius[i]);
-    const double n = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
+    const double n = porosity_used_[c];
     // Component by component in plain arrays (assembling small Eigen
     // vectors element-wise stalls on store-to-load forwarding here).
     std::array<double, D> f{};

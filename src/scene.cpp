@@ -19,9 +19,6 @@ namespace {
 const std::vector<std::string> kTopLevel = {"simulation", "material", "contact", "wall",  "particles",
                                             "output",     "probe",    "stage",   "fluid", "analysis"};
 
-auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
-auto non_negative = [](double v) { return v >= 0.0 && std::isfinite(v); };
-
 template <int D>
 Vec<D> to_vec(const std::vector<double>& v) {
   Vec<D> out;
@@ -66,10 +63,10 @@ RadiusDistribution read_radius(TableReader& r) {
   r.allow({"radius", "radius_min", "radius_max", "radii", "fractions"});
   if (r.has("radius")) {
     d.kind = RadiusDistribution::Kind::constant;
-    d.value = r.check("radius", r.number("radius"), positive, "> 0 m");
+    d.value = r.check("radius", r.number("radius"), is_positive, "> 0 m");
   } else if (r.has("radius_min") || r.has("radius_max")) {
     d.kind = RadiusDistribution::Kind::uniform;
-    d.min = r.check("radius_min", r.number("radius_min"), positive, "> 0 m");
+    d.min = r.check("radius_min", r.number("radius_min"), is_positive, "> 0 m");
     d.max = r.number("radius_max");
     r.check(
         "radius_max", d.max, [&](double v) { return v >= d.min; }, ">= radius_min");
@@ -81,8 +78,8 @@ RadiusDistribution read_radius(TableReader& r) {
       r.fail("fractions", "must have as many entries as 'radii'");
     }
     double sum = 0.0;
-    for (double f : d.fractions) sum += r.check("fractions", f, non_negative, ">= 0");
-    for (double x : d.radii) r.check("radii", x, positive, "> 0 m");
+    for (double f : d.fractions) sum += r.check("fractions", f, is_non_negative, ">= 0");
+    for (double x : d.radii) r.check("radii", x, is_positive, "> 0 m");
     if (std::abs(sum - 1.0) > 1e-9)
       r.fail("fractions", fmt::format("must add up to 1, they add up to {}", sum));
   } else {
@@ -116,9 +113,9 @@ void read_wall_motion(TableReader& r, Vec<D>& velocity, WallMotion& motion, Serv
   } else if (const toml::table* s = r.optional_table("servo")) {
     TableReader sr(*s, r.where() + " servo", r.file());
     motion = WallMotion::servo;
-    servo.target_force = sr.check("target_force", sr.number("target_force"), non_negative, ">= 0 N");
-    servo.gain = sr.check("gain", sr.number("gain"), positive, "> 0 m/(s N)");
-    servo.max_speed = sr.check("max_speed", sr.number("max_speed"), positive, "> 0 m/s");
+    servo.target_force = sr.check("target_force", sr.number("target_force"), is_non_negative, ">= 0 N");
+    servo.gain = sr.check("gain", sr.number("gain"), is_positive, "> 0 m/(s N)");
+    servo.max_speed = sr.check("max_speed", sr.number("max_speed"), is_positive, "> 0 m/s");
     sr.finish();
   } else if (r.has("fixed")) {
     if (!r.boolean_or("fixed", true))
@@ -216,7 +213,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
           r.fail("time_step", "must be \"auto\" or a number of seconds > 0");
       } else if (auto v = n->value<double>(); v && (n->is_floating_point() || n->is_integer())) {
         scene.time_step.automatic = false;
-        scene.time_step.value = r.check("time_step", *v, positive, "\"auto\" or a number of seconds > 0");
+        scene.time_step.value = r.check("time_step", *v, is_positive, "\"auto\" or a number of seconds > 0");
       } else {
         r.fail("time_step", "must be \"auto\" or a number of seconds > 0");
       }
@@ -224,9 +221,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     scene.time_step.safety_factor = r.check(
         "safety_factor", r.number_or("safety_factor", 0.2), [](double v) { return v > 0.0 && v <= 1.0; },
         "in (0, 1]");
-    sim.skin = r.check("skin", r.number_or("skin", 0.0), non_negative, ">= 0 m (0: automatic)");
+    sim.skin = r.check("skin", r.number_or("skin", 0.0), is_non_negative, ">= 0 m (0: automatic)");
     overlap_tolerance = r.check("initial_overlap_tolerance", r.number_or("initial_overlap_tolerance", 0.01),
-                                non_negative, ">= 0 (a fraction of the radius)");
+                                is_non_negative, ">= 0 (a fraction of the radius)");
     r.finish();
   }
 
@@ -237,8 +234,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     m.name = r.string("name");
     if (materials.index.count(m.name) != 0)
       r.fail("name", fmt::format("material \"{}\" is defined twice", m.name));
-    m.density = r.check("density", r.number("density"), positive, "> 0 kg/m^3");
-    m.youngs_modulus = r.check("youngs_modulus", r.number_or("youngs_modulus", 0.0), non_negative, ">= 0 Pa");
+    m.density = r.check("density", r.number("density"), is_positive, "> 0 kg/m^3");
+    m.youngs_modulus =
+        r.check("youngs_modulus", r.number_or("youngs_modulus", 0.0), is_non_negative, ">= 0 Pa");
     m.poisson_ratio = r.check(
         "poisson_ratio", r.number_or("poisson_ratio", 0.0), [](double v) { return v > -1.0 && v < 0.5; },
         "in (-1, 0.5)");
@@ -264,9 +262,11 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     r.allow({"normal_stiffness", "tangential_stiffness_ratio"});
     if (law == "linear") {
       spec.law = NormalLaw::linear;
-      spec.normal_stiffness = r.check("normal_stiffness", r.number("normal_stiffness"), positive, "> 0 N/m");
-      spec.tangential_stiffness_ratio = r.check(
-          "tangential_stiffness_ratio", r.number_or("tangential_stiffness_ratio", 1.0), non_negative, ">= 0");
+      spec.normal_stiffness =
+          r.check("normal_stiffness", r.number("normal_stiffness"), is_positive, "> 0 N/m");
+      spec.tangential_stiffness_ratio =
+          r.check("tangential_stiffness_ratio", r.number_or("tangential_stiffness_ratio", 1.0),
+                  is_non_negative, ">= 0");
     } else {
       spec.law = NormalLaw::hertz_mindlin;
       if (r.has("normal_stiffness"))
@@ -281,9 +281,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     }
     spec.restitution = r.check(
         "restitution", r.number("restitution"), [](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]");
-    spec.friction = r.check("friction", r.number_or("friction", 0.0), non_negative, ">= 0");
+    spec.friction = r.check("friction", r.number_or("friction", 0.0), is_non_negative, ">= 0");
     spec.rolling_friction =
-        r.check("rolling_friction", r.number_or("rolling_friction", 0.0), non_negative, ">= 0");
+        r.check("rolling_friction", r.number_or("rolling_friction", 0.0), is_non_negative, ">= 0");
     sim.contact_table.set(a, b, make_pair_parameters(sim.materials[a], sim.materials[b], spec));
     defined[a * nm + b] = defined[b * nm + a] = true;
   });
@@ -314,7 +314,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     if (gen == "lattice") {
       const Vec<D> lo = to_vec<D>(r.numbers("min", D));
       const Vec<D> hi = to_vec<D>(r.numbers("max", D));
-      const double radius = r.check("radius", r.number("radius"), positive, "> 0 m");
+      const double radius = r.check("radius", r.number("radius"), is_positive, "> 0 m");
       const double spacing = r.check(
           "spacing", r.number_or("spacing", 2.0 * radius), [&](double v) { return v >= 2.0 * radius; },
           ">= 2 x radius (m)");
@@ -326,8 +326,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       const Vec<D> axis = read_direction<D>(r, "axis", up);
       const auto count = r.integer("count");
       if (count < 1) r.fail("count", "must be >= 1");
-      const double radius = r.check("radius", r.number("radius"), positive, "> 0 m");
-      const double gap = r.check("gap", r.number_or("gap", 0.0), non_negative, ">= 0 m");
+      const double radius = r.check("radius", r.number("radius"), is_positive, "> 0 m");
+      const double gap = r.check("gap", r.number_or("gap", 0.0), is_non_negative, ">= 0 m");
       pk = column_packing<D>(base, axis, static_cast<int>(count), radius, gap);
     } else if (gen == "random") {
       const Vec<D> lo = to_vec<D>(r.numbers("min", D));
@@ -395,9 +395,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   if (const toml::table* t = top.optional_table("output")) {
     TableReader r(*t, "[output]", file);
     scene.output.probe_interval =
-        r.check("probe_interval", r.number_or("probe_interval", 0.0), non_negative, ">= 0 s");
+        r.check("probe_interval", r.number_or("probe_interval", 0.0), is_non_negative, ">= 0 s");
     scene.output.snapshot_interval =
-        r.check("snapshot_interval", r.number_or("snapshot_interval", 0.0), non_negative, ">= 0 s");
+        r.check("snapshot_interval", r.number_or("snapshot_interval", 0.0), is_non_negative, ">= 0 s");
     r.finish();
   }
   std::vector<std::string> probe_names;
@@ -501,22 +501,22 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   for_each_table(top, "stage", "stage", [&](TableReader& r, int index) {
     Stage<D> s;
     s.name = r.optional_string("name").value_or(fmt::format("stage{}", index));
-    s.duration = r.check("duration", r.number("duration"), positive, "> 0 s (the longest the stage runs)");
+    s.duration = r.check("duration", r.number("duration"), is_positive, "> 0 s (the longest the stage runs)");
     if (auto g = r.optional_numbers("gravity", D)) s.gravity = to_vec<D>(*g);
     if (auto a = r.optional_number("local_damping")) {
       s.local_damping = r.check(
           "local_damping", *a, [](double v) { return v >= 0.0 && v < 1.0; }, "in [0, 1)");
     }
     if (auto b = r.optional_number("viscous_damping")) {
-      s.viscous_damping = r.check("viscous_damping", *b, non_negative, ">= 0 1/s");
+      s.viscous_damping = r.check("viscous_damping", *b, is_non_negative, ">= 0 1/s");
     }
     if (const toml::table* st = r.optional_table("stop_when")) {
       TableReader sr(*st, r.where() + " stop_when", file);
       if (auto v = sr.optional_number("kinetic_energy_below")) {
-        s.kinetic_energy_below = sr.check("kinetic_energy_below", *v, positive, "> 0 J");
+        s.kinetic_energy_below = sr.check("kinetic_energy_below", *v, is_positive, "> 0 J");
       }
       if (auto v = sr.optional_number("unbalanced_force_below")) {
-        s.unbalanced_force_below = sr.check("unbalanced_force_below", *v, positive, "> 0");
+        s.unbalanced_force_below = sr.check("unbalanced_force_below", *v, is_positive, "> 0");
       }
       s.check_interval = sr.optional_integer("check_interval").value_or(100);
       if (s.check_interval < 1) sr.fail("check_interval", "must be >= 1 step");
@@ -581,11 +581,14 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     a.settle_stage = stage_name("settle_stage");
     a.inflow_stage = stage_name("inflow_stage");
     a.pressure_times = r.number_list("pressure_times");
-    for (double x : a.pressure_times) r.check("pressure_times", x, positive, "> 0 s after the inflow starts");
-    a.uplift_interval = r.check("uplift_interval", r.number_or("uplift_interval", 1e-3), positive, "> 0 s");
-    a.uplift_tolerance = r.check("uplift_tolerance", r.number_or("uplift_tolerance", 0.02), positive, "> 0");
+    for (double x : a.pressure_times)
+      r.check("pressure_times", x, is_positive, "> 0 s after the inflow starts");
+    a.uplift_interval =
+        r.check("uplift_interval", r.number_or("uplift_interval", 1e-3), is_positive, "> 0 s");
+    a.uplift_tolerance =
+        r.check("uplift_tolerance", r.number_or("uplift_tolerance", 0.02), is_positive, "> 0");
     a.pressure_tolerance =
-        r.check("pressure_tolerance", r.number_or("pressure_tolerance", 0.03), positive, "> 0");
+        r.check("pressure_tolerance", r.number_or("pressure_tolerance", 0.03), is_positive, "> 0");
     a.plots = r.boolean_or("plots", true);
     const auto& inflow = *std::find_if(scene.stages.begin(), scene.stages.end(),
                                        [&](const Stage<D>& st) { return st.name == a.inflow_stage; });

@@ -9,8 +9,6 @@
 namespace darcydem {
 namespace {
 
-auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
-
 template <int D>
 std::vector<std::string> side_list() {
   return std::vector<std::string>(side_names, side_names + 2 * D);
@@ -88,12 +86,12 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   TableReader r(table, "[fluid]", file);
   const std::string solver = r.optional_choice("solver", {"cholesky", "cg"}).value_or("cg");
   const double tolerance =
-      r.check("tolerance", r.number_or("tolerance", 1e-10), positive, "> 0 (CG, relative)");
+      r.check("tolerance", r.number_or("tolerance", 1e-10), is_positive, "> 0 (CG, relative)");
   auto fluid = std::make_unique<PoreFluid<D>>(
       solver == "cg" ? PressureSolverKind::cg : PressureSolverKind::cholesky, tolerance);
-  fluid->fluid.density = r.check("density", r.number("density"), positive, "> 0 kg/m^3");
-  fluid->fluid.viscosity = r.check("viscosity", r.number("viscosity"), positive, "> 0 Pa s");
-  fluid->fluid.bulk_modulus = r.check("bulk_modulus", r.number("bulk_modulus"), positive, "> 0 Pa");
+  fluid->fluid.density = r.check("density", r.number("density"), is_positive, "> 0 kg/m^3");
+  fluid->fluid.viscosity = r.check("viscosity", r.number("viscosity"), is_positive, "> 0 Pa s");
+  fluid->fluid.bulk_modulus = r.check("bulk_modulus", r.number("bulk_modulus"), is_positive, "> 0 Pa");
   const std::string drag = r.choice("drag", {"darcy", "ergun"});
   fluid->drag = drag == "ergun" ? DragLaw::ergun : DragLaw::darcy;
   const auto m = r.optional_integer("steps_per_update").value_or(1);
@@ -121,7 +119,7 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
       if (!(cells[k] >= 1.0) || cells[k] != std::floor(cells[k]) || cells[k] > 1e6)
         g.fail("cells", "must be whole numbers of cells >= 1 along each axis");
       fluid->grid.cells[k] = static_cast<int>(cells[k]);
-      g.check("size", size[k], positive, "> 0 m along each axis (the size of one cell)");
+      g.check("size", size[k], is_positive, "> 0 m along each axis (the size of one cell)");
       if (size[k] < 2.0 * r_max * (1.0 - 1e-12)) {
         g.fail("size",
                fmt::format("cells must be at least one grain diameter wide: {:.4g} m along {} is less "
@@ -145,10 +143,10 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
     p.allow({"diameter", "anisotropy", "hydraulic_conductivity", "intrinsic"});
     if (model == "kozeny_carman") {
       spec.model = PermeabilityModel::kozeny_carman;
-      spec.diameter = p.check("diameter", p.number_or("diameter", d_mean), positive, "> 0 m");
+      spec.diameter = p.check("diameter", p.number_or("diameter", d_mean), is_positive, "> 0 m");
       if (auto a = p.optional_numbers("anisotropy", D)) {
         for (int k = 0; k < D; ++k)
-          spec.anisotropy[k] = p.check("anisotropy", (*a)[k], positive, "> 0 on every axis");
+          spec.anisotropy[k] = p.check("anisotropy", (*a)[k], is_positive, "> 0 on every axis");
       }
       for (auto k : {"hydraulic_conductivity", "intrinsic"}) {
         if (p.has(k))
@@ -166,13 +164,13 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
       if (p.has("hydraulic_conductivity")) {
         const auto k = p.numbers("hydraulic_conductivity", D);
         for (int a = 0; a < D; ++a) {
-          p.check("hydraulic_conductivity", k[a], positive, "> 0 m/s on every axis");
+          p.check("hydraulic_conductivity", k[a], is_positive, "> 0 m/s on every axis");
           spec.intrinsic[a] = k[a] * fluid->fluid.viscosity / fluid->fluid.unit_weight();
         }
       } else {
         const auto k = p.numbers("intrinsic", D);
         for (int a = 0; a < D; ++a)
-          spec.intrinsic[a] = p.check("intrinsic", k[a], positive, "> 0 m^2 on every axis");
+          spec.intrinsic[a] = p.check("intrinsic", k[a], is_positive, "> 0 m^2 on every axis");
       }
     }
     spec.max_porosity = p.check(

@@ -1,4 +1,6 @@
 #pragma once
+#include <cmath>
+
 // Small helpers to set up DEM cases through the library API.
 #include "darcydem/contact/contact_laws.hpp"
 #include "darcydem/simulation/simulation.hpp"
@@ -24,6 +26,28 @@ Wall<D> plane(const Vec<D>& point, const Vec<D>& normal, const char* name = "wal
   w.point = point;
   w.normal = normal.normalized();
   return w;
+}
+
+/// A particle of radius r (2500 kg/m^3) resting on a floor normal to the
+/// last axis under gravity g and moving along x at v0. The normal stiffness
+/// makes the resting overlap 1e-4 r; the other contact values are the
+/// caller's. dt = 0.05 sqrt(m / k_n). Prepared.
+template <int D>
+Simulation<D> particle_on_floor(ContactSpec spec, double r, double v0, double g) {
+  const double m = 2500.0 * particle_volume<D>(r);
+  spec.normal_stiffness = m * g / (1e-4 * r);
+  auto sim = single_material<D>(2500.0, spec);
+  Vec<D> x = Vec<D>::Zero();
+  x[D - 1] = r - m * g / spec.normal_stiffness;  // resting overlap
+  Vec<D> v = Vec<D>::Zero();
+  v[0] = v0;
+  sim.particles.add(x, r, 2500.0, 0, false, v);
+  Vec<D> up = Vec<D>::Zero();
+  up[D - 1] = 1.0;
+  sim.walls.push_back(plane<D>(Vec<D>::Zero(), up, "floor"));
+  sim.gravity[D - 1] = -g;
+  sim.time_step = 0.05 * std::sqrt(m / spec.normal_stiffness);
+  return sim;
 }
 
 }  // namespace darcydem::testing

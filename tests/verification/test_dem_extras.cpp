@@ -14,6 +14,7 @@
 namespace darcydem {
 namespace {
 
+using testing::particle_on_floor;
 using testing::plane;
 using testing::single_material;
 
@@ -25,20 +26,13 @@ using testing::single_material;
 template <int D>
 void rolling_deceleration() {
   const double r = 1e-3;
-  const double m = 2500.0 * particle_volume<D>(r);
   const double g = 9.81;
+  const double v0 = 0.05;
   ContactSpec spec;
-  spec.normal_stiffness = m * g / (1e-4 * r);
   spec.restitution = 0.5;
   spec.friction = 0.5;
   spec.rolling_friction = 0.1;
-  auto sim = single_material<D>(2500.0, spec);
-  Vec<D> x = Vec<D>::Zero();
-  x[D - 1] = r - m * g / spec.normal_stiffness;
-  const double v0 = 0.05;
-  Vec<D> v = Vec<D>::Zero();
-  v[0] = v0;
-  sim.particles.add(x, r, 2500.0, 0, false, v);
+  auto sim = particle_on_floor<D>(spec, r, v0, g);
   // Rolling without slip from the start: omega = v / r about the axis that
   // turns +x motion on a floor normal to the last axis.
   if constexpr (D == 2) {
@@ -46,14 +40,8 @@ void rolling_deceleration() {
   } else {
     sim.particles.angular_velocity[0][1] = v0 / r;
   }
-  Vec<D> up = Vec<D>::Zero();
-  up[D - 1] = 1.0;
-  sim.walls.push_back(plane<D>(Vec<D>::Zero(), up, "floor"));
-  sim.gravity[D - 1] = -g;
-  sim.time_step = 0.05 * std::sqrt(m / spec.normal_stiffness);
   sim.prepare();
-  const double inertia = D == 2 ? 0.5 : 0.4;
-  const double a = spec.rolling_friction * g / (1.0 + inertia);
+  const double a = spec.rolling_friction * g / (1.0 + inertia_factor<D>);
   const double stop = v0 / a;
   while (sim.time < 0.2 * stop) sim.step();
   const double t1 = sim.time;

@@ -166,7 +166,7 @@ TEST(FluidScenes, TerzaghiConsolidation) {
   const auto& t = probes.at("time");
   const auto& top = probes.at("top_y");
   const auto& load = probes.at("lid_load");
-  const double stage_start = 1.5;
+  const double stage_start = scene.stages.front().duration;  // the load stage starts here
   std::size_t i0 = 0;
   while (t[i0] < stage_start - 1e-9) ++i0;
   std::size_t ic = i0;

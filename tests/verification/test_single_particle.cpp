@@ -11,6 +11,7 @@
 namespace darcydem {
 namespace {
 
+using testing::particle_on_floor;
 using testing::plane;
 using testing::single_material;
 
@@ -166,24 +167,11 @@ TEST(ObliqueImpact, SlidingImpulseDiscs) { oblique_impact<2>(0.5); }
 // r - overlap with a resting overlap of 1e-4 r; 0.5% tolerance.
 template <int D>
 double slip_to_roll(double v0) {
-  const double r = 1e-3;
-  const double m = 2500.0 * particle_volume<D>(r);
   const double g = 9.81;
   ContactSpec spec;
-  spec.normal_stiffness = m * g / (1e-4 * r);
   spec.restitution = 0.5;
   spec.friction = 0.3;
-  auto sim = single_material<D>(2500.0, spec);
-  Vec<D> x = Vec<D>::Zero();
-  x[D - 1] = r - m * g / spec.normal_stiffness;  // resting overlap
-  Vec<D> v = Vec<D>::Zero();
-  v[0] = v0;
-  sim.particles.add(x, r, 2500.0, 0, false, v);
-  Vec<D> up = Vec<D>::Zero();
-  up[D - 1] = 1.0;
-  sim.walls.push_back(plane<D>(Vec<D>::Zero(), up, "floor"));
-  sim.gravity[D - 1] = -g;
-  sim.time_step = 0.05 * std::sqrt(m / spec.normal_stiffness);
+  auto sim = particle_on_floor<D>(spec, 1e-3, v0, g);
   sim.prepare();
   const double slip_time = 2.0 * v0 / (7.0 * spec.friction * g);  // sphere; disc is shorter
   while (sim.time < 3.0 * slip_time) sim.step();

@@ -14,6 +14,7 @@
 //      harmonic mean of the two cells.
 //   3. face pressure gradients and Darcy fluxes q = -(kappa/mu) grad u.
 // Forces on each grain (every DEM step): -V_p grad u + drag + buoyancy.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -78,8 +79,6 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] const std::vector<Vec<D>>& solid_velocity() const { return solid_velocity_; }  ///< m/s
   /// Darcy velocity at each cell centre (mean of the two faces), m/s.
   [[nodiscard]] std::vector<Vec<D>> darcy_velocity() const;
-  /// Darcy flux through the faces normal to `axis`, along +axis, m/s.
-  [[nodiscard]] const std::vector<double>& face_flux(int axis) const { return flux_[axis]; }
   /// Excess pressure at a point, interpolated between cell centres, Pa.
   [[nodiscard]] double pressure_at(const Vec<D>& x) const;
   /// Pressure gradient at a point (staggered interpolation), Pa/m.
@@ -116,6 +115,12 @@ class PoreFluid final : public ParticleForceField<D> {
   /// cell holding x along that axis, and between cell centres along the
   /// others (held beyond the outer ones), as on a staggered (MAC) grid.
   void interpolate(const Vec<D>& x, std::array<double, D>& grad, std::array<double, D>& flux) const;
+  /// Cell-centre interpolation along axis k at s = (x - origin) / h.
+  void centre_coordinate(int k, double s, int& cell, double& frac) const;
+  /// Storage n V / K_f of cell c, m^3/Pa (porosity floored at 1e-3).
+  [[nodiscard]] double storage_of(std::size_t c) const {
+    return std::max(porosity_[c], 1e-3) * grid.cell_volume() / fluid.bulk_modulus;
+  }
 
   struct Face {
     std::uint32_t a, b;  ///< cells below and above along `axis`
@@ -130,6 +135,7 @@ class PoreFluid final : public ParticleForceField<D> {
   };
 
   std::vector<double> pressure_, pressure_old_, porosity_, solid_, solid_old_;
+  std::vector<double> porosity_used_;  ///< porosity clamped to the permeability's [min, max]
   std::vector<Vec<D>> solid_flux_, solid_velocity_, kappa_;
   std::vector<ErgunWenYu> drag_coefficients_;  ///< per cell, at its clamped porosity
   std::array<std::vector<double>, D> grad_, flux_;

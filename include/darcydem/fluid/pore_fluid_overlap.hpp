@@ -17,6 +17,19 @@
 
 namespace darcydem {
 
+/// Inclusion-exclusion over the subsets T of `all` that contain s:
+/// sum (-1)^{|T| - |s|} m[T], the measure beyond exactly the planes of s
+/// when m[T] is the measure beyond (at least) the planes of T.
+template <std::size_t N>
+inline double beyond_exactly(const std::array<double, N>& m, int s, int all) {
+  double v = 0.0;
+  for (int t = s;; t = (t + 1) | s) {
+    v += ((__builtin_popcount(t ^ s) & 1) != 0 ? -m[t] : m[t]);
+    if (t == all) break;
+  }
+  return v;
+}
+
 template <int D>
 template <class F, class G>
 void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, F&& f, G&& section, bool sections) const {
@@ -97,11 +110,7 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, F&& f, G&& section
         }
         const int oall = (1 << no) - 1;
         for (int s = 0; s <= oall; ++s) {
-          double a = 0.0;
-          for (int t = s;; t = (t + 1) | s) {
-            a += ((__builtin_popcount(t ^ s) & 1) != 0 ? -ms[t] : ms[t]);
-            if (t == oall) break;
-          }
+          const double a = beyond_exactly(ms, s, oall);
           const int k = axes[j];
           std::array<int, D> face = home;
           face[k] = std::max(home[k], other[k]);
@@ -117,11 +126,7 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, F&& f, G&& section
       }
     }
     for (int s = 0; s <= all; ++s) {
-      double v = 0.0;
-      for (int t = s;; t = (t + 1) | s) {
-        v += ((__builtin_popcount(t ^ s) & 1) != 0 ? -m[t] : m[t]);
-        if (t == all) break;
-      }
+      const double v = beyond_exactly(m, s, all);
       std::array<int, D> cell = home;
       for (int j = 0; j < crossing; ++j) {
         if ((s >> j) & 1) cell[axes[j]] = other[axes[j]];

@@ -3,6 +3,7 @@
 // name; whatever is left over is an unknown key, reported with a "did you
 // mean" when it is close to an allowed one. Errors name the file, line,
 // column and key, and say what is allowed.
+#include <cmath>
 #include <initializer_list>
 #include <optional>
 #include <set>
@@ -14,6 +15,10 @@
 #include <toml++/toml.h>
 
 namespace darcydem {
+
+/// Predicates for TableReader::check.
+inline bool is_positive(double v) { return v > 0.0 && std::isfinite(v); }
+inline bool is_non_negative(double v) { return v >= 0.0 && std::isfinite(v); }
 
 class SceneError : public std::runtime_error {
  public:
