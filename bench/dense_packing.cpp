@@ -23,23 +23,6 @@ using bench::make_packing;
 using darcydem::Simulation;
 using darcydem::Vec;
 
-template <class T>
-std::size_t bytes(const std::vector<T>& v) {
-  return v.capacity() * sizeof(T);
-}
-
-std::size_t footprint(const Simulation<3>& sim) {
-  const auto& p = sim.particles;
-  const auto& l = sim.pair_list();
-  return bytes(p.id) + bytes(p.radius) + bytes(p.inv_mass) + bytes(p.inv_inertia) + bytes(p.material) +
-         bytes(p.fixed) + bytes(p.position) + bytes(p.velocity) + bytes(p.angular_velocity) + bytes(p.force) +
-         bytes(p.torque) + bytes(p.external_force) + bytes(l.row_offset) + bytes(l.neighbour) +
-         bytes(l.tangential) + bytes(l.rolling) + bytes(l.force_on_j) + bytes(l.torque_on_j) +
-         bytes(l.reverse_offset) + bytes(l.reverse_pair) +
-         // the list keeps reference positions and a linked-cell index
-         p.size() * (sizeof(Vec<3>) + 2 * sizeof(std::uint32_t));
-}
-
 /// The counters both packings report.
 void report(benchmark::State& state, const Simulation<3>& sim, int threads, std::size_t builds0) {
   const double particles = static_cast<double>(sim.particles.size());
@@ -47,7 +30,9 @@ void report(benchmark::State& state, const Simulation<3>& sim, int threads, std:
       benchmark::Counter(particles * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["particles"] = particles;
   state.counters["threads"] = threads;
-  state.counters["bytes_per_particle"] = static_cast<double>(footprint(sim)) / particles;
+  state.counters["bytes_per_particle"] = static_cast<double>(sim.memory_bytes()) / particles;
+  state.counters["cross_pair_share"] =
+      static_cast<double>(sim.pair_list().cross_count()) / static_cast<double>(sim.pair_list().pair_count());
   state.counters["pairs_per_particle"] = static_cast<double>(sim.pair_list().pair_count()) / particles;
   state.counters["contacts_per_particle"] = static_cast<double>(sim.contact_count()) / particles;
   state.counters["list_builds"] = static_cast<double>(sim.list_builds() - builds0);

@@ -25,6 +25,7 @@ PairParameters make_pair_parameters(const Material& a, const Material& b, const 
   // The tangential dashpot uses the damping ratio of a linear oscillator with
   // the same restitution.
   p.tangential_damping = damping_for_restitution(NormalLaw::linear, spec.restitution);
+  p.derive();
   return p;
 }
 

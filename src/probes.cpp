@@ -19,7 +19,7 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
     case ProbeQuantity::particle_position:
     case ProbeQuantity::particle_velocity: {
       const std::size_t i =
-          probe.particle < 0 ? topmost_particle(p) : static_cast<std::size_t>(probe.particle);
+          probe.particle < 0 ? topmost_particle(p) : p.index_of(static_cast<std::uint32_t>(probe.particle));
       return pick(probe.quantity == ProbeQuantity::particle_position ? p.position[i] : p.velocity[i]);
     }
     case ProbeQuantity::wall_position:

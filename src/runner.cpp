@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -150,8 +151,14 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   RunSummary summary;
   const auto start = Clock::now();
   Progress progress(options);
-  // The first stage's settings apply from the start.
+  // The first stage's settings apply from the start. Contact force
+  // magnitudes are summed only if a stop condition or a probe needs them.
   if (!scene.stages.empty()) apply_stage(sim, fluid, scene.stages.front());
+  sim.measure_contact_forces =
+      std::any_of(scene.stages.begin(), scene.stages.end(),
+                  [](const auto& st) { return st.unbalanced_force_below.has_value(); }) ||
+      std::any_of(scene.output.probes.begin(), scene.output.probes.end(),
+                  [](const auto& p) { return p.quantity == ProbeQuantity::unbalanced_force; });
   sim.prepare();
   write_probes();
   write_snapshot();

@@ -32,32 +32,41 @@ void Simulation<D>::prepare() {
   }
   if (time_step <= 0.0) throw std::logic_error("time step not set");
   rebuild();
-  compute_forces();
+  compute_forces(false);
   prepared_ = true;
 }
 
 template <int D>
 void Simulation<D>::step() {
   if (!prepared_) prepare();
-  kick(0.5 * time_step);
-  drift();
+  const double moved = kick_drift();
   for (auto& w : walls) w.advance(time_step);
   time += time_step;
-  rebuild_if_needed();
-  compute_forces();
-  kick(0.5 * time_step);
+  rebuild_if_needed(moved);
+  compute_forces(true);
   ++steps;
 }
 
 template <int D>
 void Simulation<D>::rebuild() {
-  list_.build(particles.position, particles.radius, skin, rolling_);
-  wall_list_.build(particles.position, particles.radius, walls, skin, rolling_);
+  const std::vector<std::uint32_t>* old_index = nullptr;
+  std::vector<std::uint32_t> order;
+  if (particles.size() > sort_threshold) {
+    order = list_.spatial_order(particles.position, particles.radius, skin);
+    bool identity = true;
+    for (std::size_t k = 0; k < order.size() && identity; ++k) identity = order[k] == k;
+    if (!identity) {
+      particles.permute(order);
+      old_index = &order;
+    }
+  }
+  list_.build(particles.position, particles.radius, skin, rolling_, old_index);
+  wall_list_.build(particles.position, particles.radius, walls, skin, rolling_, old_index);
+  block_sums_.assign(static_cast<std::size_t>(list_.block_count()), {0.0, 0.0});
 }
 
 template <int D>
-void Simulation<D>::rebuild_if_needed() {
-  const double moved = list_.max_displacement(particles.position);
+void Simulation<D>::rebuild_if_needed(double moved) {
   double wall_moved = 0.0;
   for (const auto& w : walls) {
     wall_moved = std::max(wall_moved, std::abs((w.point - w.point_at_build).dot(w.normal)));
@@ -65,154 +74,215 @@ void Simulation<D>::rebuild_if_needed() {
   if (2.0 * moved > skin || moved + wall_moved > skin) rebuild();
 }
 
+namespace {
+/// Cundall's local damping of one component: a force against the velocity,
+/// proportional to the unbalanced force. The sign is computed without a
+/// branch: in a settled packing the signs are random and a branch would be
+/// mispredicted half the time.
+inline double locally_damped(double f, double v, double alpha) {
+  const double sign = static_cast<double>(v > 0.0) - static_cast<double>(v < 0.0);
+  return f - alpha * std::abs(f) * sign;
+}
+
+/// NaN would be ignored by max(): count it as an infinite displacement, so
+/// the list is rebuilt and the rebuild reports the blown-up state.
+inline double finite_or_inf(double v) { return std::isnan(v) ? std::numeric_limits<double>::infinity() : v; }
+}  // namespace
+
 template <int D>
-void Simulation<D>::kick(double half_dt) {
-  const auto n = static_cast<std::int64_t>(particles.size());
+void Simulation<D>::kick_one(std::size_t i, double half_dt) {
+  auto& p = particles;
   const double alpha = damping.local;
   const double beta = damping.viscous;
-  auto& p = particles;
-  for_each_index(n, [&](std::int64_t i) {
-    if (p.fixed[i] != 0) return;
-    Vec<D> f = p.force[i];
-    AngVec<D> t = p.torque[i];
-    if (alpha > 0.0) {
-      // Cundall's local damping: a force against the velocity, proportional
-      // to the unbalanced force, component by component.
-      for (int k = 0; k < D; ++k) {
-        const double v = p.velocity[i][k];
-        f[k] -= alpha * std::abs(p.force[i][k]) * (v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0));
-      }
-      for (int k = 0; k < rotation_dim<D>; ++k) {
-        const double w = p.angular_velocity[i][k];
-        t[k] -= alpha * std::abs(p.torque[i][k]) * (w > 0.0 ? 1.0 : (w < 0.0 ? -1.0 : 0.0));
-      }
-    }
-    Vec<D> a = f * p.inv_mass[i];
-    AngVec<D> alpha_rot = t * p.inv_inertia[i];
-    if (beta > 0.0) {
-      a -= beta * p.velocity[i];
-      alpha_rot -= beta * p.angular_velocity[i];
-    }
-    p.velocity[i] += a * half_dt;
-    p.angular_velocity[i] += alpha_rot * half_dt;
-  });
+  Vec<D> f = p.force[i];
+  AngVec<D> t = p.torque[i];
+  if (alpha > 0.0) {
+    for (int k = 0; k < D; ++k) f[k] = locally_damped(f[k], p.velocity[i][k], alpha);
+    for (int k = 0; k < rotation_dim<D>; ++k) t[k] = locally_damped(t[k], p.angular_velocity[i][k], alpha);
+  }
+  Vec<D> a = f * p.inv_mass[i];
+  AngVec<D> alpha_rot = t * p.inv_inertia[i];
+  if (beta > 0.0) {
+    a -= beta * p.velocity[i];
+    alpha_rot -= beta * p.angular_velocity[i];
+  }
+  p.velocity[i] += a * half_dt;
+  p.angular_velocity[i] += alpha_rot * half_dt;
 }
 
 template <int D>
-void Simulation<D>::drift() {
-  const auto n = static_cast<std::int64_t>(particles.size());
+double Simulation<D>::kick_drift() {
+  auto& p = particles;
+  const auto n = static_cast<std::int64_t>(p.size());
   const double dt = time_step;
-  auto& p = particles;
-  for_each_index(n, [&](std::int64_t i) { p.position[i] += p.velocity[i] * dt; });
+  const auto& reference = list_.reference();
+  if (reference.size() != p.size()) return std::numeric_limits<double>::infinity();
+  double moved2 = 0.0;
+  auto body = [&](std::int64_t i) {
+    if (p.fixed[i] == 0) kick_one(static_cast<std::size_t>(i), 0.5 * dt);
+    p.position[i] += p.velocity[i] * dt;
+    return finite_or_inf((p.position[i] - reference[i]).squaredNorm());
+  };
+  if (n > parallel_threshold) {
+#pragma omp parallel for schedule(static) reduction(max : moved2)
+    for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, body(i));
+  } else {
+    for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, body(i));
+  }
+  return std::sqrt(moved2);
 }
 
 template <int D>
-void Simulation<D>::compute_forces() {
+void Simulation<D>::compute_forces(bool kick_after) {
   switch (law_choice_) {
     case LawChoice::linear:
-      compute_forces_with<LinearSpringDashpot>();
+      compute_forces_with<LinearSpringDashpot>(kick_after);
       break;
     case LawChoice::hertz:
-      compute_forces_with<HertzMindlin>();
+      compute_forces_with<HertzMindlin>(kick_after);
       break;
     case LawChoice::mixed:
-      compute_forces_with<MixedNormalLaw>();
+      compute_forces_with<MixedNormalLaw>(kick_after);
       break;
   }
 }
 
 template <int D>
 template <class Law>
-void Simulation<D>::compute_forces_with() {
+void Simulation<D>::compute_forces_with(bool kick_after) {
   auto& p = particles;
   auto& L = list_;
   auto& W = wall_list_;
   const auto n = static_cast<std::int64_t>(p.size());
   const double dt = time_step;
   const bool rolling = rolling_;
+  const bool measure = measure_contact_forces;
 
-  // Pass 1: every pair once. Particle i keeps its share; j's share is stored
-  // with the pair. Wall contacts of i are done here too.
-  for_each_index_dynamic(n, [&](std::int64_t i) {
-    const Vec<D> xi = p.position[i];
-    const double ri = p.radius[i];
-    Vec<D> f = Vec<D>::Zero();
-    AngVec<D> t = AngVec<D>::Zero();
-    for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
-      const std::uint32_t j = L.neighbour[k];
-      const Vec<D> d = p.position[j] - xi;
-      const double reach = ri + p.radius[j];
-      const double dist2 = d.squaredNorm();
-      const double inv_m = p.inv_mass[i] + p.inv_mass[j];
-      if (dist2 >= reach * reach || inv_m == 0.0) {
-        L.tangential[k].setZero();
-        if (rolling) L.rolling[k].setZero();
-        L.force_on_j[k].setZero();
-        L.torque_on_j[k].setZero();
-        continue;
-      }
-      const double dist = std::sqrt(dist2);
-      const Vec<D> nrm = d / dist;
-      const double overlap = reach - dist;
-      const double arm_i = ri - 0.5 * overlap;
-      const double arm_j = p.radius[j] - 0.5 * overlap;
-      const Vec<D> v_rel = p.velocity[i] + cross(p.angular_velocity[i], Vec<D>(arm_i * nrm)) - p.velocity[j] -
-                           cross(p.angular_velocity[j], Vec<D>(-arm_j * nrm));
-      const AngVec<D> w_rel = p.angular_velocity[i] - p.angular_velocity[j];
-      const double r_eff = ri * p.radius[j] / reach;
-      const auto c = evaluate_contact<D, Law>(contact_table(p.material[i], p.material[j]), nrm, overlap,
-                                              arm_i, arm_j, v_rel, w_rel, 1.0 / inv_m, r_eff, dt,
-                                              L.tangential[k], rolling ? &L.rolling[k] : nullptr);
-      f += c.force_on_i;
-      t += c.torque_i;
-      L.force_on_j[k] = -c.force_on_i;
-      L.torque_on_j[k] = c.torque_j;
+  // Pass 1, block by block (verlet_list.hpp): every pair once, j's share added
+  // to j directly inside the block and to a slot across blocks; the sum and
+  // count of contact force magnitudes per block for the unbalanced force.
+  auto block_pass = [&](std::int64_t b) {
+    const std::int64_t lo = L.block_begin(b);
+    const auto hi = static_cast<std::uint32_t>(L.block_end(b, n));
+    for (std::int64_t i = lo; i < hi; ++i) {
+      p.force[i].setZero();
+      p.torque[i].setZero();
     }
-    for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
-      const Wall<D>& w = walls[W.wall[k]];
-      const double gap = w.distance(xi);
-      const double overlap = ri - gap;
-      if (overlap <= 0.0 || p.inv_mass[i] == 0.0) {
-        W.tangential[k].setZero();
-        if (rolling) W.rolling[k].setZero();
-        W.force_on_particle[k].setZero();
-        continue;
+    std::uint32_t slot = L.cross_begin[b];
+    double magnitude_sum = 0.0;
+    double touching = 0.0;
+    for (std::int64_t i = lo; i < hi; ++i) {
+      const Vec<D> xi = p.position[i];
+      const Vec<D> vi = p.velocity[i];
+      const AngVec<D> wi = p.angular_velocity[i];
+      const double ri = p.radius[i];
+      const double inv_mi = p.inv_mass[i];
+      const auto mat_i = p.material[i];
+      Vec<D> f = p.force[i];
+      AngVec<D> t = p.torque[i];
+      for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
+        const std::uint32_t j = L.neighbour[k];
+        const bool is_cross = j >= hi;
+        const Vec<D> d = p.position[j] - xi;
+        const double rj = p.radius[j];
+        const double reach = ri + rj;
+        const double dist2 = d.squaredNorm();
+        const double inv_m = inv_mi + p.inv_mass[j];
+        if (dist2 >= reach * reach || inv_m == 0.0) {
+          L.tangential[k].setZero();
+          if (rolling) L.rolling[k].setZero();
+          if (is_cross) {
+            L.cross_force[slot].setZero();
+            L.cross_torque[slot].setZero();
+            ++slot;
+          }
+          continue;
+        }
+        const double inv_dist = 1.0 / std::sqrt(dist2);
+        const Vec<D> nrm = d * inv_dist;
+        const double overlap = reach - dist2 * inv_dist;
+        const double arm_i = ri - 0.5 * overlap;
+        const double arm_j = rj - 0.5 * overlap;
+        const AngVec<D> wj = p.angular_velocity[j];
+        const Vec<D> v_rel = vi - p.velocity[j] + cross(AngVec<D>(wi * arm_i + wj * arm_j), nrm);
+        const double sqrt_m_eff = std::sqrt(1.0 / inv_m);
+        const double r_eff = ri * rj / reach;
+        const auto c = evaluate_contact<D, Law>(contact_table(mat_i, p.material[j]), nrm, overlap, arm_i,
+                                                arm_j, v_rel, wi - wj, sqrt_m_eff, r_eff, dt, L.tangential[k],
+                                                rolling ? &L.rolling[k] : nullptr);
+        f += c.force_on_i;
+        t += c.torque_i;
+        if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
+        touching += 1.0;
+        if (is_cross) {
+          L.cross_force[slot] = -c.force_on_i;
+          L.cross_torque[slot] = c.torque_j;
+          ++slot;
+        } else {
+          p.force[j] -= c.force_on_i;
+          p.torque[j] += c.torque_j;
+        }
       }
-      const Vec<D> nrm = -w.normal;
-      const double arm_i = ri - overlap;
-      const Vec<D> v_rel = p.velocity[i] + cross(p.angular_velocity[i], Vec<D>(arm_i * nrm)) - w.velocity;
-      const auto c = evaluate_contact<D, Law>(contact_table(p.material[i], w.material), nrm, overlap, arm_i,
-                                              0.0, v_rel, p.angular_velocity[i], 1.0 / p.inv_mass[i], ri, dt,
-                                              W.tangential[k], rolling ? &W.rolling[k] : nullptr);
-      f += c.force_on_i;
-      t += c.torque_i;
-      W.force_on_particle[k] = c.force_on_i;
+      for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
+        const Wall<D>& w = walls[W.wall[k]];
+        const double gap = w.distance(xi);
+        const double overlap = ri - gap;
+        if (overlap <= 0.0 || inv_mi == 0.0) {
+          W.tangential[k].setZero();
+          if (rolling) W.rolling[k].setZero();
+          W.force_on_particle[k].setZero();
+          continue;
+        }
+        const Vec<D> nrm = -w.normal;
+        const double arm_i = ri - overlap;
+        const Vec<D> v_rel = vi + cross(AngVec<D>(wi * arm_i), nrm) - w.velocity;
+        const auto c = evaluate_contact<D, Law>(contact_table(mat_i, w.material), nrm, overlap, arm_i, 0.0,
+                                                v_rel, wi, std::sqrt(1.0 / inv_mi), ri, dt, W.tangential[k],
+                                                rolling ? &W.rolling[k] : nullptr);
+        f += c.force_on_i;
+        t += c.torque_i;
+        if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
+        touching += 1.0;
+        W.force_on_particle[k] = c.force_on_i;
+      }
+      p.force[i] = f;
+      p.torque[i] = t;
     }
-    p.force[i] = f;
-    p.torque[i] = t;
-  });
+    block_sums_[b] = {magnitude_sum, touching};
+  };
+  const std::int64_t blocks = L.block_count();
+  if (blocks > 1) {
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t b = 0; b < blocks; ++b) block_pass(b);
+  } else {
+    for (std::int64_t b = 0; b < blocks; ++b) block_pass(b);
+  }
 
-  // Pass 2: each particle adds the shares stored with the pairs, in order,
-  // then gravity, external forces and the force field.
+  // Pass 2: each particle adds its cross shares in slot order, then gravity,
+  // external forces and the force field, and (in a step) takes its second
+  // half kick.
   const Vec<D> g = gravity;
   const bool field = force_field != nullptr;
   if (field) {
     field_force_.resize(p.size());
     force_field->particle_forces(p, gravity, field_force_);
   }
+  const bool external = !p.external_force.empty();
+  const double half_dt = 0.5 * dt;
   for_each_index(n, [&](std::int64_t j) {
-    Vec<D> f = Vec<D>::Zero();
-    AngVec<D> t = AngVec<D>::Zero();
-    for (std::uint32_t q = L.reverse_offset[j]; q < L.reverse_offset[j + 1]; ++q) {
-      const std::uint32_t k = L.reverse_pair[q];
-      f += L.force_on_j[k];
-      t += L.torque_on_j[k];
+    Vec<D> f = p.force[j];
+    AngVec<D> t = p.torque[j];
+    for (std::uint32_t q = L.cross_offset[j]; q < L.cross_offset[j + 1]; ++q) {
+      const std::uint32_t s = L.cross_slot[q];
+      f += L.cross_force[s];
+      t += L.cross_torque[s];
     }
-    f += p.external_force[j];
+    if (external) f += p.external_force[j];
     if (field) f += field_force_[j];
     if (p.inv_mass[j] > 0.0) f += g / p.inv_mass[j];
-    p.force[j] += f;
-    p.torque[j] += t;
+    p.force[j] = f;
+    p.torque[j] = t;
+    if (kick_after && p.fixed[j] == 0) kick_one(static_cast<std::size_t>(j), half_dt);
   });
 
   for (auto& w : walls) w.force.setZero();
@@ -326,6 +396,9 @@ double Simulation<D>::max_overlap() const {
 
 template <int D>
 double Simulation<D>::unbalanced_force_ratio() const {
+  if (!measure_contact_forces) {
+    throw std::logic_error("unbalanced_force_ratio() needs measure_contact_forces = true");
+  }
   const auto& p = particles;
   double resultant = 0.0;
   std::size_t free_count = 0;
@@ -335,24 +408,20 @@ double Simulation<D>::unbalanced_force_ratio() const {
     ++free_count;
   }
   double contact = 0.0;
-  std::size_t contacts = 0;
-  for (const auto& f : list_.force_on_j) {
-    const double m = f.norm();
-    if (m > 0.0) {
-      contact += m;
-      ++contacts;
-    }
-  }
-  for (const auto& f : wall_list_.force_on_particle) {
-    const double m = f.norm();
-    if (m > 0.0) {
-      contact += m;
-      ++contacts;
-    }
+  double contacts = 0.0;
+  for (const auto& [sum, count] : block_sums_) {
+    contact += sum;
+    contacts += count;
   }
   if (free_count == 0) return 0.0;
-  if (contacts == 0) return std::numeric_limits<double>::infinity();
-  return (resultant / static_cast<double>(free_count)) / (contact / static_cast<double>(contacts));
+  if (contacts == 0.0 || contact == 0.0) return std::numeric_limits<double>::infinity();
+  return (resultant / static_cast<double>(free_count)) / (contact / contacts);
+}
+
+template <int D>
+std::size_t Simulation<D>::memory_bytes() const {
+  return particles.memory_bytes() + list_.memory_bytes() + wall_list_.memory_bytes() +
+         field_force_.capacity() * sizeof(Vec<D>) + block_sums_.capacity() * sizeof(block_sums_[0]);
 }
 
 template <int D>

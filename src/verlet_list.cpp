@@ -3,18 +3,41 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <limits>
+
+#include "darcydem/core/parallel.hpp"
 
 namespace darcydem {
 
+namespace {
+/// Blocks of about 6000 particles, an even number of them (two threads get
+/// equal shares); one block for small systems. Depends on n only.
+std::int64_t block_size_for(std::int64_t n) {
+  if (n <= parallel_threshold) return n > 0 ? n : 1;
+  constexpr std::int64_t pair_of_blocks = 12288;
+  const std::int64_t blocks = 2 * ((n + pair_of_blocks - 1) / pair_of_blocks);
+  return (n + blocks - 1) / blocks;
+}
+}  // namespace
+
+template <int D>
+std::vector<std::uint32_t> VerletList<D>::spatial_order(const std::vector<Vec<D>>& position,
+                                                        const std::vector<double>& radius, double skin) {
+  double r_max = 0.0;
+  for (double r : radius) r_max = std::max(r_max, r);
+  cells_.build(position, 2.0 * r_max + skin);
+  return cells_.sorted();
+}
+
 template <int D>
 void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector<double>& radius, double skin,
-                          bool keep_rolling) {
+                          bool keep_rolling, const std::vector<std::uint32_t>* old_index) {
   const auto n = static_cast<std::int64_t>(position.size());
   double r_max = 0.0;
   for (double r : radius) r_max = std::max(r_max, r);
   cell_size_ = 2.0 * r_max + skin;
   cells_.build(position, cell_size_);
+  block_size_ = block_size_for(n);
+  block_count_ = (n + block_size_ - 1) / block_size_;
 
   auto for_each_partner = [&](std::int64_t i, auto&& emit) {
     const Vec<D>& xi = position[i];
@@ -28,82 +51,89 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
 
   // Pass 1: row lengths; pass 2: fill. Both are independent per row.
   std::vector<std::uint32_t> offset(static_cast<std::size_t>(n) + 1, 0);
-#pragma omp parallel for schedule(dynamic, 256) if (n > 2000)
-  for (std::int64_t i = 0; i < n; ++i) {
+  for_each_index_dynamic(n, [&](std::int64_t i) {
     std::uint32_t count = 0;
     for_each_partner(i, [&](std::uint32_t) { ++count; });
     offset[i + 1] = count;
-  }
+  });
   for (std::int64_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
   const std::size_t pairs = offset[n];
   std::vector<std::uint32_t> next(pairs);
-#pragma omp parallel for schedule(dynamic, 256) if (n > 2000)
-  for (std::int64_t i = 0; i < n; ++i) {
+  for_each_index_dynamic(n, [&](std::int64_t i) {
     std::uint32_t k = offset[i];
-    // Cells are visited in a fixed order and each cell lists particles in
-    // increasing index, but sort anyway so rows are canonical.
     for_each_partner(i, [&](std::uint32_t j) { next[k++] = j; });
-    std::sort(next.begin() + offset[i], next.begin() + offset[i + 1]);
-  }
+    std::sort(next.begin() + offset[i], next.begin() + offset[i + 1]);  // canonical rows
+  });
 
-  // Carry the histories of surviving pairs over (rows are sorted by j).
+  // Carry the histories of surviving pairs over. The old pair of new pair
+  // (i, j) is (old i, old j) in its old order; a history is relative motion of
+  // the first particle against the second, so it changes sign if they swapped.
   std::vector<Vec<D>> next_tangential(pairs, Vec<D>::Zero());
   std::vector<AngVec<D>> next_rolling(keep_rolling ? pairs : 0, AngVec<D>::Zero());
-  const bool have_old = row_offset.size() == offset.size();
-  if (have_old) {
+  if (row_offset.size() == offset.size()) {
     const bool old_rolling = keep_rolling && rolling.size() == neighbour.size();
-#pragma omp parallel for schedule(dynamic, 256) if (n > 2000)
-    for (std::int64_t i = 0; i < n; ++i) {
-      std::uint32_t a = row_offset[i];
-      const std::uint32_t a_end = row_offset[i + 1];
+    for_each_index_dynamic(n, [&](std::int64_t i) {
+      const std::uint32_t oi = old_index != nullptr ? (*old_index)[i] : static_cast<std::uint32_t>(i);
       for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
-        while (a < a_end && neighbour[a] < next[k]) ++a;
-        if (a < a_end && neighbour[a] == next[k]) {
-          next_tangential[k] = tangential[a];
-          if (old_rolling) next_rolling[k] = rolling[a];
-        }
+        const std::uint32_t oj = old_index != nullptr ? (*old_index)[next[k]] : next[k];
+        const std::uint32_t lo = std::min(oi, oj);
+        const std::uint32_t hi = std::max(oi, oj);
+        const auto row_begin = neighbour.begin() + row_offset[lo];
+        const auto row_end = neighbour.begin() + row_offset[lo + 1];
+        const auto it = std::lower_bound(row_begin, row_end, hi);
+        if (it == row_end || *it != hi) continue;
+        const auto a = static_cast<std::size_t>(it - neighbour.begin());
+        const double sign = oi < oj ? 1.0 : -1.0;
+        next_tangential[k] = sign * tangential[a];
+        if (old_rolling) next_rolling[k] = sign * rolling[a];
       }
-    }
+    });
   }
   row_offset = std::move(offset);
   neighbour = std::move(next);
   tangential = std::move(next_tangential);
   rolling = std::move(next_rolling);
-  force_on_j.assign(pairs, Vec<D>::Zero());
-  torque_on_j.assign(pairs, AngVec<D>::Zero());
 
-  // Reverse index by counting sort over j, pairs in increasing order.
-  reverse_offset.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (std::uint32_t j : neighbour) ++reverse_offset[j + 1];
-  for (std::int64_t i = 0; i < n; ++i) reverse_offset[i + 1] += reverse_offset[i];
-  reverse_pair.resize(pairs);
-  std::vector<std::uint32_t> fill(reverse_offset.begin(), reverse_offset.end() - 1);
-  for (std::size_t p = 0; p < pairs; ++p) reverse_pair[fill[neighbour[p]]++] = static_cast<std::uint32_t>(p);
+  // Cross pairs, block by block in row order, and their reverse index.
+  cross_begin.assign(static_cast<std::size_t>(block_count_) + 1, 0);
+  for (std::int64_t b = 0; b < block_count_; ++b) {
+    const auto end = static_cast<std::uint32_t>(block_end(b, n));
+    std::uint32_t count = 0;
+    for (std::int64_t i = block_begin(b); i < end; ++i) {
+      for (std::uint32_t k = row_offset[i]; k < row_offset[i + 1]; ++k) count += neighbour[k] >= end ? 1 : 0;
+    }
+    cross_begin[b + 1] = cross_begin[b] + count;
+  }
+  const std::size_t crosses = cross_begin[block_count_];
+  cross_force.assign(crosses, Vec<D>::Zero());
+  cross_torque.assign(crosses, AngVec<D>::Zero());
+  cross_offset.assign(static_cast<std::size_t>(n) + 1, 0);
+  std::vector<std::uint32_t> partner(crosses);
+  for (std::int64_t b = 0; b < block_count_; ++b) {
+    const auto end = static_cast<std::uint32_t>(block_end(b, n));
+    std::uint32_t slot = cross_begin[b];
+    for (std::int64_t i = block_begin(b); i < end; ++i) {
+      for (std::uint32_t k = row_offset[i]; k < row_offset[i + 1]; ++k) {
+        if (neighbour[k] >= end) partner[slot++] = neighbour[k];
+      }
+    }
+  }
+  for (std::uint32_t j : partner) ++cross_offset[j + 1];
+  for (std::int64_t i = 0; i < n; ++i) cross_offset[i + 1] += cross_offset[i];
+  cross_slot.resize(crosses);
+  std::vector<std::uint32_t> fill(cross_offset.begin(), cross_offset.end() - 1);
+  for (std::size_t s = 0; s < crosses; ++s) cross_slot[fill[partner[s]]++] = static_cast<std::uint32_t>(s);
 
   reference_ = position;
   ++builds_;
 }
 
-namespace {
-/// NaN would be ignored by max(): report it as an infinite displacement, so
-/// the list is rebuilt and the rebuild reports the blown-up state.
-inline double finite_or_inf(double v) { return std::isnan(v) ? std::numeric_limits<double>::infinity() : v; }
-}  // namespace
-
 template <int D>
-double VerletList<D>::max_displacement(const std::vector<Vec<D>>& position) const {
-  if (reference_.size() != position.size()) return 1e300;
-  double m2 = 0.0;
-  const auto n = static_cast<std::int64_t>(position.size());
-  if (n > 2000) {
-#pragma omp parallel for reduction(max : m2)
-    for (std::int64_t i = 0; i < n; ++i)
-      m2 = std::max(m2, finite_or_inf((position[i] - reference_[i]).squaredNorm()));
-  } else {
-    for (std::int64_t i = 0; i < n; ++i)
-      m2 = std::max(m2, finite_or_inf((position[i] - reference_[i]).squaredNorm()));
-  }
-  return std::sqrt(m2);
+std::size_t VerletList<D>::memory_bytes() const {
+  auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return bytes(row_offset) + bytes(neighbour) + bytes(tangential) + bytes(rolling) + bytes(cross_begin) +
+         bytes(cross_force) + bytes(cross_torque) + bytes(cross_offset) + bytes(cross_slot) +
+         bytes(reference_) + cells_.memory_bytes();
 }
 
 template class VerletList<2>;

@@ -4,7 +4,8 @@ namespace darcydem {
 
 template <int D>
 void WallContactList<D>::build(const std::vector<Vec<D>>& position, const std::vector<double>& radius,
-                               std::vector<Wall<D>>& walls, double skin, bool keep_rolling) {
+                               std::vector<Wall<D>>& walls, double skin, bool keep_rolling,
+                               const std::vector<std::uint32_t>* old_index) {
   const std::size_t n = position.size();
   std::vector<std::uint32_t> next_offset(n + 1, 0);
   std::vector<std::uint16_t> next_wall;
@@ -19,7 +20,8 @@ void WallContactList<D>::build(const std::vector<Vec<D>>& position, const std::v
         Vec<D> t = Vec<D>::Zero();
         AngVec<D> r = AngVec<D>::Zero();
         if (have_old) {
-          for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
+          const std::size_t o = old_index != nullptr ? (*old_index)[i] : i;
+          for (std::uint32_t k = offset[o]; k < offset[o + 1]; ++k) {
             if (wall[k] == w) {
               t = tangential[k];
               if (old_rolling) r = rolling[k];

@@ -78,7 +78,9 @@ TEST(EnergyConservation, UndampedBouncingDiscs) {
 
 // The same dense settling gives bitwise identical states with 1 and 2
 // threads: each contact is computed once and each particle sums its
-// contacts in a fixed order.
+// contacts in a fixed order. The 3000 particles make two force blocks, so
+// pairs across blocks are exercised, and the particles are reordered along
+// the cells at every list build (sort_threshold lowered for the test).
 TEST(Reproducibility, BitwiseIdenticalForAnyThreadCount) {
   auto make = [] {
     ContactSpec spec;
@@ -103,6 +105,7 @@ TEST(Reproducibility, BitwiseIdenticalForAnyThreadCount) {
     sim.gravity = Vec<3>(0, 0, -500.0);  // strong, so the bed forms within the test
     sim.damping.local = 0.3;
     sim.time_step = 0.2 * sim.critical_time_step();
+    sim.sort_threshold = 1000;
     return sim;
   };
   auto run = [&](int threads) {
@@ -118,6 +121,8 @@ TEST(Reproducibility, BitwiseIdenticalForAnyThreadCount) {
   const auto c = run(2);
   omp_set_num_threads(saved);
   ASSERT_GT(a.contact_count(), 1000U) << "the packing must be in contact";
+  ASSERT_GT(a.list_builds(), 2U) << "the particles must have been reordered";
+  ASSERT_GT(a.pair_list().cross_count(), 0U) << "pairs across force blocks must be exercised";
   for (std::size_t i = 0; i < a.particles.size(); ++i) {
     for (int k = 0; k < 3; ++k) {
       ASSERT_EQ(a.particles.position[i][k], b.particles.position[i][k]) << "particle " << i;

@@ -23,22 +23,36 @@ struct PairParameters {
   double tangential_damping = 0.0;  ///< dimensionless, c_t = gamma_t sqrt(m k_t)
   double friction = 0.0;            ///< Coulomb mu
   double rolling_friction = 0.0;    ///< mu_r (0: no rolling resistance)
+  // Derived (ContactTable::set fills them): square roots the dashpots need.
+  double sqrt_normal_stiffness = 0.0;      ///< sqrt(k_n), sqrt(N/m) (linear)
+  double sqrt_tangential_stiffness = 0.0;  ///< sqrt(k_t), sqrt(N/m) (linear)
+  double inv_tangential_stiffness = 0.0;   ///< 1/k_t, m/N (linear; 0 if k_t = 0)
+
+  void derive() {
+    const double kt = tangential_ratio * normal_stiffness;
+    sqrt_normal_stiffness = std::sqrt(normal_stiffness);
+    sqrt_tangential_stiffness = std::sqrt(kt);
+    inv_tangential_stiffness = kt > 0.0 ? 1.0 / kt : 0.0;
+  }
 };
 
 struct NormalResponse {
-  double force;                 ///< N, >= 0 (repulsive)
-  double normal_stiffness;      ///< N/m, tangent dF/dd
-  double tangential_stiffness;  ///< N/m
+  double force;                      ///< N, >= 0 (repulsive)
+  double normal_stiffness;           ///< N/m, tangent dF/dd
+  double tangential_stiffness;       ///< N/m
+  double sqrt_tangential_stiffness;  ///< sqrt(N/m), for the tangential dashpot
+  double inv_tangential_stiffness;   ///< m/N (0 if the stiffness is 0)
 };
 
 /// Linear spring-dashpot: F = k_n d + gamma sqrt(m k_n) vn, clamped at 0;
-/// k_t = ratio * k_n.
+/// k_t = ratio * k_n. sqrt_m is the square root of the effective mass.
 struct LinearSpringDashpot {
-  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn, double m_eff,
+  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn, double sqrt_m,
                                  double /*r_eff*/) {
     const double k = p.normal_stiffness;
-    const double f = k * overlap + p.normal_damping * std::sqrt(m_eff * k) * vn;
-    return {f > 0.0 ? f : 0.0, k, p.tangential_ratio * k};
+    const double f = k * overlap + p.normal_damping * sqrt_m * p.sqrt_normal_stiffness * vn;
+    return {f > 0.0 ? f : 0.0, k, p.tangential_ratio * k, p.sqrt_tangential_stiffness,
+            p.inv_tangential_stiffness};
   }
 };
 
@@ -46,24 +60,25 @@ struct LinearSpringDashpot {
 ///   F = K d^1.5 + gamma sqrt(m K) d^0.25 vn, K = 4/3 E* sqrt(R*), clamped at 0;
 ///   k_n = 2 E* sqrt(R* d) (tangent), k_t = 8 G* sqrt(R* d) (Mindlin, no slip).
 struct HertzMindlin {
-  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn, double m_eff,
+  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn, double sqrt_m,
                                  double r_eff) {
     const double a = std::sqrt(r_eff * overlap);  // contact radius
     const double big_k = 4.0 / 3.0 * p.hertz_modulus * std::sqrt(r_eff);
     const double f = big_k * overlap * std::sqrt(overlap) +
-                     p.normal_damping * std::sqrt(m_eff * big_k) * std::sqrt(std::sqrt(overlap)) * vn;
-    return {f > 0.0 ? f : 0.0, 2.0 * p.hertz_modulus * a, 8.0 * p.shear_modulus * a};
+                     p.normal_damping * sqrt_m * std::sqrt(big_k) * std::sqrt(std::sqrt(overlap)) * vn;
+    const double kt = 8.0 * p.shear_modulus * a;
+    return {f > 0.0 ? f : 0.0, 2.0 * p.hertz_modulus * a, kt, std::sqrt(kt), kt > 0.0 ? 1.0 / kt : 0.0};
   }
 };
 
 /// Several laws in one scene: dispatch on the pair's law (well predicted).
 struct MixedNormalLaw {
-  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn, double m_eff,
+  static NormalResponse evaluate(const PairParameters& p, double overlap, double vn, double sqrt_m,
                                  double r_eff) {
     if (p.law == NormalLaw::linear) {
-      return LinearSpringDashpot::evaluate(p, overlap, vn, m_eff, r_eff);
+      return LinearSpringDashpot::evaluate(p, overlap, vn, sqrt_m, r_eff);
     }
-    return HertzMindlin::evaluate(p, overlap, vn, m_eff, r_eff);
+    return HertzMindlin::evaluate(p, overlap, vn, sqrt_m, r_eff);
   }
 };
 
@@ -72,7 +87,8 @@ class ContactTable {
  public:
   ContactTable() = default;
   explicit ContactTable(std::size_t n_materials) : n_(n_materials), pairs_(n_materials * n_materials) {}
-  void set(std::size_t a, std::size_t b, const PairParameters& p) {
+  void set(std::size_t a, std::size_t b, PairParameters p) {
+    p.derive();
     pairs_[a * n_ + b] = p;
     pairs_[b * n_ + a] = p;
   }

@@ -23,6 +23,9 @@ class LinkedCells {
   [[nodiscard]] const std::vector<std::uint32_t>& start() const { return start_; }
   [[nodiscard]] const std::vector<std::uint32_t>& sorted() const { return sorted_; }
   [[nodiscard]] const std::vector<std::uint32_t>& cell_index() const { return cell_index_; }
+  [[nodiscard]] std::size_t memory_bytes() const {
+    return (start_.capacity() + sorted_.capacity() + cell_index_.capacity()) * sizeof(std::uint32_t);
+  }
 
   /// Calls f(j) for every particle j in the 3^D cells around cell c.
   template <class F>

@@ -2,10 +2,17 @@
 // Half Verlet list (pairs i < j within r_i + r_j + skin), stored as rows in
 // CSR form, with the contact history of each pair. Rebuilt only when some
 // particle has moved more than half the skin; histories of pairs that survive
-// a rebuild are carried over. A reverse index lists, for each particle j, the
-// pairs where it is the second member, in increasing pair order, so that each
-// particle sums its contact forces in a fixed order (no atomics, results
-// independent of the thread count).
+// a rebuild are carried over, also across a reordering of the particles.
+//
+// Deterministic parallel force sums without atomics: the particles are cut
+// into fixed blocks of consecutive indices (the cut depends on N only, never
+// on the thread count). A block's rows are evaluated in order by one thread,
+// which adds j's share of a pair straight into j when j is in the same block.
+// A pair whose j lies in a later block is a "cross" pair: its share for j is
+// written to a slot, and each particle adds its slots afterwards in increasing
+// slot order (reverse index). Every particle thus sums its forces in one fixed
+// order whatever the number of threads. With particles sorted along the
+// linked cells, blocks are compact and few pairs cross.
 #include <cstdint>
 #include <vector>
 
@@ -18,33 +25,52 @@ template <int D>
 class VerletList {
  public:
   /// Builds the list for the given particles, keeping old histories.
+  /// old_index[i] (if given) is the index particle i had at the last build.
   void build(const std::vector<Vec<D>>& position, const std::vector<double>& radius, double skin,
-             bool keep_rolling);
+             bool keep_rolling, const std::vector<std::uint32_t>* old_index = nullptr);
 
-  /// Largest displacement of any particle since the last build (m).
-  [[nodiscard]] double max_displacement(const std::vector<Vec<D>>& position) const;
+  /// The particles in linked-cell order (cell by cell, x fastest), a
+  /// permutation that makes neighbours close in memory.
+  [[nodiscard]] std::vector<std::uint32_t> spatial_order(const std::vector<Vec<D>>& position,
+                                                         const std::vector<double>& radius, double skin);
+
+  /// Positions at the last build (for the displacement check).
+  [[nodiscard]] const std::vector<Vec<D>>& reference() const { return reference_; }
 
   [[nodiscard]] std::size_t pair_count() const { return neighbour.size(); }
+  [[nodiscard]] std::size_t cross_count() const { return cross_force.size(); }
   [[nodiscard]] std::size_t builds() const { return builds_; }
   [[nodiscard]] double cell_size() const { return cell_size_; }
+  [[nodiscard]] std::int64_t block_count() const { return block_count_; }
+  [[nodiscard]] std::int64_t block_begin(std::int64_t b) const { return b * block_size_; }
+  [[nodiscard]] std::int64_t block_end(std::int64_t b, std::int64_t n) const {
+    return (b + 1) * block_size_ < n ? (b + 1) * block_size_ : n;
+  }
+  /// Bytes held by the list's arrays (capacity), for memory reports.
+  [[nodiscard]] std::size_t memory_bytes() const;
 
-  // Rows: pairs of particle i are row_offset[i] .. row_offset[i+1]-1.
+  // Rows: pairs of particle i are row_offset[i] .. row_offset[i+1]-1, by increasing j.
   std::vector<std::uint32_t> row_offset;
   std::vector<std::uint32_t> neighbour;  ///< j of each pair
   std::vector<Vec<D>> tangential;        ///< tangential spring history of each pair
   std::vector<AngVec<D>> rolling;        ///< rolling history (empty when unused)
-  std::vector<Vec<D>> force_on_j;        ///< this step's force on j from each pair
-  std::vector<AngVec<D>> torque_on_j;    ///< this step's torque on j from each pair
-  // Reverse index: pairs where particle j is second are
-  // reverse_pair[reverse_offset[j] .. reverse_offset[j+1]-1].
-  std::vector<std::uint32_t> reverse_offset;
-  std::vector<std::uint32_t> reverse_pair;
+  // Cross pairs: block b's are slots cross_begin[b] .. cross_begin[b+1]-1, in
+  // the order its rows meet them.
+  std::vector<std::uint32_t> cross_begin;
+  std::vector<Vec<D>> cross_force;      ///< this step's force on j from each cross pair
+  std::vector<AngVec<D>> cross_torque;  ///< this step's torque on j from each cross pair
+  // Reverse index: the slots where particle j is second are
+  // cross_slot[cross_offset[j] .. cross_offset[j+1]-1], increasing.
+  std::vector<std::uint32_t> cross_offset;
+  std::vector<std::uint32_t> cross_slot;
 
  private:
   LinkedCells<D> cells_;
   std::vector<Vec<D>> reference_;
   std::size_t builds_ = 0;
   double cell_size_ = 0.0;
+  std::int64_t block_size_ = 1;
+  std::int64_t block_count_ = 0;
 };
 
 }  // namespace darcydem

@@ -1,6 +1,7 @@
 #pragma once
 // Particle state, one array per field (structure of arrays).
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "darcydem/core/vec.hpp"
@@ -22,7 +23,9 @@ struct ParticleData {
   std::vector<AngVec<D>> angular_velocity;  ///< rad/s
   std::vector<Vec<D>> force;                ///< N, total of the last force evaluation
   std::vector<AngVec<D>> torque;            ///< N m
-  std::vector<Vec<D>> external_force;       ///< N, added every step (user loads)
+  /// N, added every step (user loads). Empty unless the user sizes it to N:
+  /// most scenes have none, and an unused array still costs memory traffic.
+  std::vector<Vec<D>> external_force;
 
   [[nodiscard]] std::size_t size() const { return position.size(); }
 
@@ -40,7 +43,47 @@ struct ParticleData {
     angular_velocity.push_back(AngVec<D>::Zero());
     force.push_back(Vec<D>::Zero());
     torque.push_back(AngVec<D>::Zero());
-    external_force.push_back(Vec<D>::Zero());
+    if (!external_force.empty()) external_force.push_back(Vec<D>::Zero());
+  }
+
+  /// Index of the particle created as number `creation` (particles are
+  /// reordered in space for speed, so indices move; ids do not).
+  [[nodiscard]] std::size_t index_of(std::uint32_t creation) const {
+    if (creation < id.size() && id[creation] == creation) return creation;
+    for (std::size_t i = 0; i < id.size(); ++i) {
+      if (id[i] == creation) return i;
+    }
+    return id.size();
+  }
+
+  /// Reorders every per-particle array: new particle k is old particle order[k].
+  void permute(const std::vector<std::uint32_t>& order) {
+    auto apply = [&](auto& v) {
+      if (v.empty()) return;
+      std::remove_reference_t<decltype(v)> out(v.size());
+      for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
+      v.swap(out);
+    };
+    apply(id);
+    apply(radius);
+    apply(inv_mass);
+    apply(inv_inertia);
+    apply(material);
+    apply(fixed);
+    apply(position);
+    apply(velocity);
+    apply(angular_velocity);
+    apply(force);
+    apply(torque);
+    apply(external_force);
+  }
+
+  /// Bytes held by the arrays (capacity), for memory reports.
+  [[nodiscard]] std::size_t memory_bytes() const {
+    auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+    return bytes(id) + bytes(radius) + bytes(inv_mass) + bytes(inv_inertia) + bytes(material) + bytes(fixed) +
+           bytes(position) + bytes(velocity) + bytes(angular_velocity) + bytes(force) + bytes(torque) +
+           bytes(external_force);
   }
 
   /// Mass from density for any particle, fixed or not (kg).

@@ -7,6 +7,7 @@
 //   4. contact forces (one pass over pairs, then each particle gathers its
 //      share in a fixed order), gravity and external forces
 //   5. half kick with the new forces
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -34,7 +35,15 @@ class Simulation {
   std::vector<Wall<D>> walls;
   Vec<D> gravity = Vec<D>::Zero();  ///< m/s^2
   DampingSettings damping;
-  double skin = 0.0;       ///< Verlet skin, m (0: 0.2 x the smallest radius)
+  double skin = 0.0;  ///< Verlet skin, m (0: 0.2 x the smallest radius)
+  /// Above this many particles, every list build reorders the particles along
+  /// the linked cells (neighbours close in memory); particle indices then
+  /// change, ParticleData::id does not.
+  std::size_t sort_threshold = 4096;
+  /// Sum the magnitudes of the contact forces in every force evaluation, for
+  /// unbalanced_force_ratio(). One square root per contact: about 10 % of a
+  /// step in a dense packing, so a run that never asks can turn it off.
+  bool measure_contact_forces = true;
   double time_step = 0.0;  ///< s
   double time = 0.0;       ///< s
   std::uint64_t steps = 0;
@@ -51,25 +60,30 @@ class Simulation {
   [[nodiscard]] double critical_time_step() const;
 
   // Diagnostics (deterministic whatever the thread count).
-  [[nodiscard]] double kinetic_energy() const;          ///< J (translational + rotational)
-  [[nodiscard]] double gravitational_energy() const;    ///< J, -sum m g.x
-  [[nodiscard]] std::size_t contact_count() const;      ///< touching pairs incl. walls
-  [[nodiscard]] double mean_coordination() const;       ///< contacts per particle
-  [[nodiscard]] double max_overlap() const;             ///< m
-  [[nodiscard]] double unbalanced_force_ratio() const;  ///< mean |F_i| / mean |F_contact|
-  [[nodiscard]] double elastic_energy() const;          ///< J, normal springs of linear contacts
+  [[nodiscard]] double kinetic_energy() const;        ///< J (translational + rotational)
+  [[nodiscard]] double gravitational_energy() const;  ///< J, -sum m g.x
+  [[nodiscard]] std::size_t contact_count() const;    ///< touching pairs incl. walls
+  [[nodiscard]] double mean_coordination() const;     ///< contacts per particle
+  [[nodiscard]] double max_overlap() const;           ///< m
+  [[nodiscard]] double unbalanced_force_ratio()
+      const;  ///< mean |F_i| / mean |F_contact| (needs measure_contact_forces)
+  [[nodiscard]] double elastic_energy() const;  ///< J, normal springs of linear contacts
   [[nodiscard]] const VerletList<D>& pair_list() const { return list_; }
   [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
+  /// Bytes held by the particle, list and wall-contact arrays (capacity).
+  [[nodiscard]] std::size_t memory_bytes() const;
   /// Forces of the force field in the last evaluation (empty without one), N.
   [[nodiscard]] const std::vector<Vec<D>>& field_forces() const { return field_force_; }
 
  private:
   template <class Law>
-  void compute_forces_with();
-  void compute_forces();
-  void kick(double half_dt);
-  void drift();
-  void rebuild_if_needed();
+  void compute_forces_with(bool kick_after);
+  void compute_forces(bool kick_after);
+  [[gnu::always_inline]] inline void kick_one(std::size_t i, double half_dt);
+  /// First half kick and drift; returns the largest displacement since the
+  /// last list build (m).
+  double kick_drift();
+  void rebuild_if_needed(double moved);
   void rebuild();
 
   enum class LawChoice { linear, hertz, mixed };
@@ -79,6 +93,7 @@ class Simulation {
   VerletList<D> list_;
   WallContactList<D> wall_list_;
   std::vector<Vec<D>> field_force_;
+  std::vector<std::array<double, 2>> block_sums_;  ///< per force block: sum of |F| of contacts, count
 };
 
 }  // namespace darcydem

@@ -61,8 +61,15 @@ struct WallContactList {
   std::vector<AngVec<D>> rolling;         ///< rolling history (empty when unused)
   std::vector<Vec<D>> force_on_particle;  ///< this step's force, N
 
+  /// old_index[i] (if given) is the index particle i had at the last build.
   void build(const std::vector<Vec<D>>& position, const std::vector<double>& radius,
-             std::vector<Wall<D>>& walls, double skin, bool keep_rolling);
+             std::vector<Wall<D>>& walls, double skin, bool keep_rolling,
+             const std::vector<std::uint32_t>* old_index = nullptr);
+  [[nodiscard]] std::size_t memory_bytes() const {
+    return offset.capacity() * sizeof(std::uint32_t) + wall.capacity() * sizeof(std::uint16_t) +
+           tangential.capacity() * sizeof(Vec<D>) + rolling.capacity() * sizeof(AngVec<D>) +
+           force_on_particle.capacity() * sizeof(Vec<D>);
+  }
 };
 
 }  // namespace darcydem
