@@ -75,7 +75,7 @@ void BM_DroppedPacking(benchmark::State& state) {
 }
 
 BENCHMARK(BM_DroppedPacking)
-    ->ArgsProduct({{10'000}, {1, 2}})
+    ->ArgsProduct({{10'000, 100'000}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0)
     ->UseRealTime();

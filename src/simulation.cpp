@@ -4,7 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
+#include "darcydem/contact/contact_batch.hpp"
 #include "darcydem/contact/contact_kernel.hpp"
 #include "darcydem/core/deterministic_sum.hpp"
 #include "darcydem/core/parallel.hpp"
@@ -133,30 +135,71 @@ double Simulation<D>::kick_drift() {
 }
 
 template <int D>
+template <class Law>
+void Simulation<D>::compute_forces_for_law(bool kick_after) {
+  if (rolling_) {
+    compute_forces_with<Law, true>(kick_after);
+  } else {
+    compute_forces_with<Law, false>(kick_after);
+  }
+}
+
+template <int D>
 void Simulation<D>::compute_forces(bool kick_after) {
   switch (law_choice_) {
     case LawChoice::linear:
-      compute_forces_with<LinearSpringDashpot>(kick_after);
+      compute_forces_for_law<LinearSpringDashpot>(kick_after);
       break;
     case LawChoice::hertz:
-      compute_forces_with<HertzMindlin>(kick_after);
+      compute_forces_for_law<HertzMindlin>(kick_after);
       break;
     case LawChoice::mixed:
-      compute_forces_with<MixedNormalLaw>(kick_after);
+      compute_forces_for_law<MixedNormalLaw>(kick_after);
       break;
   }
 }
 
 template <int D>
-template <class Law>
+template <class Law, bool Rolling>
 void Simulation<D>::compute_forces_with(bool kick_after) {
   auto& p = particles;
   auto& L = list_;
   auto& W = wall_list_;
   const auto n = static_cast<std::int64_t>(p.size());
   const double dt = time_step;
-  const bool rolling = rolling_;
   const bool measure = measure_contact_forces;
+  // One material: every pair has the same parameters.
+  const PairParameters* uniform = materials.size() == 1 ? &contact_table(0, 0) : nullptr;
+
+  // Wall contacts of particle i, added to its force f and torque t.
+  auto wall_contacts = [&](std::int64_t i, const Vec<D>& xi, const Vec<D>& vi, const AngVec<D>& wi, Vec<D>& f,
+                           AngVec<D>& t, double& magnitude_sum, double& touching) {
+    const double ri = p.radius[i];
+    const double inv_mi = p.inv_mass[i];
+    const auto mat_i = p.material[i];
+    for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
+      const Wall<D>& w = walls[W.wall[k]];
+      const double gap = w.distance(xi);
+      const double overlap = ri - gap;
+      if (overlap <= 0.0 || inv_mi == 0.0) {
+        W.tangential[k].setZero();
+        if constexpr (Rolling) W.rolling[k].setZero();
+        W.force_on_particle[k].setZero();
+        continue;
+      }
+      const Vec<D> nrm = -w.normal;
+      const double arm_i = ri - overlap;
+      const Vec<D> v_rel = vi + cross(AngVec<D>(wi * arm_i), nrm) - w.velocity;
+      const auto c = evaluate_contact<D, Law>(contact_table(mat_i, w.material), nrm, overlap, arm_i, 0.0,
+                                              v_rel, wi, std::sqrt(1.0 / inv_mi), ri, dt, W.tangential[k],
+                                              Rolling ? &W.rolling[k] : nullptr);
+      f += c.force_on_i;
+      t += c.torque_i;
+      if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
+      touching += 1.0;
+      W.force_on_particle[k] = c.force_on_i;
+    }
+  };
 
   // Pass 1, block by block (verlet_list.hpp): every pair once, j's share added
   // to j directly inside the block and to a slot across blocks; the sum and
@@ -190,7 +233,7 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
         const double inv_m = inv_mi + p.inv_mass[j];
         if (dist2 >= reach * reach || inv_m == 0.0) {
           L.tangential[k].setZero();
-          if (rolling) L.rolling[k].setZero();
+          if constexpr (Rolling) L.rolling[k].setZero();
           if (is_cross) {
             L.cross_force[slot].setZero();
             L.cross_torque[slot].setZero();
@@ -209,7 +252,7 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
         const double r_eff = ri * rj / reach;
         const auto c = evaluate_contact<D, Law>(contact_table(mat_i, p.material[j]), nrm, overlap, arm_i,
                                                 arm_j, v_rel, wi - wj, sqrt_m_eff, r_eff, dt, L.tangential[k],
-                                                rolling ? &L.rolling[k] : nullptr);
+                                                Rolling ? &L.rolling[k] : nullptr);
         f += c.force_on_i;
         t += c.torque_i;
         if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
@@ -223,39 +266,134 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
           p.torque[j] += c.torque_j;
         }
       }
-      for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
-        const Wall<D>& w = walls[W.wall[k]];
-        const double gap = w.distance(xi);
-        const double overlap = ri - gap;
-        if (overlap <= 0.0 || inv_mi == 0.0) {
-          W.tangential[k].setZero();
-          if (rolling) W.rolling[k].setZero();
-          W.force_on_particle[k].setZero();
-          continue;
-        }
-        const Vec<D> nrm = -w.normal;
-        const double arm_i = ri - overlap;
-        const Vec<D> v_rel = vi + cross(AngVec<D>(wi * arm_i), nrm) - w.velocity;
-        const auto c = evaluate_contact<D, Law>(contact_table(mat_i, w.material), nrm, overlap, arm_i, 0.0,
-                                                v_rel, wi, std::sqrt(1.0 / inv_mi), ri, dt, W.tangential[k],
-                                                rolling ? &W.rolling[k] : nullptr);
-        f += c.force_on_i;
-        t += c.torque_i;
-        if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
-        touching += 1.0;
-        W.force_on_particle[k] = c.force_on_i;
-      }
+      wall_contacts(i, xi, vi, wi, f, t, magnitude_sum, touching);
       p.force[i] = f;
       p.torque[i] = t;
     }
     block_sums_[b] = {magnitude_sum, touching};
   };
+  // The same pass for linear contacts without rolling resistance, a batch of
+  // pairs at a time (contact_batch.hpp): rows are walked in order, each
+  // batch's results added in pair order, so the sums are the same whatever
+  // the thread count.
+  auto batched_block_pass = [&](std::int64_t b) {
+    const std::int64_t lo = L.block_begin(b);
+    const auto hi = static_cast<std::uint32_t>(L.block_end(b, n));
+    for (std::int64_t i = lo; i < hi; ++i) {
+      p.force[i].setZero();
+      p.torque[i].setZero();
+    }
+    thread_local LinearContactBatch<D> batch;
+    std::uint32_t pair_i[LinearContactBatch<D>::capacity];
+    std::uint32_t pair_k[LinearContactBatch<D>::capacity];
+    std::uint32_t slot = L.cross_begin[b];
+    double magnitude_sum = 0.0;
+    double touching = 0.0;
+    auto flush = [&] {
+      batch.evaluate(dt, uniform);
+      std::int64_t current = -1;
+      Vec<D> f = Vec<D>::Zero();
+      AngVec<D> t = AngVec<D>::Zero();
+      for (int q = 0; q < batch.size; ++q) {
+        const std::uint32_t i = pair_i[q];
+        const std::uint32_t k = pair_k[q];
+        const std::uint32_t j = L.neighbour[k];
+        if (static_cast<std::int64_t>(i) != current) {
+          if (current >= 0) {
+            p.force[current] += f;
+            p.torque[current] += t;
+          }
+          current = i;
+          f.setZero();
+          t.setZero();
+        }
+        Vec<D> fq;
+        AngVec<D> tiq;
+        AngVec<D> tjq;
+        for (int c = 0; c < D; ++c) {
+          fq[c] = batch.f[c][q];
+          L.tangential[k][c] = batch.h_new[c][q];
+        }
+        for (int c = 0; c < rotation_dim<D>; ++c) {
+          tiq[c] = batch.ti[c][q];
+          tjq[c] = batch.tj[c][q];
+        }
+        f += fq;
+        t += tiq;
+        if (measure && batch.touching[q] != 0.0) magnitude_sum += std::sqrt(fq.squaredNorm());
+        touching += batch.touching[q];
+        if (j >= hi) {
+          L.cross_force[slot] = -fq;
+          L.cross_torque[slot] = tjq;
+          ++slot;
+        } else {
+          p.force[j] -= fq;
+          p.torque[j] += tjq;
+        }
+      }
+      if (current >= 0) {
+        p.force[current] += f;
+        p.torque[current] += t;
+      }
+      batch.size = 0;
+    };
+    for (std::int64_t i = lo; i < hi; ++i) {
+      const Vec<D> xi = p.position[i];
+      const Vec<D> vi = p.velocity[i];
+      const AngVec<D> wi = p.angular_velocity[i];
+      const double ri = p.radius[i];
+      const double inv_mi = p.inv_mass[i];
+      const auto mat_i = p.material[i];
+      for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
+        const std::uint32_t j = L.neighbour[k];
+        const int q = batch.size++;
+        pair_i[q] = static_cast<std::uint32_t>(i);
+        pair_k[q] = k;
+        const Vec<D> d = p.position[j] - xi;
+        const Vec<D> dv = vi - p.velocity[j];
+        const AngVec<D>& wj = p.angular_velocity[j];
+        for (int c = 0; c < D; ++c) {
+          batch.d[c][q] = d[c];
+          batch.v[c][q] = dv[c];
+          batch.h[c][q] = L.tangential[k][c];
+        }
+        for (int c = 0; c < rotation_dim<D>; ++c) {
+          batch.wi[c][q] = wi[c];
+          batch.wj[c][q] = wj[c];
+        }
+        batch.ri[q] = ri;
+        batch.rj[q] = p.radius[j];
+        batch.inv_m[q] = inv_mi + p.inv_mass[j];
+        if (uniform == nullptr) batch.set_parameters(q, contact_table(mat_i, p.material[j]));
+        if (batch.size == LinearContactBatch<D>::capacity) flush();
+      }
+    }
+    flush();
+    // Walls, particle by particle, after the pairs.
+    for (std::int64_t i = lo; i < hi; ++i) {
+      Vec<D> f = p.force[i];
+      AngVec<D> t = p.torque[i];
+      wall_contacts(i, p.position[i], p.velocity[i], p.angular_velocity[i], f, t, magnitude_sum, touching);
+      p.force[i] = f;
+      p.torque[i] = t;
+    }
+    block_sums_[b] = {magnitude_sum, touching};
+  };
+  constexpr bool batched = std::is_same_v<Law, LinearSpringDashpot> && !Rolling;
+
   const std::int64_t blocks = L.block_count();
+  auto pass = [&](std::int64_t b) {
+    if constexpr (batched) {
+      batched_block_pass(b);
+    } else {
+      block_pass(b);
+    }
+  };
   if (blocks > 1) {
 #pragma omp parallel for schedule(dynamic, 1)
-    for (std::int64_t b = 0; b < blocks; ++b) block_pass(b);
+    for (std::int64_t b = 0; b < blocks; ++b) pass(b);
   } else {
-    for (std::int64_t b = 0; b < blocks; ++b) block_pass(b);
+    for (std::int64_t b = 0; b < blocks; ++b) pass(b);
   }
 
   // Pass 2: each particle adds its cross shares in slot order, then gravity,

@@ -36,9 +36,10 @@ template <int D, int K>
   if constexpr (K == D) {
     const double before = h.squaredNorm();
     if (before == 0.0) return;
+    const double inv_before = 1.0 / before;  // independent of n: off the critical path
     const double hn = h.dot(n);
     h -= hn * n;
-    const double x = hn * hn / before;
+    const double x = hn * hn * inv_before;
     double scale = 1.0 + x * (0.5 + x * (0.375 + x * 0.3125));
     if (x >= 1e-4) {
       const double after = h.squaredNorm();

@@ -76,8 +76,10 @@ class Simulation {
   [[nodiscard]] const std::vector<Vec<D>>& field_forces() const { return field_force_; }
 
  private:
-  template <class Law>
+  template <class Law, bool Rolling>
   void compute_forces_with(bool kick_after);
+  template <class Law>
+  void compute_forces_for_law(bool kick_after);
   void compute_forces(bool kick_after);
   [[gnu::always_inline]] inline void kick_one(std::size_t i, double half_dt);
   /// First half kick and drift; returns the largest displacement since the
