@@ -38,6 +38,14 @@ void LinkedCells<D>::build(const std::vector<Vec<D>>& points, double cell_size) 
     dims_[k] = static_cast<int>(std::floor((hi[k] - lo[k]) * inv_size_)) + 1;
     total *= dims_[k];
   }
+  std::array<int, D> axes;
+  for (int k = 0; k < D; ++k) axes[k] = k;
+  std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return dims_[a] < dims_[b]; });
+  std::int64_t stride = 1;
+  for (int a : axes) {
+    stride_[a] = stride;
+    stride *= dims_[a];
+  }
   start_.assign(static_cast<std::size_t>(total) + 1, 0);
   cell_index_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -63,8 +71,8 @@ std::array<int, D> LinkedCells<D>::cell_of(const Vec<D>& x) const {
 
 template <int D>
 std::int64_t LinkedCells<D>::flat(const std::array<int, D>& c) const {
-  std::int64_t f = c[D - 1];
-  for (int k = D - 2; k >= 0; --k) f = f * dims_[k] + c[k];
+  std::int64_t f = 0;
+  for (int k = 0; k < D; ++k) f += c[k] * stride_[k];
   return f;
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 // Linked-cell binning: particles sorted into cubic cells of a given size by a
 // counting sort, so that each cell's particles are contiguous and in
-// increasing index order (deterministic neighbour order).
+// increasing index order (deterministic neighbour order). Cells are numbered
+// with the axis of fewest cells fastest and the axis of most cells slowest,
+// so that a run of consecutive cells (and of particles sorted along them) is
+// a compact slab across the domain's longest side, whatever its shape.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -62,6 +65,7 @@ class LinkedCells {
   Vec<D> origin_ = Vec<D>::Zero();
   double inv_size_ = 1.0;
   std::array<int, D> dims_{};
+  std::array<std::int64_t, D> stride_{};  ///< flat index = sum c[k] stride_[k]
   std::vector<std::uint32_t> start_;
   std::vector<std::uint32_t> sorted_;
   std::vector<std::uint32_t> cell_index_;  ///< per particle
