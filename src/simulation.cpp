@@ -117,13 +117,16 @@ double Simulation<D>::kick_drift() {
   auto& p = particles;
   const auto n = static_cast<std::int64_t>(p.size());
   const double dt = time_step;
+  // Without reference positions for every particle (particles added since
+  // the last build) the lists must be rebuilt: report an infinite move.
   const auto& reference = list_.reference();
-  if (reference.size() != p.size()) return std::numeric_limits<double>::infinity();
+  const bool referenced = reference.size() == p.size();
   double moved2 = 0.0;
   auto body = [&](std::int64_t i) {
     if (p.fixed[i] == 0) kick_one(static_cast<std::size_t>(i), 0.5 * dt);
     p.position[i] += p.velocity[i] * dt;
-    return finite_or_inf((p.position[i] - reference[i]).squaredNorm());
+    return referenced ? finite_or_inf((p.position[i] - reference[i]).squaredNorm())
+                      : std::numeric_limits<double>::infinity();
   };
   if (n > parallel_threshold) {
 #pragma omp parallel for schedule(static) reduction(max : moved2)
@@ -201,16 +204,21 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
     }
   };
 
+  // A block's forces are summed in place, starting from zero.
+  auto zero_block = [&](std::int64_t lo, std::int64_t hi) {
+    for (std::int64_t i = lo; i < hi; ++i) {
+      p.force[i].setZero();
+      p.torque[i].setZero();
+    }
+  };
+
   // Pass 1, block by block (verlet_list.hpp): every pair once, j's share added
   // to j directly inside the block and to a slot across blocks; the sum and
   // count of contact force magnitudes per block for the unbalanced force.
   auto block_pass = [&](std::int64_t b) {
     const std::int64_t lo = L.block_begin(b);
     const auto hi = static_cast<std::uint32_t>(L.block_end(b, n));
-    for (std::int64_t i = lo; i < hi; ++i) {
-      p.force[i].setZero();
-      p.torque[i].setZero();
-    }
+    zero_block(lo, hi);
     std::uint32_t slot = L.cross_begin[b];
     double magnitude_sum = 0.0;
     double touching = 0.0;
@@ -279,10 +287,7 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
   auto batched_block_pass = [&](std::int64_t b) {
     const std::int64_t lo = L.block_begin(b);
     const auto hi = static_cast<std::uint32_t>(L.block_end(b, n));
-    for (std::int64_t i = lo; i < hi; ++i) {
-      p.force[i].setZero();
-      p.torque[i].setZero();
-    }
+    zero_block(lo, hi);
     thread_local LinearContactBatch<D> batch;
     constexpr std::uint32_t no_slot = 0xFFFFFFFFU;
     std::uint32_t pair_i[LinearContactBatch<D>::capacity];

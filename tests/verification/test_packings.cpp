@@ -122,6 +122,9 @@ TEST(Reproducibility, BitwiseIdenticalForAnyThreadCount) {
   omp_set_num_threads(saved);
   ASSERT_GT(a.contact_count(), 1000U) << "the packing must be in contact";
   ASSERT_GT(a.list_builds(), 2U) << "the particles must have been reordered";
+  bool reordered = false;
+  for (std::size_t i = 0; i < a.particles.size(); ++i) reordered = reordered || a.particles.id[i] != i;
+  ASSERT_TRUE(reordered) << "the particles must have been reordered";
   ASSERT_GT(a.pair_list().cross_count(), 0U) << "pairs across force blocks must be exercised";
   for (std::size_t i = 0; i < a.particles.size(); ++i) {
     for (int k = 0; k < 3; ++k) {

@@ -41,7 +41,6 @@ struct LinearContactBatch {
   alignas(64) double f[D][capacity];      ///< force on i, N
   alignas(64) double ti[R][capacity];     ///< torque on i, N m
   alignas(64) double tj[R][capacity];     ///< torque on j, N m
-  alignas(64) double touching[capacity];
 
   void set_parameters(int p, const PairParameters& pp) {
     kn[p] = pp.normal_stiffness;
@@ -181,7 +180,6 @@ void LinearContactBatch<D>::evaluate_with(double dt, const PairParameters& u) {
       ti[0][p] = on * arm_i * c;
       tj[0][p] = on * arm_j * c;
     }
-    touching[p] = on;
   }
 }
 
