@@ -344,8 +344,9 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
     };
     // Gather: every pair is written at the batch's end, which advances only
     // if the pair touches (compaction without a branch: about a third of the
-    // pairs of a settled bed are within the skin but apart). A pair's history
-    // and slot are zeroed here; the flush writes the touching ones back.
+    // pairs of a settled bed are within the skin but apart). A cross pair's
+    // slot is zeroed here and a parted pair's history; the flush writes the
+    // touching pairs' results.
     for (std::int64_t i = lo; i < hi; ++i) {
       const Vec<D> xi = p.position[i];
       const Vec<D> vi = p.velocity[i];
@@ -368,12 +369,12 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
         const Vec<D> d = p.position[j] - xi;
         const Vec<D> dv = vi - p.velocity[j];
         const AngVec<D>& wj = p.angular_velocity[j];
+        const Vec<D> h = L.tangential[k];
         for (int c = 0; c < D; ++c) {
           batch.d[c][q] = d[c];
           batch.v[c][q] = dv[c];
-          batch.h[c][q] = L.tangential[k][c];
+          batch.h[c][q] = h[c];
         }
-        L.tangential[k].setZero();
         for (int c = 0; c < rotation_dim<D>; ++c) {
           batch.wi[c][q] = wi[c];
           batch.wj[c][q] = wj[c];
@@ -386,6 +387,9 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
         if (uniform == nullptr) batch.set_parameters(q, contact_table(mat_i, p.material[j]));
         const double reach = ri + rj;
         const bool touch = (d.squaredNorm() < reach * reach) & (inv_m > 0.0);
+        // A pair that stopped touching loses its history; one already at
+        // zero needs no store (a rare, well-predicted branch).
+        if (!touch & (h != Vec<D>::Zero())) L.tangential[k].setZero();
         batch.size += touch ? 1 : 0;
         touching += touch ? 1.0 : 0.0;
         if (batch.size == LinearContactBatch<D>::capacity) flush();
