@@ -34,19 +34,27 @@ void Simulation<D>::prepare() {
   }
   if (time_step <= 0.0) throw std::logic_error("time step not set");
   rebuild();
-  compute_forces(false);
+  compute_forces(Finish::none);
   prepared_ = true;
 }
 
 template <int D>
 void Simulation<D>::step() {
+  advance(1);
+}
+
+template <int D>
+void Simulation<D>::advance(std::uint64_t count) {
   if (!prepared_) prepare();
-  const double moved = kick_drift();
-  for (auto& w : walls) w.advance(time_step);
-  time += time_step;
-  rebuild_if_needed(moved);
-  compute_forces(true);
-  ++steps;
+  if (count == 0) return;
+  double moved = kick_drift();
+  for (std::uint64_t s = 0; s < count; ++s) {
+    for (auto& w : walls) w.advance(time_step);
+    time += time_step;
+    rebuild_if_needed(moved);
+    moved = compute_forces(s + 1 < count ? Finish::kick_kick_drift : Finish::kick);
+    ++steps;
+  }
 }
 
 template <int D>
@@ -116,55 +124,51 @@ template <int D>
 double Simulation<D>::kick_drift() {
   auto& p = particles;
   const auto n = static_cast<std::int64_t>(p.size());
-  const double dt = time_step;
   // Without reference positions for every particle (particles added since
   // the last build) the lists must be rebuilt: report an infinite move.
-  const auto& reference = list_.reference();
-  const bool referenced = reference.size() == p.size();
+  const bool referenced = list_.reference().size() == p.size();
   double moved2 = 0.0;
-  auto body = [&](std::int64_t i) {
-    if (p.fixed[i] == 0) kick_one(static_cast<std::size_t>(i), 0.5 * dt);
-    p.position[i] += p.velocity[i] * dt;
-    return referenced ? finite_or_inf((p.position[i] - reference[i]).squaredNorm())
-                      : std::numeric_limits<double>::infinity();
-  };
   if (n > parallel_threshold) {
 #pragma omp parallel for schedule(static) reduction(max : moved2)
-    for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, body(i));
+    for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, kick_drift_one(i, referenced));
   } else {
-    for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, body(i));
+    for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, kick_drift_one(i, referenced));
   }
   return std::sqrt(moved2);
 }
 
 template <int D>
-template <class Law>
-void Simulation<D>::compute_forces_for_law(bool kick_after) {
-  if (rolling_) {
-    compute_forces_with<Law, true>(kick_after);
-  } else {
-    compute_forces_with<Law, false>(kick_after);
-  }
+double Simulation<D>::kick_drift_one(std::int64_t i, bool referenced) {
+  auto& p = particles;
+  const double dt = time_step;
+  if (p.fixed[i] == 0) kick_one(static_cast<std::size_t>(i), 0.5 * dt);
+  p.position[i] += p.velocity[i] * dt;
+  return referenced ? finite_or_inf((p.position[i] - list_.reference()[i]).squaredNorm())
+                    : std::numeric_limits<double>::infinity();
 }
 
 template <int D>
-void Simulation<D>::compute_forces(bool kick_after) {
+template <class Law>
+double Simulation<D>::compute_forces_for_law(Finish finish) {
+  return rolling_ ? compute_forces_with<Law, true>(finish) : compute_forces_with<Law, false>(finish);
+}
+
+template <int D>
+double Simulation<D>::compute_forces(Finish finish) {
   switch (law_choice_) {
     case LawChoice::linear:
-      compute_forces_for_law<LinearSpringDashpot>(kick_after);
-      break;
+      return compute_forces_for_law<LinearSpringDashpot>(finish);
     case LawChoice::hertz:
-      compute_forces_for_law<HertzMindlin>(kick_after);
-      break;
+      return compute_forces_for_law<HertzMindlin>(finish);
     case LawChoice::mixed:
-      compute_forces_for_law<MixedNormalLaw>(kick_after);
-      break;
+      return compute_forces_for_law<MixedNormalLaw>(finish);
   }
+  return 0.0;
 }
 
 template <int D>
 template <class Law, bool Rolling>
-void Simulation<D>::compute_forces_with(bool kick_after) {
+double Simulation<D>::compute_forces_with(Finish finish) {
   auto& p = particles;
   auto& L = list_;
   auto& W = wall_list_;
@@ -424,8 +428,9 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
   }
 
   // Pass 2: each particle adds its cross shares in slot order, then gravity,
-  // external forces and the force field, and (in a step) takes its second
-  // half kick.
+  // external forces and the force field; in a step it takes its second half
+  // kick, and inside advance() at once the next step's first half kick and
+  // drift (the same operations as separate sweeps, one sweep fewer).
   const Vec<D> g = gravity;
   const bool field = force_field != nullptr;
   if (field) {
@@ -434,7 +439,8 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
   }
   const bool external = !p.external_force.empty();
   const double half_dt = 0.5 * dt;
-  for_each_index(n, [&](std::int64_t j) {
+  const bool referenced = L.reference().size() == p.size();
+  auto finish_one = [&](std::int64_t j) {
     Vec<D> f = p.force[j];
     AngVec<D> t = p.torque[j];
     for (std::uint32_t q = L.cross_offset[j]; q < L.cross_offset[j + 1]; ++q) {
@@ -447,8 +453,18 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
     if (p.inv_mass[j] > 0.0) f += g / p.inv_mass[j];
     p.force[j] = f;
     p.torque[j] = t;
-    if (kick_after && p.fixed[j] == 0) kick_one(static_cast<std::size_t>(j), half_dt);
-  });
+    if (finish == Finish::none) return 0.0;
+    if (p.fixed[j] == 0) kick_one(static_cast<std::size_t>(j), half_dt);
+    if (finish == Finish::kick) return 0.0;
+    return kick_drift_one(j, referenced);
+  };
+  double moved2 = 0.0;
+  if (n > parallel_threshold) {
+#pragma omp parallel for schedule(static) reduction(max : moved2)
+    for (std::int64_t j = 0; j < n; ++j) moved2 = std::max(moved2, finish_one(j));
+  } else {
+    for (std::int64_t j = 0; j < n; ++j) moved2 = std::max(moved2, finish_one(j));
+  }
 
   for (auto& w : walls) w.force.setZero();
   for (std::int64_t i = 0; i < n; ++i) {
@@ -456,6 +472,7 @@ void Simulation<D>::compute_forces_with(bool kick_after) {
       walls[W.wall[k]].force -= W.force_on_particle[k];
     }
   }
+  return std::sqrt(moved2);
 }
 
 template <int D>

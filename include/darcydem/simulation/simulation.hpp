@@ -54,6 +54,11 @@ class Simulation {
   /// the initial forces. Call after setting everything up and before step().
   void prepare();
   void step();
+  /// `count` steps; the same as calling step() `count` times, bitwise, but
+  /// each step's second half kick and the next one's first half kick and
+  /// drift share one sweep over the particles. Nothing may look at or change
+  /// the simulation in between, so callers advance to their next event.
+  void advance(std::uint64_t count);
 
   /// Critical time step: sqrt(m_min / k_max) for linear contacts, the
   /// Rayleigh step pi r sqrt(rho/G) / (0.1631 nu + 0.8766) for Hertz.
@@ -76,15 +81,24 @@ class Simulation {
   [[nodiscard]] const std::vector<Vec<D>>& field_forces() const { return field_force_; }
 
  private:
+  /// What the force evaluation ends with, particle by particle: nothing (at
+  /// preparation), the second half kick (a step's end), or that and the next
+  /// step's first half kick and drift (inside advance()).
+  enum class Finish { none, kick, kick_kick_drift };
+  /// Evaluates the forces; returns the largest displacement since the last
+  /// list build after a drift (m), else 0.
   template <class Law, bool Rolling>
-  void compute_forces_with(bool kick_after);
+  double compute_forces_with(Finish finish);
   template <class Law>
-  void compute_forces_for_law(bool kick_after);
-  void compute_forces(bool kick_after);
+  double compute_forces_for_law(Finish finish);
+  double compute_forces(Finish finish);
   [[gnu::always_inline]] inline void kick_one(std::size_t i, double half_dt);
   /// First half kick and drift; returns the largest displacement since the
   /// last list build (m).
   double kick_drift();
+  /// Both for one particle; returns its squared displacement since the last
+  /// build (infinite without a reference position).
+  [[gnu::always_inline]] inline double kick_drift_one(std::int64_t i, bool referenced);
   void rebuild_if_needed(double moved);
   void rebuild();
 
