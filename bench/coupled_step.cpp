@@ -6,6 +6,8 @@
 //                                   fluid updated every DEM step (fluid step,
 //                                   overlaps, solve, forces); solver 0 = Cholesky, 1 = CG
 //   BM_PressureSolve/cells/solver   one fluid update on a frozen packing alone
+//   BM_GrainForces/cells            the fluid's force on every grain alone
+//                                   (PoreFluid::particle_forces, Ergun drag)
 //
 // The grid covers the packing's base and is as tall as needed for the cell
 // count (fluid above the bed), with cells at least one grain wide.
@@ -115,6 +117,22 @@ void BM_PressureSolve(benchmark::State& state) {
   state.counters["solver_iterations"] = fluid->last_solve().iterations;
 }
 
+void BM_GrainForces(benchmark::State& state) {
+  omp_set_num_threads(1);
+  static auto sim = bench::make_packing(kGrains, 0);
+  auto fluid = make_fluid(sim, state.range(0), 1);
+  // A flow through the bed, so that gradients and drag are not zero.
+  fluid->update(sim.particles, 1e-3, 1e-3);
+  std::vector<Vec<3>> force(sim.particles.size());
+  for (auto _ : state) {
+    fluid->particle_forces(sim.particles, sim.gravity, force);
+    benchmark::DoNotOptimize(force.data());
+  }
+  state.counters["ns_per_grain"] =
+      benchmark::Counter(static_cast<double>(sim.particles.size()) * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 BENCHMARK(BM_DemStep)->Args({kGrains, 1})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 BENCHMARK(BM_CoupledStep)
     ->ArgsProduct({{1'000, 10'000, 100'000}, {0, 1}})
@@ -126,6 +144,7 @@ BENCHMARK(BM_PressureSolve)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0)
     ->UseRealTime();
+BENCHMARK(BM_GrainForces)->Arg(10'000)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
 
 }  // namespace
 

@@ -13,28 +13,6 @@ constexpr double pi = std::numbers::pi;
 
 double safe_sqrt(double v) { return std::sqrt(std::max(0.0, v)); }
 
-/// Antiderivative of sqrt(s^2 - x^2) for |x| <= s.
-double root_integral(double s, double x) {
-  if (s <= 0.0) return 0.0;
-  const double q = safe_sqrt(s * s - x * x);
-  return 0.5 * (x * q + s * s * std::atan2(x, q));
-}
-
-/// Antiderivative in z of (r^2 - z^2) acos(beta / sqrt(r^2 - z^2)), valid for
-/// |z| <= s = sqrt(r^2 - beta^2), beta >= 0. Integration by parts turns the
-/// acos into algebraic terms, an asin and an atan.
-double slice_integral(double r, double beta, double z) {
-  const double s2 = r * r - beta * beta;
-  const double q = safe_sqrt(s2 - z * z);
-  // acos(beta / rho) and asin(z / s) as atan2 of exact legs: no loss of
-  // accuracy where the slice just touches the plane (q -> 0).
-  const double acos_term = beta == 0.0 ? 0.5 * pi : std::atan2(q, beta);
-  const double asin_term = std::atan2(z, q);
-  return (r * r * z - z * z * z / 3.0) * acos_term +
-         beta / 3.0 * ((0.5 * s2 - 2.0 * r * r) * asin_term - 0.5 * z * q) +
-         2.0 * r * r * r / 3.0 * std::atan2(z * beta, r * q);
-}
-
 /// Measure of the ball in {x_k > a_k} over the `count` constraints in `a`.
 double upper(int dim, double r, std::array<double, 3> a, int count) {
   // Vacuous constraints go; any constraint beyond the ball empties it.
@@ -53,7 +31,7 @@ double upper(int dim, double r, std::array<double, 3> a, int count) {
         if (j != k) without[w++] = a[j];
       }
       std::array<double, 3> mirrored = a;
-      mirrored[k] = -a[k];
+      mirrored[k] = 0.0 - a[k];
       return upper(dim, r, without, w) - upper(dim, r, mirrored, count);
     }
   }
@@ -101,33 +79,105 @@ double cap_volume(double r, double a) {
   return pi * (r - a) * (r - a) * (2.0 * r + a) / 3.0;
 }
 
-double wedge_volume(double r, double a, double b) {
-  if (a * a + b * b >= r * r) return 0.0;
-  // Slices x = const from a to s_b: the disc of radius sqrt(r^2 - x^2) above
-  // y = b, a circular segment.
-  const double sb = std::sqrt(r * r - b * b);
-  // At the upper end z = s_b the slice closes (q = 0): the antiderivatives
-  // reduce to their limits, which saves four atan2 calls.
-  const double upper = b > 0.0 ? b / 3.0 * (0.5 * sb * sb - 2.0 * r * r) * (0.5 * pi) + r * r * r / 3.0 * pi
-                               : slice_integral(r, b, sb);
-  return upper - slice_integral(r, b, a) - b * (0.25 * pi * sb * sb - root_integral(sb, a));
+double pair_chord(double r, double u, double v) { return safe_sqrt(r * r - u * u - v * v); }
+
+PairAngles pair_angles(double r, double u, double v) {
+  const double w = pair_chord(r, u, v);
+  return {w, std::atan2(w, u), std::atan2(w, v), std::atan2(u * v, r * w)};
 }
 
-double octant_volume(double r, double a, double b, double c) {
+OctantAngles octant_angles(double r, double a, double b) {
+  const double zm = pair_chord(r, a, b);
+  return {std::atan2(a, b), std::atan2(zm * b, r * a), std::atan2(zm * a, r * b)};
+}
+
+// The 3D closed forms integrate the 2D corner area over slices z = const
+// (docs/ARCHITECTURE.md). With rho^2 = r^2 - z^2 and the plane at beta,
+//   J(beta, z) = (r^2 z - z^3/3) acos(beta/rho)
+//              + beta/3 ((s^2/2 - 2 r^2) asin(z/s) - z q/2) + 2 r^3/3 atan(z beta / (r q))
+// is an antiderivative of (r^2 - z^2) acos(beta/rho) (s^2 = r^2 - beta^2,
+// q = sqrt(s^2 - z^2)), and R(s, z) = (z q + s^2 asin(z/s))/2 one of
+// sqrt(s^2 - z^2). Each acos, asin and atan is one of the pair or octant
+// angles: at z = a below the plane beta = b, q is the pair's w; at the
+// octant's top z = zm, q is the other plane's distance.
+namespace {
+
+/// J(beta, z) from its three angles.
+double slice_integral(double r, double beta, double z, double q, double acos_term, double asin_term,
+                      double atan_term) {
+  const double s2 = r * r - beta * beta;
+  return (r * r * z - z * z * z / 3.0) * acos_term +
+         beta / 3.0 * ((0.5 * s2 - 2.0 * r * r) * asin_term - 0.5 * z * q) +
+         2.0 * r * r * r / 3.0 * atan_term;
+}
+
+/// R(s, z) from asin(z/s).
+double root_integral(double s2, double z, double q, double asin_term) {
+  return 0.5 * (z * q + s2 * asin_term);
+}
+
+}  // namespace
+
+double wedge_volume(double r, double a, double b, const PairAngles& ab) {
+  if (a * a + b * b >= r * r) return 0.0;
+  // Slices x = const from a to s_b = sqrt(r^2 - b^2): the disc of radius
+  // sqrt(r^2 - x^2) above y = b, a circular segment. At the upper end the
+  // slice closes and J reduces to its limit.
+  const double sb2 = r * r - b * b;
+  const double upper = b / 3.0 * (0.5 * sb2 - 2.0 * r * r) * (0.5 * pi) + r * r * r / 3.0 * pi;
+  const double asin_a = 0.5 * pi - ab.theta_u;  // asin(a / s_b) = atan2(a, w)
+  return upper - slice_integral(r, b, a, ab.w, ab.theta_v, asin_a, ab.tau) -
+         b * (0.25 * pi * sb2 - root_integral(sb2, a, ab.w, asin_a));
+}
+
+double wedge_volume(double r, double a, double b) { return wedge_volume(r, a, b, pair_angles(r, a, b)); }
+
+double octant_volume(double r, double a, double b, double c, const PairAngles& ab, const PairAngles& ac,
+                     const PairAngles& bc, const OctantAngles& o) {
   const double zm2 = r * r - a * a - b * b;
   if (zm2 <= c * c || zm2 <= 0.0) return 0.0;
   // Slices z = const from c to z_m: the corner of a disc of radius
   // rho = sqrt(r^2 - z^2) in {x > a, y > b}, whose area is
   //   rho^2/2 (acos(b/rho) - asin(a/rho)) - (b sqrt(rho^2-b^2) + a sqrt(rho^2-a^2))/2 + a b,
   // with asin(a/rho) = pi/2 - acos(a/rho).
-  const double zm = std::sqrt(zm2);
-  const double sa = std::sqrt(r * r - a * a);
-  const double sb = std::sqrt(r * r - b * b);
+  const double zm = ab.w;
+  const double sa2 = r * r - a * a;
+  const double sb2 = r * r - b * b;
+  // At z_m, acos(b/rho) = atan2(a, b) and acos(a/rho) = pi/2 - atan2(a, b)
+  // (both pi/2 when a = b = 0, the limit of acos(0)).
+  const bool both_zero = a == 0.0 && b == 0.0;
+  const double acos_b_top = both_zero ? 0.5 * pi : o.ab;
+  const double acos_a_top = both_zero ? 0.5 * pi : 0.5 * pi - o.ab;
+  const double asin_c_b = 0.5 * pi - bc.theta_v;  // atan2(c, w_bc)
+  const double asin_c_a = 0.5 * pi - ac.theta_v;  // atan2(c, w_ac)
   auto cubic = [&](double z) { return r * r * z - z * z * z / 3.0; };
-  return 0.5 * (slice_integral(r, b, zm) - slice_integral(r, b, c)) +
-         0.5 * (slice_integral(r, a, zm) - slice_integral(r, a, c)) - 0.25 * pi * (cubic(zm) - cubic(c)) -
-         0.5 * b * (root_integral(sb, zm) - root_integral(sb, c)) -
-         0.5 * a * (root_integral(sa, zm) - root_integral(sa, c)) + a * b * (zm - c);
+  const double j_b = slice_integral(r, b, zm, a, acos_b_top, ab.theta_u, o.zb) -
+                     slice_integral(r, b, c, bc.w, bc.theta_u, asin_c_b, bc.tau);
+  const double j_a = slice_integral(r, a, zm, b, acos_a_top, ab.theta_v, o.za) -
+                     slice_integral(r, a, c, ac.w, ac.theta_u, asin_c_a, ac.tau);
+  const double r_b = root_integral(sb2, zm, a, ab.theta_u) - root_integral(sb2, c, bc.w, asin_c_b);
+  const double r_a = root_integral(sa2, zm, b, ab.theta_v) - root_integral(sa2, c, ac.w, asin_c_a);
+  return 0.5 * j_b + 0.5 * j_a - 0.25 * pi * (cubic(zm) - cubic(c)) - 0.5 * b * r_b - 0.5 * a * r_a +
+         a * b * (zm - c);
+}
+
+double octant_volume(double r, double a, double b, double c) {
+  return octant_volume(r, a, b, c, pair_angles(r, a, b), pair_angles(r, a, c), pair_angles(r, b, c),
+                       octant_angles(r, a, b));
+}
+
+double section_beyond(double rho2, double d_l, const PairAngles& jl, double theta_l) {
+  if (d_l * d_l >= rho2) return 0.0;
+  // Circular segment: rho^2 atan2(h, d_l) - d_l h, with h = w of the pair.
+  return rho2 * theta_l - d_l * jl.w;
+}
+
+double section_beyond(double rho2, double d_l, double d_m, const PairAngles& jl, double theta_l,
+                      const PairAngles& jm, double theta_m) {
+  if (d_l * d_l + d_m * d_m >= rho2) return 0.0;
+  // Corner of the disc (corner_area): h_l and h_m are the pairs' w, and
+  // atan2(d_l, h_l) = pi/2 - theta_l.
+  return 0.5 * rho2 * (theta_m - (0.5 * pi - theta_l)) - 0.5 * (d_m * jm.w + d_l * jl.w) + d_l * d_m;
 }
 
 template <int D>
@@ -136,7 +186,9 @@ double below(double r, const std::array<double, D>& t) {
   int count = 0;
   for (int k = 0; k < D; ++k) {
     if (t[k] == unbounded) continue;
-    a[count++] = -t[k];  // {x < t} mirrors to {x > -t}
+    // {x < t} mirrors to {x > -t}; 0 - t rather than -t, so that a face
+    // through the centre gives +0: atan2 reads atan2(+0, -0) as pi.
+    a[count++] = 0.0 - t[k];
   }
   return upper(D, r, a, count);
 }

@@ -78,3 +78,92 @@ TEST(GridOverlap, GrainsInAFullGridAddUpToTheirVolume) {
   fluid.for_each_overlap(p, [&](std::size_t, std::size_t, double v) { sum += v; });
   EXPECT_NEAR(sum, total, 1e-12 * total);
 }
+
+TEST(GridOverlap, CellsAndFaceSectionsAgainstBoxFormulas) {
+  // Every grain's share of every cell against the ball/box measure of
+  // ball_overlap::in_box (inclusion-exclusion over the box's corners with
+  // std::atan2), and every section it reports on a face against the area of
+  // its cut disc inside the face's rectangle (the 2D in_box). The batched
+  // path shares its arctangents among wedges, octants and sections and may
+  // take them from the vector library: agreement to 1e-12 of the grain's
+  // volume (area) leaves room for a few ulp per angle, nothing more.
+  PoreFluid<3> fluid;
+  fluid.grid.origin = Vec<3>(-0.1, 0.2, 0.0);
+  fluid.grid.spacing = Vec<3>(1.0, 0.9, 1.1);
+  fluid.grid.cells = {5, 4, 6};
+  ParticleData<3> p;
+  for (int i = 0; i < 300; ++i) {
+    const double r = 0.2 + 0.0008 * i;
+    // Centres anywhere, including within a radius of the grid's sides.
+    const Vec<3> x(-0.1 + std::fmod(0.377 * i, 5.0), 0.2 + std::fmod(0.533 * i, 3.6),
+                   std::fmod(0.719 * i, 6.6));
+    p.add(x, r, 1000.0, 0, false);
+  }
+  // Faces on the grid's planes: the grid's own cell faces.
+  p.add(Vec<3>(0.9, 1.1, 1.1), 0.3, 1000.0, 0, false);
+  p.add(Vec<3>(1.9, 2.0, 2.2), 0.45, 1000.0, 0, false);
+  const auto& grid = fluid.grid;
+  std::vector<std::vector<double>> share(p.size(), std::vector<double>(grid.size(), 0.0));
+  std::vector<std::array<std::vector<double>, 3>> area(p.size());
+  for (auto& a : area) {
+    for (int k = 0; k < 3; ++k) a[k].assign(grid.face_count(k), 0.0);
+  }
+  fluid.for_each_overlap(
+      p, [&](std::size_t c, std::size_t i, double v) { share[i][c] += v; },
+      [&](int k, const std::array<int, 3>& face, std::size_t i, double a) {
+        area[i][k][grid.face_index(k, face)] += a;
+      },
+      true);
+  double worst_volume = 0.0;
+  double worst_area = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double r = p.radius[i];
+    const std::array<double, 3> x{p.position[i][0], p.position[i][1], p.position[i][2]};
+    const double volume = particle_volume<3>(r);
+    for (std::size_t c = 0; c < grid.size(); ++c) {
+      const auto cc = grid.coords(c);
+      std::array<double, 3> lo{}, hi{};
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = grid.origin[k] + cc[k] * grid.spacing[k];
+        hi[k] = lo[k] + grid.spacing[k];
+      }
+      const double ref = ball_overlap::in_box<3>(r, x, lo, hi);
+      worst_volume = std::max(worst_volume, std::abs(share[i][c] - ref) / volume);
+    }
+    // Sections: each face the grain's home cell shares with a neighbour
+    // across a crossed plane, and the grid's outer faces. Faces elsewhere
+    // must report nothing; the reference is zero there too.
+    for (int k = 0; k < 3; ++k) {
+      const int a1 = (k + 1) % 3;
+      const int a2 = (k + 2) % 3;
+      for (int f0 = 0; f0 <= grid.cells[k]; ++f0) {
+        const double plane = grid.origin[k] + f0 * grid.spacing[k];
+        const double dz = x[k] - plane;
+        const double rho2 = r * r - dz * dz;
+        for (int f1 = 0; f1 < grid.cells[a1]; ++f1) {
+          for (int f2 = 0; f2 < grid.cells[a2]; ++f2) {
+            std::array<int, 3> face{};
+            face[k] = f0;
+            face[a1] = f1;
+            face[a2] = f2;
+            double ref = 0.0;
+            if (rho2 > 0.0) {
+              const double lo1 = grid.origin[a1] + f1 * grid.spacing[a1];
+              const double lo2 = grid.origin[a2] + f2 * grid.spacing[a2];
+              ref = ball_overlap::in_box<2>(std::sqrt(rho2), {x[a1], x[a2]}, {lo1, lo2},
+                                            {lo1 + grid.spacing[a1], lo2 + grid.spacing[a2]});
+            }
+            // Only faces of cells the grain's centre is next to are
+            // crossed (cells are wider than the grain): compare where the
+            // grain's centre is within a radius of the plane.
+            if (std::abs(dz) >= r) ref = 0.0;
+            const double got = area[i][k][grid.face_index(k, face)];
+            worst_area = std::max(worst_area, std::abs(got - ref) / (std::numbers::pi * r * r));
+          }
+        }
+      }
+    }
+  }
+  EXPECT_LT(worst_volume, 1e-12);
+  EXPECT_LT(worst_area, 1e-12);
+}

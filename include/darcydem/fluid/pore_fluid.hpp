@@ -114,7 +114,14 @@ class PoreFluid final : public ParticleForceField<D> {
   /// for the component along an axis, linear between the two faces of the
   /// cell holding x along that axis, and between cell centres along the
   /// others (held beyond the outer ones), as on a staggered (MAC) grid.
-  void interpolate(const Vec<D>& x, std::array<double, D>& grad, std::array<double, D>& flux) const;
+  /// s is x in cell units, (x - origin) / spacing.
+  void interpolate(const std::array<double, D>& s, std::array<double, D>& grad,
+                   std::array<double, D>& flux) const;
+  [[nodiscard]] std::array<double, D> cell_units(const Vec<D>& x) const {
+    std::array<double, D> s{};
+    for (int k = 0; k < D; ++k) s[k] = (x[k] - grid.origin[k]) * inv_spacing_[k];
+    return s;
+  }
   /// Cell-centre interpolation along axis k at s = (x - origin) / h.
   void centre_coordinate(int k, double s, int& cell, double& frac) const;
   /// Storage n V / K_f of cell c, m^3/Pa (porosity floored at 1e-3).
@@ -137,7 +144,19 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<double> pressure_, pressure_old_, porosity_, solid_, solid_old_;
   std::vector<double> porosity_used_;  ///< porosity clamped to the permeability's [min, max]
   std::vector<Vec<D>> solid_flux_, solid_velocity_, kappa_;
-  std::vector<ErgunWenYu> drag_coefficients_;  ///< per cell, at its clamped porosity
+  /// Per cell, at its clamped porosity, what the force on a grain needs: the
+  /// drag per unit grain volume and unit slip, beta/(1-n), is
+  ///   darcy[k] + viscous/d^2 + inertial |slip|/d + wen_yu C_dRe(re)/d^2,
+  /// with re = re_factor d |slip| (Ergun/Wen-Yu: darcy = 0; Darcy: the rest 0).
+  struct CellDrag {
+    double inv_n = 1.0;
+    double viscous = 0.0;
+    double inertial = 0.0;
+    double wen_yu = 0.0;
+    double re_factor = 0.0;
+    Vec<D> darcy = Vec<D>::Zero();
+  };
+  std::vector<CellDrag> cell_drag_;
   std::array<std::vector<double>, D> grad_, flux_;
   std::array<std::vector<std::array<double, 2>>, D>
       face_gq_;  ///< (grad, flux) side by side: one load per corner

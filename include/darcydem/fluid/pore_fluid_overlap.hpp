@@ -5,133 +5,271 @@
 // the distance from the centre to the crossed face along axis k, the part of
 // the grain beyond the faces of a set T of axes is the cap, wedge or octant
 // M(T) (ball_overlap.hpp), and the part in the cell reached by crossing
-// exactly the faces of S follows by inclusion-exclusion:
+// exactly the faces of S follows by inclusion-exclusion (a Moebius
+// transform over the subsets):
 //   vol(S) = sum over T with S in T of (-1)^{|T| - |S|} M(T).
 // The parts add up to the grain's volume (minus what lies outside the grid).
 // Optionally it also reports the grain's cross-section on every face it
 // crosses (the solid area through which it moves across that face).
+//
+// Grains are taken in chunks. Each grain is first cut against the grid
+// (which faces it crosses), then the grains of a chunk are sorted by the set
+// of axes they cross, and each set is processed by code compiled for it:
+// no branch depends on a grain's position. In 3D the arctangents of the
+// wedges, octants and sections are shared (ball_overlap::PairAngles) and
+// computed together for all the grains of a set (core/vector_math.hpp).
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <numbers>
+#include <vector>
 
+#include "darcydem/core/vector_math.hpp"
 #include "darcydem/fluid/ball_overlap.hpp"
 #include "darcydem/fluid/pore_fluid.hpp"
 
 namespace darcydem {
+namespace overlap_detail {
 
-/// Inclusion-exclusion over the subsets T of `all` that contain s:
-/// sum (-1)^{|T| - |s|} m[T], the measure beyond exactly the planes of s
-/// when m[T] is the measure beyond (at least) the planes of T.
-template <std::size_t N>
-inline double beyond_exactly(const std::array<double, N>& m, int s, int all) {
-  double v = 0.0;
-  for (int t = s;; t = (t + 1) | s) {
-    v += ((__builtin_popcount(t ^ s) & 1) != 0 ? -m[t] : m[t]);
-    if (t == all) break;
+/// Where a grain lies on the fluid grid: its home cell and, per axis, the
+/// neighbour across the nearer face and the distance to that face.
+template <int D>
+struct GrainCut {
+  std::array<int, D> home{};
+  std::array<int, D> other{};
+  std::array<double, D> dist{};
+};
+
+/// In place, m[S] <- sum over T containing S of (-1)^{|T|-|S|} m[T]: from
+/// the measures beyond at least the planes of S to beyond exactly them.
+template <int K, std::size_t N>
+inline void beyond_exactly(std::array<double, N>& m) {
+  for (int j = 0; j < K; ++j) {
+    for (int s = 0; s < (1 << K); ++s) {
+      if ((s & (1 << j)) == 0) m[s] -= m[s | (1 << j)];
+    }
   }
-  return v;
 }
+
+/// The j-th axis in Mask.
+template <int Mask>
+constexpr int axis_of(int j) {
+  for (int k = 0; k < 3; ++k) {
+    if ((Mask >> k) & 1) {
+      if (j == 0) return k;
+      --j;
+    }
+  }
+  return -1;
+}
+
+/// Index of the pair (j, l), j < l, of crossing axes: (0,1) 0, (0,2) 1, (1,2) 2.
+constexpr int pair_slot(int j, int l) { return j + l - 1; }
+
+/// Scratch space of one chunk.
+struct OverlapScratch {
+  std::vector<double> ys, xs, angle;
+};
+
+/// The sections of a grain on the faces it crosses (cut_bucket).
+template <int D, int K, class G>
+void cut_sections(const FluidGrid<D>& grid, const GrainCut<D>& cut, const std::array<int, 3>& axes,
+                  const std::array<double, 3>& d, const std::array<ball_overlap::PairAngles, 3>& pa, double r,
+                  std::size_t i, G& section) {
+  namespace bo = ball_overlap;
+  constexpr int subsets = 1 << K;
+  // On the face of axis axes[j], a (D-1)-ball of radius
+  // rho = sqrt(r^2 - d_j^2), shared among the faces beyond the other
+  // crossed planes in the same way as the volume among the cells.
+  for (int j = 0; j < K; ++j) {
+    const double rho2 = std::max(0.0, r * r - d[j] * d[j]);
+    std::array<int, 2> others{};
+    int no = 0;
+    for (int l = 0; l < K; ++l) {
+      if (l != j) others[no++] = l;
+    }
+    auto pair_of = [&](int l) -> const bo::PairAngles& {
+      return pa[pair_slot(std::min(j, l), std::max(j, l))];
+    };
+    // theta of the distance d_l in the pair (j, l).
+    auto theta = [&](int l) { return l > j ? pair_of(l).theta_v : pair_of(l).theta_u; };
+    std::array<double, subsets / 2> ms{};
+    if constexpr (D == 2) {
+      const double rho = std::sqrt(rho2);
+      ms[0] = 2.0 * rho;
+      if constexpr (K == 2) ms[1] = std::max(0.0, rho - d[others[0]]);
+    } else {
+      ms[0] = std::numbers::pi * rho2;
+      for (int t = 0; t < K - 1; ++t) {
+        ms[1 << t] = bo::section_beyond(rho2, d[others[t]], pair_of(others[t]), theta(others[t]));
+      }
+      if constexpr (K == 3) {
+        ms[3] = bo::section_beyond(rho2, d[others[0]], d[others[1]], pair_of(others[0]), theta(others[0]),
+                                   pair_of(others[1]), theta(others[1]));
+      }
+    }
+    beyond_exactly<K - 1>(ms);
+    const int k = axes[j];
+    for (int s = 0; s < subsets / 2; ++s) {
+      std::array<int, D> face = cut.home;
+      face[k] = std::max(cut.home[k], cut.other[k]);
+      for (int l = 0; l < K - 1; ++l) {
+        if ((s >> l) & 1) face[axes[others[l]]] = cut.other[axes[others[l]]];
+      }
+      bool in = face[k] >= 0 && face[k] <= grid.cells[k];
+      for (int a = 0; a < D; ++a) {
+        if (a != k && (face[a] < 0 || face[a] >= grid.cells[a])) in = false;
+      }
+      if (ms[s] > 0.0 && in) section(k, face, i, ms[s]);
+    }
+  }
+}
+
+/// The grains `members` (indices into the chunk starting at `start`), which
+/// all cross exactly the faces of the axes in Mask.
+template <int D, int Mask, class F, class G>
+void cut_bucket(const FluidGrid<D>& grid, const ParticleData<D>& p, const GrainCut<D>* cuts,
+                const std::uint16_t* members, std::size_t count, std::size_t start, OverlapScratch& scratch,
+                F& f, G& section, bool sections) {
+  namespace bo = ball_overlap;
+  constexpr int K = __builtin_popcount(Mask);
+  constexpr int subsets = 1 << K;
+  std::array<int, 3> axes{};
+  for (int j = 0; j < K; ++j) axes[j] = axis_of<Mask>(j);
+  // Arctangents, 3 per pair of crossing axes and 3 more for the octant.
+  constexpr int pairs_count = K * (K - 1) / 2;
+  constexpr int per_grain = D == 3 ? 3 * pairs_count + (K == 3 ? 3 : 0) : 0;
+  if constexpr (per_grain > 0) {
+    scratch.ys.resize(per_grain * count);
+    scratch.xs.resize(per_grain * count);
+    scratch.angle.resize(per_grain * count);
+    for (std::size_t g = 0; g < count; ++g) {
+      const GrainCut<D>& cut = cuts[members[g]];
+      const double r = p.radius[start + members[g]];
+      double* y = scratch.ys.data() + per_grain * g;
+      double* x = scratch.xs.data() + per_grain * g;
+      for (int j = 0; j < K; ++j) {
+        for (int l = j + 1; l < K; ++l) {
+          const double u = cut.dist[axes[j]];
+          const double v = cut.dist[axes[l]];
+          const double w = bo::pair_chord(r, u, v);
+          const int s = 3 * pair_slot(j, l);
+          y[s] = w;
+          x[s] = u;
+          y[s + 1] = w;
+          x[s + 1] = v;
+          y[s + 2] = u * v;
+          x[s + 2] = r * w;
+        }
+      }
+      if constexpr (K == 3) {
+        const double a = cut.dist[0];
+        const double b = cut.dist[1];
+        const double zm = bo::pair_chord(r, a, b);
+        y[9] = a;
+        x[9] = b;
+        y[10] = zm * b;
+        x[10] = r * a;
+        y[11] = zm * a;
+        x[11] = r * b;
+      }
+    }
+    atan2_batch(scratch.ys.data(), scratch.xs.data(), scratch.angle.data(), per_grain * count);
+  }
+  for (std::size_t g = 0; g < count; ++g) {
+    const GrainCut<D>& cut = cuts[members[g]];
+    const std::size_t i = start + members[g];
+    const double r = p.radius[i];
+    std::array<double, 3> d{};
+    for (int j = 0; j < K; ++j) d[j] = cut.dist[axes[j]];
+    // Pair angles (3D): w is the first atan2's y.
+    std::array<bo::PairAngles, 3> pa{};
+    if constexpr (per_grain > 0) {
+      const double* a = scratch.angle.data() + per_grain * g;
+      const double* y = scratch.ys.data() + per_grain * g;
+      for (int s = 0; s < pairs_count; ++s) pa[s] = {y[3 * s], a[3 * s], a[3 * s + 1], a[3 * s + 2]};
+    }
+    // M(T) for every subset T of the crossing axes (bit j: axes[j]).
+    std::array<double, subsets> m{};
+    m[0] = particle_volume<D>(r);
+    if constexpr (D == 2) {
+      for (int j = 0; j < K; ++j) m[1 << j] = bo::segment_area(r, d[j]);
+      if constexpr (K == 2) m[3] = bo::corner_area(r, d[0], d[1]);
+    } else {
+      for (int j = 0; j < K; ++j) m[1 << j] = bo::cap_volume(r, d[j]);
+      for (int j = 0; j < K; ++j) {
+        for (int l = j + 1; l < K; ++l) {
+          m[(1 << j) | (1 << l)] = bo::wedge_volume(r, d[j], d[l], pa[pair_slot(j, l)]);
+        }
+      }
+      if constexpr (K == 3) {
+        const double* a = scratch.angle.data() + per_grain * g + 9;
+        m[7] = bo::octant_volume(r, d[0], d[1], d[2], pa[0], pa[1], pa[2], {a[0], a[1], a[2]});
+      }
+    }
+    beyond_exactly<K>(m);
+    for (int s = 0; s < subsets; ++s) {
+      std::array<int, D> cell = cut.home;
+      for (int j = 0; j < K; ++j) {
+        if ((s >> j) & 1) cell[axes[j]] = cut.other[axes[j]];
+      }
+      if (m[s] > 0.0 && grid.inside(cell)) f(grid.index(cell), i, m[s]);
+    }
+    if constexpr (K > 0) {
+      if (sections) cut_sections<D, K>(grid, cut, axes, d, pa, r, i, section);
+    }
+  }
+}
+
+}  // namespace overlap_detail
 
 template <int D>
 template <class F, class G>
 void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, F&& f, G&& section, bool sections) const {
-  namespace bo = ball_overlap;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const double r = p.radius[i];
-    const Vec<D>& x = p.position[i];
-    std::array<int, D> home{};
-    std::array<int, D> other{};
-    std::array<int, D> axes{};  // crossing axes
-    std::array<double, D> dist{};
-    int crossing = 0;
-    for (int k = 0; k < D; ++k) {
-      home[k] = grid.cell_along(k, x[k]);
-      const double lo = grid.origin[k] + home[k] * grid.spacing[k];
-      const double hi = lo + grid.spacing[k];
-      if (x[k] - r < lo) {
-        other[k] = home[k] - 1;
-        dist[crossing] = x[k] - lo;
-        axes[crossing++] = k;
-      } else if (x[k] + r > hi) {
-        other[k] = home[k] + 1;
-        dist[crossing] = hi - x[k];
-        axes[crossing++] = k;
-      } else {
-        other[k] = home[k];
+  using overlap_detail::cut_bucket;
+  using overlap_detail::GrainCut;
+  constexpr std::size_t chunk = 1024;
+  constexpr int masks = 1 << D;
+  const std::size_t count = p.size();
+  std::vector<GrainCut<D>> cuts(std::min(chunk, count));
+  std::array<std::vector<std::uint16_t>, masks> bucket;
+  for (auto& b : bucket) b.resize(cuts.size());
+  overlap_detail::OverlapScratch scratch;
+  for (std::size_t start = 0; start < count; start += chunk) {
+    const std::size_t end = std::min(count, start + chunk);
+    std::array<std::size_t, masks> filled{};
+    for (std::size_t i = start; i < end; ++i) {
+      GrainCut<D>& cut = cuts[i - start];
+      const double r = p.radius[i];
+      const Vec<D>& x = p.position[i];
+      int mask = 0;
+      for (int k = 0; k < D; ++k) {
+        cut.home[k] = grid.cell_along(k, x[k]);
+        const double lo = grid.origin[k] + cut.home[k] * grid.spacing[k];
+        const double below = x[k] - lo;
+        const double above = lo + grid.spacing[k] - x[k];
+        const bool down = below < r;
+        const bool up = !down && above < r;
+        cut.other[k] = cut.home[k] + (up ? 1 : 0) - (down ? 1 : 0);
+        // +0 at least: the closed forms take distances >= +0.
+        cut.dist[k] = std::max(0.0, down ? below : above);
+        mask |= (down || up) ? (1 << k) : 0;
       }
+      bucket[mask][filled[mask]++] = static_cast<std::uint16_t>(i - start);
     }
-    if (crossing == 0) {
-      if (grid.inside(home)) f(grid.index(home), i, particle_volume<D>(r));
-      continue;
-    }
-    // M(T) for every subset T of the crossing axes (bit j: axes[j]).
-    std::array<double, 8> m{};
-    for (int t = 0; t < (1 << crossing); ++t) {
-      std::array<double, 3> d{};
-      int n = 0;
-      for (int j = 0; j < crossing; ++j) {
-        if ((t >> j) & 1) d[n++] = dist[j];
-      }
-      if constexpr (D == 2) {
-        m[t] = n == 0   ? particle_volume<2>(r)
-               : n == 1 ? bo::segment_area(r, d[0])
-                        : bo::corner_area(r, d[0], d[1]);
-      } else {
-        m[t] = n == 0   ? particle_volume<3>(r)
-               : n == 1 ? bo::cap_volume(r, d[0])
-               : n == 2 ? bo::wedge_volume(r, d[0], d[1])
-                        : bo::octant_volume(r, d[0], d[1], d[2]);
-      }
-    }
-    const int all = (1 << crossing) - 1;
-    // Sections of the grain on the faces it crosses: on the face of axis
-    // axes[j], a (D-1)-ball of radius rho = sqrt(r^2 - d_j^2), shared among
-    // the faces beyond the other crossed planes in the same way.
-    if (sections) {
-      for (int j = 0; j < crossing; ++j) {
-        const double rho = std::sqrt(std::max(0.0, r * r - dist[j] * dist[j]));
-        std::array<int, 2> others{};
-        int no = 0;
-        for (int l = 0; l < crossing; ++l) {
-          if (l != j) others[no++] = l;
-        }
-        std::array<double, 4> ms{};
-        for (int t = 0; t < (1 << no); ++t) {
-          std::array<double, 2> d{};
-          int n = 0;
-          for (int l = 0; l < no; ++l) {
-            if ((t >> l) & 1) d[n++] = dist[others[l]];
-          }
-          if constexpr (D == 2) {
-            ms[t] = n == 0 ? 2.0 * rho : std::max(0.0, rho - d[0]);
-          } else {
-            ms[t] = n == 0   ? std::numbers::pi * rho * rho
-                    : n == 1 ? bo::segment_area(rho, d[0])
-                             : bo::corner_area(rho, d[0], d[1]);
-          }
-        }
-        const int oall = (1 << no) - 1;
-        for (int s = 0; s <= oall; ++s) {
-          const double a = beyond_exactly(ms, s, oall);
-          const int k = axes[j];
-          std::array<int, D> face = home;
-          face[k] = std::max(home[k], other[k]);
-          for (int l = 0; l < no; ++l) {
-            if ((s >> l) & 1) face[axes[others[l]]] = other[axes[others[l]]];
-          }
-          bool in = face[k] >= 0 && face[k] <= grid.cells[k];
-          for (int m2 = 0; m2 < D; ++m2) {
-            if (m2 != k && (face[m2] < 0 || face[m2] >= grid.cells[m2])) in = false;
-          }
-          if (a > 0.0 && in) section(k, face, i, a);
-        }
-      }
-    }
-    for (int s = 0; s <= all; ++s) {
-      const double v = beyond_exactly(m, s, all);
-      std::array<int, D> cell = home;
-      for (int j = 0; j < crossing; ++j) {
-        if ((s >> j) & 1) cell[axes[j]] = other[axes[j]];
-      }
-      if (v > 0.0 && grid.inside(cell)) f(grid.index(cell), i, v);
+    auto run = [&]<int Mask>() {
+      cut_bucket<D, Mask>(grid, p, cuts.data(), bucket[Mask].data(), filled[Mask], start, scratch, f, section,
+                          sections);
+    };
+    run.template operator()<0>();
+    run.template operator()<1>();
+    run.template operator()<2>();
+    run.template operator()<3>();
+    if constexpr (D == 3) {
+      run.template operator()<4>();
+      run.template operator()<5>();
+      run.template operator()<6>();
+      run.template operator()<7>();
     }
   }
 }
