@@ -73,14 +73,6 @@ double corner_area(double r, double a, double b) {
   return 0.5 * r * r * (std::atan2(hb, b) - std::atan2(a, ha)) - 0.5 * (b * hb + a * ha) + a * b;
 }
 
-double cap_volume(double r, double a) {
-  if (a >= r) return 0.0;
-  if (a <= -r) return particle_volume<3>(r);
-  return pi * (r - a) * (r - a) * (2.0 * r + a) / 3.0;
-}
-
-double pair_chord(double r, double u, double v) { return safe_sqrt(r * r - u * u - v * v); }
-
 PairAngles pair_angles(double r, double u, double v) {
   const double w = pair_chord(r, u, v);
   return {w, std::atan2(w, u), std::atan2(w, v), std::atan2(u * v, r * w)};
@@ -89,45 +81,6 @@ PairAngles pair_angles(double r, double u, double v) {
 OctantAngles octant_angles(double r, double a, double b) {
   const double zm = pair_chord(r, a, b);
   return {std::atan2(a, b), std::atan2(zm * b, r * a), std::atan2(zm * a, r * b)};
-}
-
-// The 3D closed forms integrate the 2D corner area over slices z = const
-// (docs/ARCHITECTURE.md). With rho^2 = r^2 - z^2 and the plane at beta,
-//   J(beta, z) = (r^2 z - z^3/3) acos(beta/rho)
-//              + beta/3 ((s^2/2 - 2 r^2) asin(z/s) - z q/2) + 2 r^3/3 atan(z beta / (r q))
-// is an antiderivative of (r^2 - z^2) acos(beta/rho) (s^2 = r^2 - beta^2,
-// q = sqrt(s^2 - z^2)), and R(s, z) = (z q + s^2 asin(z/s))/2 one of
-// sqrt(s^2 - z^2). Each acos, asin and atan is one of the pair or octant
-// angles: at z = a below the plane beta = b, q is the pair's w; at the
-// octant's top z = zm, q is the other plane's distance.
-namespace {
-
-/// J(beta, z) from its three angles.
-double slice_integral(double r, double beta, double z, double q, double acos_term, double asin_term,
-                      double atan_term) {
-  const double s2 = r * r - beta * beta;
-  return (r * r * z - z * z * z / 3.0) * acos_term +
-         beta / 3.0 * ((0.5 * s2 - 2.0 * r * r) * asin_term - 0.5 * z * q) +
-         2.0 * r * r * r / 3.0 * atan_term;
-}
-
-/// R(s, z) from asin(z/s).
-double root_integral(double s2, double z, double q, double asin_term) {
-  return 0.5 * (z * q + s2 * asin_term);
-}
-
-}  // namespace
-
-double wedge_volume(double r, double a, double b, const PairAngles& ab) {
-  if (a * a + b * b >= r * r) return 0.0;
-  // Slices x = const from a to s_b = sqrt(r^2 - b^2): the disc of radius
-  // sqrt(r^2 - x^2) above y = b, a circular segment. At the upper end the
-  // slice closes and J reduces to its limit.
-  const double sb2 = r * r - b * b;
-  const double upper = b / 3.0 * (0.5 * sb2 - 2.0 * r * r) * (0.5 * pi) + r * r * r / 3.0 * pi;
-  const double asin_a = 0.5 * pi - ab.theta_u;  // asin(a / s_b) = atan2(a, w)
-  return upper - slice_integral(r, b, a, ab.w, ab.theta_v, asin_a, ab.tau) -
-         b * (0.25 * pi * sb2 - root_integral(sb2, a, ab.w, asin_a));
 }
 
 double wedge_volume(double r, double a, double b) { return wedge_volume(r, a, b, pair_angles(r, a, b)); }
@@ -151,12 +104,14 @@ double octant_volume(double r, double a, double b, double c, const PairAngles& a
   const double asin_c_b = 0.5 * pi - bc.theta_v;  // atan2(c, w_bc)
   const double asin_c_a = 0.5 * pi - ac.theta_v;  // atan2(c, w_ac)
   auto cubic = [&](double z) { return r * r * z - z * z * z / 3.0; };
-  const double j_b = slice_integral(r, b, zm, a, acos_b_top, ab.theta_u, o.zb) -
-                     slice_integral(r, b, c, bc.w, bc.theta_u, asin_c_b, bc.tau);
-  const double j_a = slice_integral(r, a, zm, b, acos_a_top, ab.theta_v, o.za) -
-                     slice_integral(r, a, c, ac.w, ac.theta_u, asin_c_a, ac.tau);
-  const double r_b = root_integral(sb2, zm, a, ab.theta_u) - root_integral(sb2, c, bc.w, asin_c_b);
-  const double r_a = root_integral(sa2, zm, b, ab.theta_v) - root_integral(sa2, c, ac.w, asin_c_a);
+  const double j_b = detail::slice_integral(r, b, zm, a, acos_b_top, ab.theta_u, o.zb) -
+                     detail::slice_integral(r, b, c, bc.w, bc.theta_u, asin_c_b, bc.tau);
+  const double j_a = detail::slice_integral(r, a, zm, b, acos_a_top, ab.theta_v, o.za) -
+                     detail::slice_integral(r, a, c, ac.w, ac.theta_u, asin_c_a, ac.tau);
+  const double r_b =
+      detail::root_integral(sb2, zm, a, ab.theta_u) - detail::root_integral(sb2, c, bc.w, asin_c_b);
+  const double r_a =
+      detail::root_integral(sa2, zm, b, ab.theta_v) - detail::root_integral(sa2, c, ac.w, asin_c_a);
   return 0.5 * j_b + 0.5 * j_a - 0.25 * pi * (cubic(zm) - cubic(c)) - 0.5 * b * r_b - 0.5 * a * r_a +
          a * b * (zm - c);
 }
@@ -164,20 +119,6 @@ double octant_volume(double r, double a, double b, double c, const PairAngles& a
 double octant_volume(double r, double a, double b, double c) {
   return octant_volume(r, a, b, c, pair_angles(r, a, b), pair_angles(r, a, c), pair_angles(r, b, c),
                        octant_angles(r, a, b));
-}
-
-double section_beyond(double rho2, double d_l, const PairAngles& jl, double theta_l) {
-  if (d_l * d_l >= rho2) return 0.0;
-  // Circular segment: rho^2 atan2(h, d_l) - d_l h, with h = w of the pair.
-  return rho2 * theta_l - d_l * jl.w;
-}
-
-double section_beyond(double rho2, double d_l, double d_m, const PairAngles& jl, double theta_l,
-                      const PairAngles& jm, double theta_m) {
-  if (d_l * d_l + d_m * d_m >= rho2) return 0.0;
-  // Corner of the disc (corner_area): h_l and h_m are the pairs' w, and
-  // atan2(d_l, h_l) = pi/2 - theta_l.
-  return 0.5 * rho2 * (theta_m - (0.5 * pi - theta_l)) - 0.5 * (d_m * jm.w + d_l * jl.w) + d_l * d_m;
 }
 
 template <int D>

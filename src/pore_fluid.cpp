@@ -49,8 +49,8 @@ void PoreFluid<D>::compute_solid(const ParticleData<D>& particles) {
         solid_[cell] += v;
         solid_flux_[cell] += v * particles.velocity[i];
       },
-      [&](int axis, const std::array<int, D>& face, std::size_t i, double area) {
-        solid_face_flux_[axis][grid.face_index(axis, face)] += area * particles.velocity[i][axis];
+      [&](int axis, std::size_t face, std::size_t i, double area) {
+        solid_face_flux_[axis][face] += area * particles.velocity[i][axis];
       },
       carry_with_solid);
 }

@@ -99,9 +99,13 @@ TEST(GridOverlap, CellsAndFaceSectionsAgainstBoxFormulas) {
                    std::fmod(0.719 * i, 6.6));
     p.add(x, r, 1000.0, 0, false);
   }
-  // Faces on the grid's planes: the grid's own cell faces.
+  // Centres on cell faces.
   p.add(Vec<3>(0.9, 1.1, 1.1), 0.3, 1000.0, 0, false);
   p.add(Vec<3>(1.9, 2.0, 2.2), 0.45, 1000.0, 0, false);
+  // Centres outside the grid, reaching into it across one, two or three sides.
+  p.add(Vec<3>(-0.25, 1.0, 1.0), 0.3, 1000.0, 0, false);
+  p.add(Vec<3>(2.0, 3.9, 6.65), 0.35, 1000.0, 0, false);
+  p.add(Vec<3>(4.95, -0.02, -0.1), 0.4, 1000.0, 0, false);
   const auto& grid = fluid.grid;
   std::vector<std::vector<double>> share(p.size(), std::vector<double>(grid.size(), 0.0));
   std::vector<std::array<std::vector<double>, 3>> area(p.size());
@@ -110,10 +114,7 @@ TEST(GridOverlap, CellsAndFaceSectionsAgainstBoxFormulas) {
   }
   fluid.for_each_overlap(
       p, [&](std::size_t c, std::size_t i, double v) { share[i][c] += v; },
-      [&](int k, const std::array<int, 3>& face, std::size_t i, double a) {
-        area[i][k][grid.face_index(k, face)] += a;
-      },
-      true);
+      [&](int k, std::size_t face, std::size_t i, double a) { area[i][k][face] += a; }, true);
   double worst_volume = 0.0;
   double worst_area = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {

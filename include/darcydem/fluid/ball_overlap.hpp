@@ -11,8 +11,11 @@
 // of a disc; in 3D the spherical cap, the "wedge" {x > a, y > b} and the
 // "octant" {x > a, y > b, z > c}, obtained by integrating the 2D corner
 // area over slices (see docs/ARCHITECTURE.md).
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace darcydem::ball_overlap {
 
@@ -22,8 +25,6 @@ inline constexpr double unbounded = std::numeric_limits<double>::infinity();
 double segment_area(double r, double a);
 /// 2D: area of the disc in {x > a, y > b}, for a, b >= 0.
 double corner_area(double r, double a, double b);
-/// 3D: volume of the sphere above the plane x = a.
-double cap_volume(double r, double a);
 /// 3D: volume of the sphere in {x > a, y > b}, for a, b >= 0.
 double wedge_volume(double r, double a, double b);
 /// 3D: volume of the sphere in {x > a, y > b, z > c}, for a, b, c >= 0.
@@ -49,23 +50,84 @@ struct OctantAngles {
   double zb = 0.0;  ///< atan2(zm b, r a)
   double za = 0.0;  ///< atan2(zm a, r b)
 };
-/// w of the pair (u, v), zero where the planes meet outside the ball.
-double pair_chord(double r, double u, double v);
 /// Both sets with std::atan2.
 PairAngles pair_angles(double r, double u, double v);
 OctantAngles octant_angles(double r, double a, double b);
-/// The wedge {x > a, y > b} from the angles of the pair (a, b).
-double wedge_volume(double r, double a, double b, const PairAngles& ab);
 /// The octant {x > a, y > b, z > c} from the angles of its three pairs and
 /// its own.
 double octant_volume(double r, double a, double b, double c, const PairAngles& ab, const PairAngles& ac,
                      const PairAngles& bc, const OctantAngles& o);
+
+// Inline: called per grain in the fluid's hot loop (pore_fluid_overlap.hpp).
+
+/// 3D: volume of the sphere above the plane x = a.
+inline double cap_volume(double r, double a) {
+  if (a >= r) return 0.0;
+  if (a <= -r) return 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  return std::numbers::pi * (r - a) * (r - a) * (2.0 * r + a) / 3.0;
+}
+
+/// w of the pair (u, v), zero where the planes meet outside the ball.
+inline double pair_chord(double r, double u, double v) {
+  return std::sqrt(std::max(0.0, r * r - u * u - v * v));
+}
+
+namespace detail {
+// The 3D closed forms integrate the 2D corner area over slices z = const
+// (docs/ARCHITECTURE.md). With rho^2 = r^2 - z^2 and the plane at beta,
+//   J(beta, z) = (r^2 z - z^3/3) acos(beta/rho)
+//              + beta/3 ((s^2/2 - 2 r^2) asin(z/s) - z q/2) + 2 r^3/3 atan(z beta / (r q))
+// is an antiderivative of (r^2 - z^2) acos(beta/rho) (s^2 = r^2 - beta^2,
+// q = sqrt(s^2 - z^2)), and R(s, z) = (z q + s^2 asin(z/s))/2 one of
+// sqrt(s^2 - z^2). Each acos, asin and atan is one of the pair or octant
+// angles: at z = a below the plane beta = b, q is the pair's w; at the
+// octant's top z = zm, q is the other plane's distance.
+
+/// J(beta, z) from its three angles.
+inline double slice_integral(double r, double beta, double z, double q, double acos_term, double asin_term,
+                             double atan_term) {
+  const double s2 = r * r - beta * beta;
+  return (r * r * z - z * z * z / 3.0) * acos_term +
+         beta / 3.0 * ((0.5 * s2 - 2.0 * r * r) * asin_term - 0.5 * z * q) +
+         2.0 * r * r * r / 3.0 * atan_term;
+}
+
+/// R(s, z) from asin(z/s).
+inline double root_integral(double s2, double z, double q, double asin_term) {
+  return 0.5 * (z * q + s2 * asin_term);
+}
+}  // namespace detail
+
+/// The wedge {x > a, y > b} from the angles of the pair (a, b).
+inline double wedge_volume(double r, double a, double b, const PairAngles& ab) {
+  constexpr double pi = std::numbers::pi;
+  if (a * a + b * b >= r * r) return 0.0;
+  // Slices x = const from a to s_b = sqrt(r^2 - b^2): the disc of radius
+  // sqrt(r^2 - x^2) above y = b, a circular segment. At the upper end the
+  // slice closes and J reduces to its limit.
+  const double sb2 = r * r - b * b;
+  const double upper = b / 3.0 * (0.5 * sb2 - 2.0 * r * r) * (0.5 * pi) + r * r * r / 3.0 * pi;
+  const double asin_a = 0.5 * pi - ab.theta_u;  // asin(a / s_b) = atan2(a, w)
+  return upper - detail::slice_integral(r, b, a, ab.w, ab.theta_v, asin_a, ab.tau) -
+         b * (0.25 * pi * sb2 - detail::root_integral(sb2, a, ab.w, asin_a));
+}
+
 /// Sections on the plane x_j = d_j (a disc of radius^2 rho2 = r^2 - d_j^2)
 /// beyond one more plane at distance d_l (pair angles jl, with theta_l the
 /// one of d_l) or two (d_l, d_m); zero where the planes miss the disc.
-double section_beyond(double rho2, double d_l, const PairAngles& jl, double theta_l);
-double section_beyond(double rho2, double d_l, double d_m, const PairAngles& jl, double theta_l,
-                      const PairAngles& jm, double theta_m);
+inline double section_beyond(double rho2, double d_l, const PairAngles& jl, double theta_l) {
+  if (d_l * d_l >= rho2) return 0.0;
+  // Circular segment: rho^2 atan2(h, d_l) - d_l h, with h = w of the pair.
+  return rho2 * theta_l - d_l * jl.w;
+}
+inline double section_beyond(double rho2, double d_l, double d_m, const PairAngles& jl, double theta_l,
+                             const PairAngles& jm, double theta_m) {
+  if (d_l * d_l + d_m * d_m >= rho2) return 0.0;
+  // Corner of the disc (corner_area): h_l and h_m are the pairs' w, and
+  // atan2(d_l, h_l) = pi/2 - theta_l.
+  return 0.5 * rho2 * (theta_m - (0.5 * std::numbers::pi - theta_l)) - 0.5 * (d_m * jm.w + d_l * jl.w) +
+         d_l * d_m;
+}
 
 /// Measure (m^2 x 1 m in 2D, m^3 in 3D) of the ball of radius r at the
 /// origin in {x_k < t_k}; t_k = unbounded drops that constraint.

@@ -94,14 +94,15 @@ class PoreFluid final : public ParticleForceField<D> {
 
   /// Solid volume of every particle in every cell it overlaps: calls
   /// f(cell, particle, volume); with `sections`, also
-  /// section(axis, face coordinates, particle, area) for its cross-section on
-  /// every face it crosses. Exposed for tests and diagnostics.
+  /// section(axis, face index (FluidGrid::face_index), particle, area) for
+  /// its cross-section on every face it crosses. Exposed for tests and
+  /// diagnostics.
   template <class F, class G>
   void for_each_overlap(const ParticleData<D>& particles, F&& f, G&& section, bool sections) const;
   template <class F>
   void for_each_overlap(const ParticleData<D>& particles, F&& f) const {
     for_each_overlap(
-        particles, f, [](int, const std::array<int, D>&, std::size_t, double) {}, false);
+        particles, f, [](int, std::size_t, std::size_t, double) {}, false);
   }
 
  private:

@@ -40,6 +40,28 @@ struct GrainCut {
   std::array<double, D> dist{};
 };
 
+/// Linear indices on the grid: of cells (FluidGrid::index) and of the faces
+/// normal to each axis (FluidGrid::face_index), as strides per axis.
+template <int D>
+struct GridStrides {
+  std::array<std::int64_t, D> cell{};
+  std::array<std::array<std::int64_t, D>, D> face{};  ///< [normal axis][axis]
+  explicit GridStrides(const FluidGrid<D>& grid) {
+    std::int64_t c = 1;
+    for (int k = 0; k < D; ++k) {
+      cell[k] = c;
+      c *= grid.cells[k];
+    }
+    for (int a = 0; a < D; ++a) {
+      std::int64_t f = 1;
+      for (int k = 0; k < D; ++k) {
+        face[a][k] = f;
+        f *= k == a ? grid.cells[k] + 1 : grid.cells[k];
+      }
+    }
+  }
+};
+
 /// In place, m[S] <- sum over T containing S of (-1)^{|T|-|S|} m[T]: from
 /// the measures beyond at least the planes of S to beyond exactly them.
 template <int K, std::size_t N>
@@ -71,9 +93,12 @@ struct OverlapScratch {
   std::vector<double> ys, xs, angle;
 };
 
-/// The sections of a grain on the faces it crosses (cut_bucket).
+/// The sections of a grain on the faces it crosses (cut_bucket), as
+/// section(axis, face index, grain, area). `in[j]`: the neighbour across
+/// crossing axis j lies in the grid along that axis.
 template <int D, int K, class G>
-void cut_sections(const FluidGrid<D>& grid, const GrainCut<D>& cut, const std::array<int, 3>& axes,
+void cut_sections(const FluidGrid<D>& grid, const GridStrides<D>& strides, const GrainCut<D>& cut,
+                  const std::array<int, 3>& axes, const std::array<bool, 3>& in,
                   const std::array<double, 3>& d, const std::array<ball_overlap::PairAngles, 3>& pa, double r,
                   std::size_t i, G& section) {
   namespace bo = ball_overlap;
@@ -109,18 +134,35 @@ void cut_sections(const FluidGrid<D>& grid, const GrainCut<D>& cut, const std::a
       }
     }
     beyond_exactly<K - 1>(ms);
+    // The face between home and other along k (inside if 0..cells), moved
+    // across the other crossed planes of s (inside if the coordinate there
+    // is 0..cells-1).
     const int k = axes[j];
+    const auto& fs = strides.face[k];
+    const int along = std::max(cut.home[k], cut.other[k]);
+    std::int64_t base = static_cast<std::int64_t>(along) * fs[k];
+    std::array<bool, D> ok{};
+    for (int a = 0; a < D; ++a) {
+      if (a == k) {
+        ok[a] = along >= 0 && along <= grid.cells[a];
+      } else {
+        base += static_cast<std::int64_t>(cut.home[a]) * fs[a];
+        ok[a] = cut.home[a] >= 0 && cut.home[a] < grid.cells[a];
+      }
+    }
     for (int s = 0; s < subsets / 2; ++s) {
-      std::array<int, D> face = cut.home;
-      face[k] = std::max(cut.home[k], cut.other[k]);
+      std::int64_t face = base;
+      std::array<bool, D> face_ok = ok;
       for (int l = 0; l < K - 1; ++l) {
-        if ((s >> l) & 1) face[axes[others[l]]] = cut.other[axes[others[l]]];
+        if ((s >> l) & 1) {
+          const int a = axes[others[l]];
+          face += static_cast<std::int64_t>(cut.other[a] - cut.home[a]) * fs[a];
+          face_ok[a] = in[others[l]];
+        }
       }
-      bool in = face[k] >= 0 && face[k] <= grid.cells[k];
-      for (int a = 0; a < D; ++a) {
-        if (a != k && (face[a] < 0 || face[a] >= grid.cells[a])) in = false;
-      }
-      if (ms[s] > 0.0 && in) section(k, face, i, ms[s]);
+      bool inside = true;
+      for (int a = 0; a < D; ++a) inside = inside && face_ok[a];
+      if (ms[s] > 0.0 && inside) section(k, static_cast<std::size_t>(face), i, ms[s]);
     }
   }
 }
@@ -128,9 +170,9 @@ void cut_sections(const FluidGrid<D>& grid, const GrainCut<D>& cut, const std::a
 /// The grains `members` (indices into the chunk starting at `start`), which
 /// all cross exactly the faces of the axes in Mask.
 template <int D, int Mask, class F, class G>
-void cut_bucket(const FluidGrid<D>& grid, const ParticleData<D>& p, const GrainCut<D>* cuts,
-                const std::uint16_t* members, std::size_t count, std::size_t start, OverlapScratch& scratch,
-                F& f, G& section, bool sections) {
+void cut_bucket(const FluidGrid<D>& grid, const GridStrides<D>& strides, const ParticleData<D>& p,
+                const GrainCut<D>* cuts, const std::uint16_t* members, std::size_t count, std::size_t start,
+                OverlapScratch& scratch, F& f, G& section, bool sections) {
   namespace bo = ball_overlap;
   constexpr int K = __builtin_popcount(Mask);
   constexpr int subsets = 1 << K;
@@ -208,15 +250,34 @@ void cut_bucket(const FluidGrid<D>& grid, const ParticleData<D>& p, const GrainC
       }
     }
     beyond_exactly<K>(m);
+    // The cell of subset s: home, moved across the crossed faces of s.
+    std::int64_t home = 0;
+    std::array<bool, D> home_ok{};
+    for (int k = 0; k < D; ++k) {
+      home += static_cast<std::int64_t>(cut.home[k]) * strides.cell[k];
+      home_ok[k] = cut.home[k] >= 0 && cut.home[k] < grid.cells[k];
+    }
+    std::array<bool, 3> in{};
+    for (int j = 0; j < K; ++j) {
+      const int k = axes[j];
+      in[j] = cut.other[k] >= 0 && cut.other[k] < grid.cells[k];
+    }
     for (int s = 0; s < subsets; ++s) {
-      std::array<int, D> cell = cut.home;
+      std::int64_t cell = home;
+      std::array<bool, D> ok = home_ok;
       for (int j = 0; j < K; ++j) {
-        if ((s >> j) & 1) cell[axes[j]] = cut.other[axes[j]];
+        if ((s >> j) & 1) {
+          const int k = axes[j];
+          cell += static_cast<std::int64_t>(cut.other[k] - cut.home[k]) * strides.cell[k];
+          ok[k] = in[j];
+        }
       }
-      if (m[s] > 0.0 && grid.inside(cell)) f(grid.index(cell), i, m[s]);
+      bool inside = true;
+      for (int k = 0; k < D; ++k) inside = inside && ok[k];
+      if (m[s] > 0.0 && inside) f(static_cast<std::size_t>(cell), i, m[s]);
     }
     if constexpr (K > 0) {
-      if (sections) cut_sections<D, K>(grid, cut, axes, d, pa, r, i, section);
+      if (sections) cut_sections<D, K>(grid, strides, cut, axes, in, d, pa, r, i, section);
     }
   }
 }
@@ -235,6 +296,7 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, F&& f, G&& section
   std::array<std::vector<std::uint16_t>, masks> bucket;
   for (auto& b : bucket) b.resize(cuts.size());
   overlap_detail::OverlapScratch scratch;
+  const overlap_detail::GridStrides<D> strides(grid);
   for (std::size_t start = 0; start < count; start += chunk) {
     const std::size_t end = std::min(count, start + chunk);
     std::array<std::size_t, masks> filled{};
@@ -258,8 +320,8 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, F&& f, G&& section
       bucket[mask][filled[mask]++] = static_cast<std::uint16_t>(i - start);
     }
     auto run = [&]<int Mask>() {
-      cut_bucket<D, Mask>(grid, p, cuts.data(), bucket[Mask].data(), filled[Mask], start, scratch, f, section,
-                          sections);
+      cut_bucket<D, Mask>(grid, strides, p, cuts.data(), bucket[Mask].data(), filled[Mask], start, scratch, f,
+                          section, sections);
     };
     run.template operator()<0>();
     run.template operator()<1>();
