@@ -293,36 +293,48 @@ void PoreFluid<D>::interpolate(const std::array<double, D>& s_of, std::array<dou
     face_frac[k] = std::clamp(s - b, 0.0, 1.0);
     centre_coordinate(k, s, centre_cell[k], centre_frac[k]);
   }
-  for (int a = 0; a < D; ++a) {
-    std::size_t base = 0;
-    std::array<double, D> fr{};
+  using Pair = std::array<double, 2>;
+  auto lerp = [](const Pair& lo, const Pair& hi, double t) -> Pair {
+    return {lo[0] + t * (hi[0] - lo[0]), lo[1] + t * (hi[1] - lo[1])};
+  };
+  // Component a: linear between the faces of the holding cell along a,
+  // between the cell centres along the others (no step where held).
+  auto component = [&](int a) {
+    const auto& stride = face_stride_[a];
+    std::size_t base = static_cast<std::size_t>(face_cell[a]) * stride[a];
     std::array<std::size_t, D> step{};
+    std::array<double, D> fr{};
     for (int k = 0; k < D; ++k) {
-      const int b = k == a ? face_cell[k] : centre_cell[k];
-      fr[k] = k == a ? face_frac[k] : centre_frac[k];
-      base += static_cast<std::size_t>(b) * face_stride_[a][k];
-      step[k] = fr[k] > 0.0 ? face_stride_[a][k] : 0;
-    }
-    const auto& gq = face_gq_[a];
-    double g = 0.0;
-    double q = 0.0;
-    for (int corner = 0; corner < (1 << D); ++corner) {
-      double w = 1.0;
-      std::size_t idx = base;
-      for (int k = 0; k < D; ++k) {
-        if ((corner >> k) & 1) {
-          w *= fr[k];
-          idx += step[k];
-        } else {
-          w *= 1.0 - fr[k];
-        }
+      if (k == a) {
+        step[k] = stride[k];
+        fr[k] = face_frac[k];
+      } else {
+        base += static_cast<std::size_t>(centre_cell[k]) * stride[k];
+        step[k] = centre_frac[k] > 0.0 ? stride[k] : 0;
+        fr[k] = centre_frac[k];
       }
-      g += w * gq[idx][0];
-      q += w * gq[idx][1];
     }
-    grad[a] = g;
-    flux[a] = q;
-  }
+    const Pair* g = face_gq_[a].data() + base;
+    if constexpr (D == 2) {
+      const Pair lo = lerp(g[0], g[step[0]], fr[0]);
+      const Pair hi = lerp(g[step[1]], g[step[1] + step[0]], fr[0]);
+      const Pair v = lerp(lo, hi, fr[1]);
+      grad[a] = v[0];
+      flux[a] = v[1];
+    } else {
+      const std::size_t s0 = step[0];
+      const std::size_t s1 = step[1];
+      const std::size_t s2 = step[2];
+      const Pair v00 = lerp(g[0], g[s0], fr[0]);
+      const Pair v10 = lerp(g[s1], g[s1 + s0], fr[0]);
+      const Pair v01 = lerp(g[s2], g[s2 + s0], fr[0]);
+      const Pair v11 = lerp(g[s2 + s1], g[s2 + s1 + s0], fr[0]);
+      const Pair v = lerp(lerp(v00, v10, fr[1]), lerp(v01, v11, fr[1]), fr[2]);
+      grad[a] = v[0];
+      flux[a] = v[1];
+    }
+  };
+  for (int a = 0; a < D; ++a) component(a);
 }
 
 template <int D>
@@ -398,6 +410,7 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
         cell[k] = inside ? static_cast<int>(s[k]) : 0;
       }
       re[j] = 0.0;
+      speed[j] = 0.0;
       if (!inside) {
         cell_of[j] = outside;
         force[i].setZero();
@@ -418,8 +431,13 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
         slip[j][k] = solid_velocity_[c][k] + q[k] * cd.inv_n - p.velocity[i][k];
         slip2 += slip[j][k] * slip[j][k];
       }
-      speed[j] = std::sqrt(slip2);
-      re[j] = cd.re_factor * 2.0 * p.radius[i] * speed[j];
+      speed[j] = slip2;
+      re[j] = cd.re_factor * 2.0 * p.radius[i];
+    }
+    // Slip speeds and Re four at a time.
+    for (std::int64_t j = 0; j < end - begin; ++j) {
+      speed[j] = std::sqrt(speed[j]);
+      re[j] *= speed[j];
     }
     if (ergun) pow_batch(re.data(), 0.687, re_pow.data(), static_cast<std::size_t>(end - begin));
     for (std::int64_t i = begin; i < end; ++i) {

@@ -206,3 +206,54 @@ TEST(PoreFluid, AnisotropicPermeabilityActsPerAxis) {
   EXPECT_NEAR(drop(0), q * mu * l / 1e-9, 1e-9 * q * mu * l / 1e-9);
   EXPECT_NEAR(drop(1), q * mu * l / 2e-10, 1e-9 * q * mu * l / 2e-10);
 }
+
+namespace {
+
+/// Two grains in one cell of side `side`, no flow: grain 0 moves at v, grain
+/// 1 is still. The force on each is the drag on its slip relative to the
+/// cell's mean solid velocity, compared with the scalar drag laws of
+/// fluid_laws.hpp (the force path batches Re^0.687 and folds the
+/// coefficients per cell).
+void expect_drag_law(DragLaw drag, double side, const Vec<3>& v) {
+  ParticleData<3> p;
+  p.add(Vec<3>(0.0011, 0.0011, 0.0011), 0.001, 2650.0, 0, false);
+  p.add(Vec<3>(side - 0.0011, side - 0.0011, side - 0.0011), 0.001, 2650.0, 0, false);
+  p.velocity[0] = v;
+  PoreFluid<3> f;
+  f.grid.origin = Vec<3>::Zero();
+  f.grid.spacing = Vec<3>::Constant(side);
+  f.grid.cells = {1, 1, 1};
+  f.fluid = {1000.0, 1.0e-3, 2e9};
+  f.drag = drag;
+  f.permeability.model = PermeabilityModel::kozeny_carman;
+  f.permeability.diameter = 0.002;
+  f.initialize(p);
+  std::vector<Vec<3>> force(2);
+  f.particle_forces(p, Vec<3>::Zero(), force);
+  const double n = std::clamp(f.porosity()[0], f.permeability.min_porosity, f.permeability.max_porosity);
+  const double vp = 4.0 / 3.0 * std::numbers::pi * 1e-9;
+  for (int i = 0; i < 2; ++i) {
+    const Vec<3> slip = f.solid_velocity()[0] - p.velocity[i];
+    Vec<3> expected;
+    if (drag == DragLaw::ergun) {
+      expected = ergun_wen_yu_beta(n, 0.002, slip.norm(), f.fluid) / (1.0 - n) * vp * slip;
+    } else {
+      const double kappa = kozeny_carman(0.002, n);
+      expected = n * n * f.fluid.viscosity / kappa / (1.0 - n) * vp * slip;
+    }
+    // Round-off only: the batch's pow is within 4 ulp of std::pow.
+    EXPECT_LT((force[i] - expected).norm(), 1e-12 * expected.norm()) << "grain " << i << ", n = " << n;
+  }
+}
+
+}  // namespace
+
+TEST(PoreFluid, GrainDragFollowsTheDragLaws) {
+  // n = 0.85 (Wen-Yu weighs 98 %): Re about 350 and, faster, above 1000
+  // where C_d Re switches to 0.44 Re.
+  expect_drag_law(DragLaw::ergun, 0.00382, Vec<3>(0.05, -0.03, 0.2));
+  expect_drag_law(DragLaw::ergun, 0.00382, Vec<3>(0.3, -0.2, 1.2));
+  // n about 0.62 (grains cut by the grid's sides): Ergun dominant.
+  expect_drag_law(DragLaw::ergun, 0.0028, Vec<3>(0.05, -0.03, 0.2));
+  expect_drag_law(DragLaw::darcy, 0.0028, Vec<3>(0.05, -0.03, 0.2));
+}
