@@ -2,17 +2,19 @@
 // solve against the number of cells (issue 3).
 //
 //   BM_DemStep/N/threads            DEM alone on the benchmark packing (packing.hpp)
-//   BM_CoupledStep/cells/solver     the same packing (10^5 spheres) with a pore
+//   BM_CoupledStep/cells/solver/threads
+//                                   the same packing (10^5 spheres) with a pore
 //                                   fluid updated every DEM step (fluid step,
 //                                   overlaps, solve, forces); solver 0 = Cholesky, 1 = CG
 //   BM_PressureSolve/cells/solver   one fluid update on a frozen packing alone
-//   BM_GrainForces/cells            the fluid's force on every grain alone
+//   BM_GrainForces/cells/threads    the fluid's force on every grain alone
 //                                   (PoreFluid::particle_forces, Ergun drag)
 //
 // The grid covers the packing's base and is as tall as needed for the cell
 // count (fluid above the bed), with cells at least one grain wide.
-// Counters: ms_per_step, fluid_share (fraction of the step spent in the
-// fluid), cg_iterations. JSON with
+// The time per iteration is the time per step (or per update, per force
+// evaluation); counters: fluid_update_ms (the update's part of a coupled
+// step), solver_iterations, particle_steps_per_second, ns_per_grain. JSON with
 //   bench_coupled_step --benchmark_out=bench/results/coupled_step.json
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -78,7 +80,7 @@ void BM_DemStep(benchmark::State& state) {
 }
 
 void BM_CoupledStep(benchmark::State& state) {
-  omp_set_num_threads(1);
+  omp_set_num_threads(static_cast<int>(state.range(2)));
   auto sim = bench::make_packing(kGrains);
   auto fluid = make_fluid(sim, state.range(0), static_cast<int>(state.range(1)));
   sim.force_field = fluid.get();
@@ -118,7 +120,7 @@ void BM_PressureSolve(benchmark::State& state) {
 }
 
 void BM_GrainForces(benchmark::State& state) {
-  omp_set_num_threads(1);
+  omp_set_num_threads(static_cast<int>(state.range(1)));
   static auto sim = bench::make_packing(kGrains, 0);
   auto fluid = make_fluid(sim, state.range(0), 1);
   // A flow through the bed, so that gradients and drag are not zero.
@@ -133,9 +135,15 @@ void BM_GrainForces(benchmark::State& state) {
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-BENCHMARK(BM_DemStep)->Args({kGrains, 1})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
+BENCHMARK(BM_DemStep)
+    ->Args({kGrains, 1})
+    ->Args({kGrains, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
 BENCHMARK(BM_CoupledStep)
-    ->ArgsProduct({{1'000, 10'000, 100'000}, {0, 1}})
+    ->ArgsProduct({{1'000, 10'000, 100'000}, {0, 1}, {1}})
+    ->Args({10'000, 1, 2})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0)
     ->UseRealTime();
@@ -144,7 +152,12 @@ BENCHMARK(BM_PressureSolve)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0)
     ->UseRealTime();
-BENCHMARK(BM_GrainForces)->Arg(10'000)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK(BM_GrainForces)
+    ->Args({10'000, 1})
+    ->Args({10'000, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->UseRealTime();
 
 }  // namespace
 

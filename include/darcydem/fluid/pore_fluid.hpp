@@ -98,7 +98,13 @@ class PoreFluid final : public ParticleForceField<D> {
   /// its cross-section on every face it crosses. Exposed for tests and
   /// diagnostics.
   template <class F, class G>
-  void for_each_overlap(const ParticleData<D>& particles, F&& f, G&& section, bool sections) const;
+  void for_each_overlap(const ParticleData<D>& particles, F&& f, G&& section, bool sections) const {
+    for_each_overlap(particles, 0, particles.size(), f, section, sections);
+  }
+  /// The same for the particles [begin, end).
+  template <class F, class G>
+  void for_each_overlap(const ParticleData<D>& particles, std::size_t begin, std::size_t end, F&& f,
+                        G&& section, bool sections) const;
   template <class F>
   void for_each_overlap(const ParticleData<D>& particles, F&& f) const {
     for_each_overlap(
@@ -142,6 +148,14 @@ class PoreFluid final : public ParticleForceField<D> {
     std::size_t index;  ///< in the face arrays of the side's axis
   };
 
+  /// Solid volumes, solid volume fluxes and face fluxes of one block of
+  /// grains (compute_solid).
+  struct SolidSums {
+    std::vector<double> solid;
+    std::vector<Vec<D>> flux;
+    std::array<std::vector<double>, D> face_flux;
+  };
+  std::vector<SolidSums> block_solid_;
   std::vector<double> pressure_, pressure_old_, porosity_, solid_, solid_old_;
   std::vector<double> porosity_used_;  ///< porosity clamped to the permeability's [min, max]
   std::vector<Vec<D>> solid_flux_, solid_velocity_, kappa_;

@@ -286,21 +286,21 @@ void cut_bucket(const FluidGrid<D>& grid, const GridStrides<D>& strides, const P
 
 template <int D>
 template <class F, class G>
-void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, F&& f, G&& section, bool sections) const {
+void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, std::size_t begin, std::size_t end, F&& f,
+                                    G&& section, bool sections) const {
   using overlap_detail::cut_bucket;
   using overlap_detail::GrainCut;
   constexpr std::size_t chunk = 1024;
   constexpr int masks = 1 << D;
-  const std::size_t count = p.size();
-  std::vector<GrainCut<D>> cuts(std::min(chunk, count));
+  std::vector<GrainCut<D>> cuts(std::min(chunk, end - begin));
   std::array<std::vector<std::uint16_t>, masks> bucket;
   for (auto& b : bucket) b.resize(cuts.size());
   overlap_detail::OverlapScratch scratch;
   const overlap_detail::GridStrides<D> strides(grid);
-  for (std::size_t start = 0; start < count; start += chunk) {
-    const std::size_t end = std::min(count, start + chunk);
+  for (std::size_t start = begin; start < end; start += chunk) {
+    const std::size_t stop = std::min(end, start + chunk);
     std::array<std::size_t, masks> filled{};
-    for (std::size_t i = start; i < end; ++i) {
+    for (std::size_t i = start; i < stop; ++i) {
       GrainCut<D>& cut = cuts[i - start];
       const double r = p.radius[i];
       const Vec<D>& x = p.position[i];
