@@ -3,9 +3,11 @@
 // grain's largest cross-section times the step, plus round-off) and the
 // cells' volumes must add up to the grain's volume to 1e-12.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "darcydem/fluid/pore_fluid.hpp"
@@ -167,4 +169,49 @@ TEST(GridOverlap, CellsAndFaceSectionsAgainstBoxFormulas) {
   }
   EXPECT_LT(worst_volume, 1e-12);
   EXPECT_LT(worst_area, 1e-12);
+}
+
+TEST(GridOverlap, SolidVolumesAreTheSameForAnyThreadCount) {
+  // 60,000 grains: the solid volumes are summed in fixed blocks of grains
+  // (pore_fluid.cpp), so one and two threads must give the same bits; and
+  // every cell must match a plain serial sum of the overlaps up to the
+  // order of the additions (1e-12 of the cell's volume).
+  ParticleData<3> p;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.15, 0.15);
+  for (int i = 0; i < 60; ++i) {
+    for (int j = 0; j < 40; ++j) {
+      for (int k = 0; k < 25; ++k) {
+        p.add(Vec<3>(i + 0.5 + jitter(rng), j + 0.5 + jitter(rng), k + 0.5 + jitter(rng)), 0.3, 1000.0, 0,
+              false);
+        p.velocity.back() = Vec<3>(jitter(rng), jitter(rng), jitter(rng));
+      }
+    }
+  }
+  auto solid = [&](int threads) {
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    PoreFluid<3> fluid;
+    fluid.grid.origin = Vec<3>::Zero();
+    fluid.grid.spacing = Vec<3>(1.5, 1.6, 1.25);
+    fluid.grid.cells = {40, 25, 20};
+    fluid.initialize(p);
+    omp_set_num_threads(saved);
+    return std::make_pair(fluid.solid_volume(), fluid.solid_velocity());
+  };
+  const auto one = solid(1);
+  const auto two = solid(2);
+  EXPECT_EQ(one.first, two.first);
+  EXPECT_EQ(one.second, two.second);
+  PoreFluid<3> fluid;
+  fluid.grid.origin = Vec<3>::Zero();
+  fluid.grid.spacing = Vec<3>(1.5, 1.6, 1.25);
+  fluid.grid.cells = {40, 25, 20};
+  std::vector<double> serial(fluid.grid.size(), 0.0);
+  fluid.for_each_overlap(p, [&](std::size_t c, std::size_t, double v) { serial[c] += v; });
+  double worst = 0.0;
+  for (std::size_t c = 0; c < serial.size(); ++c) {
+    worst = std::max(worst, std::abs(serial[c] - one.first[c]) / fluid.grid.cell_volume());
+  }
+  EXPECT_LT(worst, 1e-12);
 }
