@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -305,60 +306,73 @@ void PoreFluid<D>::interpolate(const std::array<double, D>& s_of, std::array<dou
                                std::array<double, D>& flux) const {
   // Per coordinate: the cell holding x (for the axis's own faces) and the
   // pair of cell centres around it (for the other axes), with fractions.
-  std::array<int, D> face_cell{};
+  // Beyond the outer centres the fraction is clamped to 0 or 1, which holds
+  // the outer value; with one cell along an axis there is no pair.
+  std::array<std::size_t, D> face_cell{};
   std::array<double, D> face_frac{};
-  std::array<int, D> centre_cell{};
+  std::array<std::size_t, D> centre_cell{};
   std::array<double, D> centre_frac{};
+  std::array<bool, D> paired{};
   for (int k = 0; k < D; ++k) {
     const double s = s_of[k];
     const int last = grid.cells[k] - 1;
     const int b = FluidGrid<D>::clamp_cell(std::floor(s), 0, last);
-    face_cell[k] = b;
+    face_cell[k] = static_cast<std::size_t>(b);
     face_frac[k] = std::clamp(s - b, 0.0, 1.0);
-    centre_coordinate(k, s, centre_cell[k], centre_frac[k]);
+    const double t = s - 0.5;
+    const int c = FluidGrid<D>::clamp_cell(std::floor(t), 0, std::max(last - 1, 0));
+    paired[k] = last > 0;
+    centre_cell[k] = static_cast<std::size_t>(c);
+    centre_frac[k] = paired[k] ? std::clamp(t - c, 0.0, 1.0) : 0.0;
   }
-  using Pair = std::array<double, 2>;
-  auto lerp = [](const Pair& lo, const Pair& hi, double t) -> Pair {
-    return {lo[0] + t * (hi[0] - lo[0]), lo[1] + t * (hi[1] - lo[1])};
+  // (grad, flux) pairs as two-lane vectors (GCC/Clang vector extension):
+  // one load and one multiply-add per lerp for both.
+  using Pair = double __attribute__((vector_size(16)));
+  auto load = [](const std::array<double, 2>& v) {
+    Pair p;
+    std::memcpy(&p, v.data(), sizeof p);
+    return p;
   };
-  // Component a: linear between the faces of the holding cell along a,
-  // between the cell centres along the others (no step where held).
-  auto component = [&](int a) {
-    const auto& stride = face_stride_[a];
-    std::size_t base = static_cast<std::size_t>(face_cell[a]) * stride[a];
+  auto lerp = [](Pair lo, Pair hi, double t) -> Pair { return lo + t * (hi - lo); };
+  // Component A: linear between the faces of the holding cell along A,
+  // between the cell centres along the others.
+  auto component = [&]<int A>() {
+    const auto& stride = face_stride_[A];
+    std::size_t base = 0;
     std::array<std::size_t, D> step{};
     std::array<double, D> fr{};
     for (int k = 0; k < D; ++k) {
-      if (k == a) {
+      if (k == A) {
+        base += face_cell[k] * stride[k];
         step[k] = stride[k];
         fr[k] = face_frac[k];
       } else {
-        base += static_cast<std::size_t>(centre_cell[k]) * stride[k];
-        step[k] = centre_frac[k] > 0.0 ? stride[k] : 0;
+        base += centre_cell[k] * stride[k];
+        step[k] = paired[k] ? stride[k] : 0;
         fr[k] = centre_frac[k];
       }
     }
-    const Pair* g = face_gq_[a].data() + base;
+    const std::array<double, 2>* g = face_gq_[A].data() + base;
+    Pair v{};
     if constexpr (D == 2) {
-      const Pair lo = lerp(g[0], g[step[0]], fr[0]);
-      const Pair hi = lerp(g[step[1]], g[step[1] + step[0]], fr[0]);
-      const Pair v = lerp(lo, hi, fr[1]);
-      grad[a] = v[0];
-      flux[a] = v[1];
+      v = lerp(lerp(load(g[0]), load(g[step[0]]), fr[0]),
+               lerp(load(g[step[1]]), load(g[step[1] + step[0]]), fr[0]), fr[1]);
     } else {
       const std::size_t s0 = step[0];
       const std::size_t s1 = step[1];
       const std::size_t s2 = step[2];
-      const Pair v00 = lerp(g[0], g[s0], fr[0]);
-      const Pair v10 = lerp(g[s1], g[s1 + s0], fr[0]);
-      const Pair v01 = lerp(g[s2], g[s2 + s0], fr[0]);
-      const Pair v11 = lerp(g[s2 + s1], g[s2 + s1 + s0], fr[0]);
-      const Pair v = lerp(lerp(v00, v10, fr[1]), lerp(v01, v11, fr[1]), fr[2]);
-      grad[a] = v[0];
-      flux[a] = v[1];
+      const Pair v00 = lerp(load(g[0]), load(g[s0]), fr[0]);
+      const Pair v10 = lerp(load(g[s1]), load(g[s1 + s0]), fr[0]);
+      const Pair v01 = lerp(load(g[s2]), load(g[s2 + s0]), fr[0]);
+      const Pair v11 = lerp(load(g[s2 + s1]), load(g[s2 + s1 + s0]), fr[0]);
+      v = lerp(lerp(v00, v10, fr[1]), lerp(v01, v11, fr[1]), fr[2]);
     }
+    grad[A] = v[0];
+    flux[A] = v[1];
   };
-  for (int a = 0; a < D; ++a) component(a);
+  component.template operator()<0>();
+  component.template operator()<1>();
+  if constexpr (D == 3) component.template operator()<2>();
 }
 
 template <int D>
