@@ -93,6 +93,82 @@ struct OverlapScratch {
   std::vector<double> ys, xs, angle;
 };
 
+/// The section of a grain on the face of its J-th crossing axis
+/// (cut_sections): a (D-1)-ball of radius rho = sqrt(r^2 - d_J^2), shared
+/// among the faces beyond the other crossed planes in the same way as the
+/// volume among the cells.
+template <int D, int K, int J, class G>
+void section_on(const FluidGrid<D>& grid, const GridStrides<D>& strides, const GrainCut<D>& cut,
+                const std::array<int, 3>& axes, const std::array<bool, 3>& in, const std::array<double, 3>& d,
+                const std::array<ball_overlap::PairAngles, 3>& pa, double r, std::size_t i, G& section) {
+  namespace bo = ball_overlap;
+  constexpr int others = K - 1;
+  // The other crossing axes, in order.
+  constexpr int L0 = J == 0 ? 1 : 0;
+  constexpr int L1 = J == 2 ? 1 : 2;
+  // The pair (J, l) and, in it, the angle of d_l.
+  auto pair_of = [&](auto l) -> const bo::PairAngles& {
+    return pa[pair_slot(std::min(J, decltype(l)::value), std::max(J, decltype(l)::value))];
+  };
+  auto theta = [&](auto l) { return decltype(l)::value > J ? pair_of(l).theta_v : pair_of(l).theta_u; };
+  using l0 = std::integral_constant<int, L0>;
+  using l1 = std::integral_constant<int, L1>;
+  const double rho2 = std::max(0.0, r * r - d[J] * d[J]);
+  std::array<double, 1 << others> ms{};
+  if constexpr (D == 2) {
+    const double rho = std::sqrt(rho2);
+    ms[0] = 2.0 * rho;
+    if constexpr (others == 1) ms[1] = std::max(0.0, rho - d[L0]);
+  } else {
+    ms[0] = std::numbers::pi * rho2;
+    if constexpr (others >= 1) ms[1] = bo::section_beyond(rho2, d[L0], pair_of(l0{}), theta(l0{}));
+    if constexpr (others == 2) {
+      ms[2] = bo::section_beyond(rho2, d[L1], pair_of(l1{}), theta(l1{}));
+      ms[3] = bo::section_beyond(rho2, d[L0], d[L1], pair_of(l0{}), theta(l0{}), pair_of(l1{}), theta(l1{}));
+    }
+  }
+  beyond_exactly<others>(ms);
+  // The face between home and other along k (inside if 0..cells), moved
+  // across the other crossed planes of s (inside there if 0..cells-1).
+  const int k = axes[J];
+  const auto& fs = strides.face[k];
+  const int along = std::max(cut.home[k], cut.other[k]);
+  std::int64_t base = static_cast<std::int64_t>(along) * fs[k];
+  for (int a = 0; a < D; ++a) {
+    if (a != k) base += static_cast<std::int64_t>(cut.home[a]) * fs[a];
+  }
+  // Moving across the other crossed plane l: its index step, and whether
+  // the home coordinate there (replaced) or the neighbour's is in range.
+  std::array<std::int64_t, 2> shift{};
+  std::array<bool, 2> home_l{};
+  std::array<bool, 2> other_l{};
+  const std::array<int, 2> ls = {L0, L1};
+  for (int t = 0; t < others; ++t) {
+    const int a = axes[ls[t]];
+    shift[t] = static_cast<std::int64_t>(cut.other[a] - cut.home[a]) * fs[a];
+    home_l[t] = cut.home[a] >= 0 && cut.home[a] < grid.cells[a];
+    other_l[t] = in[ls[t]];
+  }
+  // In range along k and across the axes not crossed; across a crossed
+  // plane l, home_l or other_l as the face moved or not.
+  bool rest_ok = along >= 0 && along <= grid.cells[k];
+  for (int a = 0; a < D; ++a) {
+    bool crossed = a == k;
+    for (int t = 0; t < others; ++t) crossed = crossed || a == axes[ls[t]];
+    if (!crossed) rest_ok = rest_ok && cut.home[a] >= 0 && cut.home[a] < grid.cells[a];
+  }
+  for (int s = 0; s < (1 << others); ++s) {
+    std::int64_t face = base;
+    bool inside = rest_ok;
+    for (int t = 0; t < others; ++t) {
+      const bool moved = ((s >> t) & 1) != 0;
+      face += moved ? shift[t] : 0;
+      inside = inside && (moved ? other_l[t] : home_l[t]);
+    }
+    if (ms[s] > 0.0 && inside) section(k, static_cast<std::size_t>(face), i, ms[s]);
+  }
+}
+
 /// The sections of a grain on the faces it crosses (cut_bucket), as
 /// section(axis, face index, grain, area). `in[j]`: the neighbour across
 /// crossing axis j lies in the grid along that axis.
@@ -101,70 +177,9 @@ void cut_sections(const FluidGrid<D>& grid, const GridStrides<D>& strides, const
                   const std::array<int, 3>& axes, const std::array<bool, 3>& in,
                   const std::array<double, 3>& d, const std::array<ball_overlap::PairAngles, 3>& pa, double r,
                   std::size_t i, G& section) {
-  namespace bo = ball_overlap;
-  constexpr int subsets = 1 << K;
-  // On the face of axis axes[j], a (D-1)-ball of radius
-  // rho = sqrt(r^2 - d_j^2), shared among the faces beyond the other
-  // crossed planes in the same way as the volume among the cells.
-  for (int j = 0; j < K; ++j) {
-    const double rho2 = std::max(0.0, r * r - d[j] * d[j]);
-    std::array<int, 2> others{};
-    int no = 0;
-    for (int l = 0; l < K; ++l) {
-      if (l != j) others[no++] = l;
-    }
-    auto pair_of = [&](int l) -> const bo::PairAngles& {
-      return pa[pair_slot(std::min(j, l), std::max(j, l))];
-    };
-    // theta of the distance d_l in the pair (j, l).
-    auto theta = [&](int l) { return l > j ? pair_of(l).theta_v : pair_of(l).theta_u; };
-    std::array<double, subsets / 2> ms{};
-    if constexpr (D == 2) {
-      const double rho = std::sqrt(rho2);
-      ms[0] = 2.0 * rho;
-      if constexpr (K == 2) ms[1] = std::max(0.0, rho - d[others[0]]);
-    } else {
-      ms[0] = std::numbers::pi * rho2;
-      for (int t = 0; t < K - 1; ++t) {
-        ms[1 << t] = bo::section_beyond(rho2, d[others[t]], pair_of(others[t]), theta(others[t]));
-      }
-      if constexpr (K == 3) {
-        ms[3] = bo::section_beyond(rho2, d[others[0]], d[others[1]], pair_of(others[0]), theta(others[0]),
-                                   pair_of(others[1]), theta(others[1]));
-      }
-    }
-    beyond_exactly<K - 1>(ms);
-    // The face between home and other along k (inside if 0..cells), moved
-    // across the other crossed planes of s (inside if the coordinate there
-    // is 0..cells-1).
-    const int k = axes[j];
-    const auto& fs = strides.face[k];
-    const int along = std::max(cut.home[k], cut.other[k]);
-    std::int64_t base = static_cast<std::int64_t>(along) * fs[k];
-    std::array<bool, D> ok{};
-    for (int a = 0; a < D; ++a) {
-      if (a == k) {
-        ok[a] = along >= 0 && along <= grid.cells[a];
-      } else {
-        base += static_cast<std::int64_t>(cut.home[a]) * fs[a];
-        ok[a] = cut.home[a] >= 0 && cut.home[a] < grid.cells[a];
-      }
-    }
-    for (int s = 0; s < subsets / 2; ++s) {
-      std::int64_t face = base;
-      std::array<bool, D> face_ok = ok;
-      for (int l = 0; l < K - 1; ++l) {
-        if ((s >> l) & 1) {
-          const int a = axes[others[l]];
-          face += static_cast<std::int64_t>(cut.other[a] - cut.home[a]) * fs[a];
-          face_ok[a] = in[others[l]];
-        }
-      }
-      bool inside = true;
-      for (int a = 0; a < D; ++a) inside = inside && face_ok[a];
-      if (ms[s] > 0.0 && inside) section(k, static_cast<std::size_t>(face), i, ms[s]);
-    }
-  }
+  section_on<D, K, 0>(grid, strides, cut, axes, in, d, pa, r, i, section);
+  if constexpr (K >= 2) section_on<D, K, 1>(grid, strides, cut, axes, in, d, pa, r, i, section);
+  if constexpr (K == 3) section_on<D, K, 2>(grid, strides, cut, axes, in, d, pa, r, i, section);
 }
 
 /// The grains `members` (indices into the chunk starting at `start`), which
@@ -297,6 +312,8 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, std::size_t begin,
   for (auto& b : bucket) b.resize(cuts.size());
   overlap_detail::OverlapScratch scratch;
   const overlap_detail::GridStrides<D> strides(grid);
+  std::array<double, D> inv_h{};
+  for (int k = 0; k < D; ++k) inv_h[k] = 1.0 / grid.spacing[k];
   for (std::size_t start = begin; start < end; start += chunk) {
     const std::size_t stop = std::min(end, start + chunk);
     std::array<std::size_t, masks> filled{};
@@ -306,7 +323,10 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, std::size_t begin,
       const Vec<D>& x = p.position[i];
       int mask = 0;
       for (int k = 0; k < D; ++k) {
-        cut.home[k] = grid.cell_along(k, x[k]);
+        // As grid.cell_along, with the inverse spacing: a grain on a face
+        // may land on either side, where its distance to it is +0.
+        cut.home[k] =
+            FluidGrid<D>::clamp_cell(std::floor((x[k] - grid.origin[k]) * inv_h[k]), -1, grid.cells[k]);
         const double lo = grid.origin[k] + cut.home[k] * grid.spacing[k];
         const double below = x[k] - lo;
         const double above = lo + grid.spacing[k] - x[k];
