@@ -7,6 +7,8 @@
 //                                   fluid updated every DEM step (fluid step,
 //                                   overlaps, solve, forces); solver 0 = Cholesky, 1 = CG
 //   BM_PressureSolve/cells/solver   one fluid update on a frozen packing alone
+//   BM_Overlaps/cells               the exact grain/cell overlaps alone (solid
+//                                   volumes, their velocities, face sections)
 //   BM_GrainForces/cells/threads    the fluid's force on every grain alone
 //                                   (PoreFluid::particle_forces, Ergun drag)
 //
@@ -14,7 +16,8 @@
 // count (fluid above the bed), with cells at least one grain wide.
 // The time per iteration is the time per step (or per update, per force
 // evaluation); counters: fluid_update_ms (the update's part of a coupled
-// step), solver_iterations, particle_steps_per_second, ns_per_grain. JSON with
+// step), solver_iterations, particle_steps_per_second, ns_per_grain (in
+// nanoseconds; the console prints it with a unit of seconds). JSON with
 //   bench_coupled_step --benchmark_out=bench/results/coupled_step.json
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -119,6 +122,33 @@ void BM_PressureSolve(benchmark::State& state) {
   state.counters["solver_iterations"] = fluid->last_solve().iterations;
 }
 
+void BM_Overlaps(benchmark::State& state) {
+  omp_set_num_threads(1);
+  static auto sim = bench::make_packing(kGrains, 0);
+  auto fluid = make_fluid(sim, state.range(0), 1);
+  const auto& grid = fluid->grid;
+  const auto& p = sim.particles;
+  std::vector<double> solid(grid.size());
+  std::vector<Vec<3>> flux(grid.size());
+  std::array<std::vector<double>, 3> face;
+  for (auto _ : state) {
+    std::fill(solid.begin(), solid.end(), 0.0);
+    std::fill(flux.begin(), flux.end(), Vec<3>::Zero());
+    for (int k = 0; k < 3; ++k) face[k].assign(grid.face_count(k), 0.0);
+    fluid->for_each_overlap(
+        p,
+        [&](std::size_t c, std::size_t i, double v) {
+          solid[c] += v;
+          flux[c] += v * p.velocity[i];
+        },
+        [&](int k, std::size_t f, std::size_t i, double a) { face[k][f] += a * p.velocity[i][k]; }, true);
+    benchmark::DoNotOptimize(solid.data());
+  }
+  state.counters["ns_per_grain"] =
+      benchmark::Counter(1e-9 * static_cast<double>(p.size()) * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 void BM_GrainForces(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
   static auto sim = bench::make_packing(kGrains, 0);
@@ -130,9 +160,9 @@ void BM_GrainForces(benchmark::State& state) {
     fluid->particle_forces(sim.particles, sim.gravity, force);
     benchmark::DoNotOptimize(force.data());
   }
-  state.counters["ns_per_grain"] =
-      benchmark::Counter(static_cast<double>(sim.particles.size()) * static_cast<double>(state.iterations()),
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_grain"] = benchmark::Counter(
+      1e-9 * static_cast<double>(sim.particles.size()) * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 BENCHMARK(BM_DemStep)
@@ -152,6 +182,7 @@ BENCHMARK(BM_PressureSolve)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0)
     ->UseRealTime();
+BENCHMARK(BM_Overlaps)->Arg(10'000)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
 BENCHMARK(BM_GrainForces)
     ->Args({10'000, 1})
     ->Args({10'000, 2})
