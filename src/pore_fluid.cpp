@@ -42,34 +42,39 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles) {
 template <int D>
 void PoreFluid<D>::compute_solid(const ParticleData<D>& particles) {
   // Grains in fixed blocks (their number depends on the grain count only),
-  // each summed into its own arrays in parallel, then the blocks added in
-  // order: the same result for any number of threads.
+  // each summed into its own arrays in parallel (the first block into the
+  // fields themselves), then the blocks added in order: the same result for
+  // any number of threads.
   const std::size_t count = particles.size();
   const std::size_t blocks = std::clamp<std::size_t>(count / 25'000, 1, 8);
-  block_solid_.resize(blocks);
-  auto sum_block = [&](std::size_t b, SolidSums& out) {
-    out.solid.assign(grid.size(), 0.0);
-    out.flux.assign(grid.size(), Vec<D>::Zero());
-    for (int k = 0; k < D; ++k) out.face_flux[k].assign(grid.face_count(k), 0.0);
+  block_solid_.resize(blocks - 1);
+  auto sum_block = [&](std::size_t b, std::vector<double>& solid, std::vector<Vec<D>>& flux,
+                       std::array<std::vector<double>, D>& face_flux) {
+    solid.assign(grid.size(), 0.0);
+    flux.assign(grid.size(), Vec<D>::Zero());
+    for (int k = 0; k < D; ++k) face_flux[k].assign(grid.face_count(k), 0.0);
     for_each_overlap(
         particles, count * b / blocks, count * (b + 1) / blocks,
         [&](std::size_t cell, std::size_t i, double v) {
-          out.solid[cell] += v;
-          out.flux[cell] += v * particles.velocity[i];
+          solid[cell] += v;
+          flux[cell] += v * particles.velocity[i];
         },
         [&](int axis, std::size_t face, std::size_t i, double area) {
-          out.face_flux[axis][face] += area * particles.velocity[i][axis];
+          face_flux[axis][face] += area * particles.velocity[i][axis];
         },
         carry_with_solid);
   };
   const auto nb = static_cast<std::int64_t>(blocks);
 #pragma omp parallel for schedule(static) if (blocks > 1)
-  for (std::int64_t b = 0; b < nb; ++b) sum_block(static_cast<std::size_t>(b), block_solid_[b]);
-  solid_ = block_solid_[0].solid;
-  solid_flux_ = block_solid_[0].flux;
-  for (int k = 0; k < D; ++k) solid_face_flux_[k] = block_solid_[0].face_flux[k];
-  for (std::size_t b = 1; b < blocks; ++b) {
-    const SolidSums& s = block_solid_[b];
+  for (std::int64_t b = 0; b < nb; ++b) {
+    if (b == 0) {
+      sum_block(0, solid_, solid_flux_, solid_face_flux_);
+    } else {
+      SolidSums& s = block_solid_[b - 1];
+      sum_block(static_cast<std::size_t>(b), s.solid, s.flux, s.face_flux);
+    }
+  }
+  for (const SolidSums& s : block_solid_) {
     for (std::size_t c = 0; c < grid.size(); ++c) {
       solid_[c] += s.solid[c];
       solid_flux_[c] += s.flux[c];

@@ -148,8 +148,8 @@ class PoreFluid final : public ParticleForceField<D> {
     std::size_t index;  ///< in the face arrays of the side's axis
   };
 
-  /// Solid volumes, solid volume fluxes and face fluxes of one block of
-  /// grains (compute_solid).
+  /// Solid volumes, solid volume fluxes and face fluxes of the blocks of
+  /// grains after the first (compute_solid).
   struct SolidSums {
     std::vector<double> solid;
     std::vector<Vec<D>> flux;
