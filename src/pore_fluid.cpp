@@ -106,12 +106,24 @@ void PoreFluid<D>::compute_cell_properties() {
         kappa_[c] = kozeny_carman(permeability.diameter, porosity_used_[c]) * permeability.anisotropy;
       }
     }
+  }
+  // Drag coefficients per cell; Ergun/Wen-Yu's atan and power for all the
+  // cells at once (core/vector_math.hpp).
+  if (drag == DragLaw::ergun) {
+    blend_atan_.resize(n);
+    n_power_.resize(n);
+    for (std::size_t c = 0; c < n; ++c) n_power_[c] = ErgunWenYu::blend_argument(porosity_used_[c]);
+    const std::vector<double> ones(n, 1.0);
+    atan2_batch(n_power_.data(), ones.data(), blend_atan_.data(), n);
+    pow_batch(porosity_used_.data(), ErgunWenYu::wen_yu_exponent, n_power_.data(), n);
+  }
+  for (std::size_t c = 0; c < n; ++c) {
     const double nu = porosity_used_[c];
     CellDrag& cd = cell_drag_[c];
     cd = CellDrag{};
     cd.inv_n = 1.0 / nu;
     if (drag == DragLaw::ergun) {
-      const ErgunWenYu e = ErgunWenYu::of(nu, fluid);
+      const ErgunWenYu e = ErgunWenYu::with(nu, blend_atan_[c], n_power_[c], fluid);
       cd.viscous = e.phi * e.ergun_viscous / (1.0 - nu);
       cd.inertial = e.phi * e.ergun_inertial / (1.0 - nu);
       cd.wen_yu = (1.0 - e.phi) * e.wen_yu / (1.0 - nu);
@@ -119,6 +131,15 @@ void PoreFluid<D>::compute_cell_properties() {
     } else {
       for (int k = 0; k < D; ++k) cd.darcy[k] = nu * nu * fluid.viscosity / kappa_[c][k] / (1.0 - nu);
     }
+  }
+  // Darcy conductance kappa/mu of each interior face: the harmonic mean of
+  // its two cells'.
+  face_lambda_.resize(faces_.size());
+  for (std::size_t k = 0; k < faces_.size(); ++k) {
+    const Face& f = faces_[k];
+    const double ka = kappa_[f.a][f.axis];
+    const double kb = kappa_[f.b][f.axis];
+    face_lambda_[k] = 2.0 * ka * kb / ((ka + kb) * fluid.viscosity);
   }
 }
 
@@ -194,10 +215,9 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     rhs_[static_cast<Eigen::Index>(c)] = storage * pressure_[c] + d_solid;
   }
   // Darcy conductances and the fluid carried by the moving skeleton.
-  for (const auto& f : faces_) {
-    const double la = side_lambda(f.axis, f.a);
-    const double lb = side_lambda(f.axis, f.b);
-    const double lambda = 2.0 * la * lb / (la + lb);
+  for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
+    const Face& f = faces_[fi];
+    const double lambda = face_lambda_[fi];
     const double area = grid.face_area(f.axis);
     const double t = dt * lambda * area / grid.spacing[f.axis];
     values[diag_pos_[f.a]] += t;
@@ -260,11 +280,10 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
 
 template <int D>
 void PoreFluid<D>::compute_face_fields(double time) {
-  for (const auto& f : faces_) {
-    const double la = side_lambda(f.axis, f.a);
-    const double lb = side_lambda(f.axis, f.b);
-    const double g = (pressure_[f.b] - pressure_[f.a]) / grid.spacing[f.axis];
-    face_gq_[f.axis][f.index] = {g, -2.0 * la * lb / (la + lb) * g};
+  for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
+    const Face& f = faces_[fi];
+    const double g = (pressure_[f.b] - pressure_[f.a]) * inv_spacing_[f.axis];
+    face_gq_[f.axis][f.index] = {g, -face_lambda_[fi] * g};
   }
   side_inflow_.fill(0.0);
   for (const auto& bf : boundary_faces_) {

@@ -72,12 +72,20 @@ struct ErgunWenYu {
   double wen_yu = 0.0;          ///< 3/4 mu (1-n) n^-2.65
 
   static ErgunWenYu of(double n, const FluidProperties& f) {
+    return with(n, std::atan(blend_argument(n)), std::pow(n, wen_yu_exponent), f);
+  }
+  /// The argument of the blending function's atan.
+  static double blend_argument(double n) { return 262.5 * ((1.0 - n) - 0.2); }
+  static constexpr double wen_yu_exponent = -2.65;
+  /// `of` with atan(blend_argument(n)) and n^wen_yu_exponent given (so that
+  /// a caller can compute them for many cells at once).
+  static ErgunWenYu with(double n, double blend_atan, double n_power, const FluidProperties& f) {
     ErgunWenYu c;
     c.n = n;
-    c.phi = 0.5 + std::atan(262.5 * ((1.0 - n) - 0.2)) / std::numbers::pi;
+    c.phi = 0.5 + blend_atan / std::numbers::pi;
     c.ergun_viscous = 150.0 * f.viscosity * (1.0 - n) * (1.0 - n) / n;
     c.ergun_inertial = 1.75 * f.density * (1.0 - n);
-    c.wen_yu = 0.75 * f.viscosity * (1.0 - n) * std::pow(n, -2.65);
+    c.wen_yu = 0.75 * f.viscosity * (1.0 - n) * n_power;
     return c;
   }
   /// beta for a grain of diameter d at slip speed |v_f - v_p|, kg/(m^3 s).
