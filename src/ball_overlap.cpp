@@ -85,37 +85,6 @@ OctantAngles octant_angles(double r, double a, double b) {
 
 double wedge_volume(double r, double a, double b) { return wedge_volume(r, a, b, pair_angles(r, a, b)); }
 
-double octant_volume(double r, double a, double b, double c, const PairAngles& ab, const PairAngles& ac,
-                     const PairAngles& bc, const OctantAngles& o) {
-  const double zm2 = r * r - a * a - b * b;
-  if (zm2 <= c * c || zm2 <= 0.0) return 0.0;
-  // Slices z = const from c to z_m: the corner of a disc of radius
-  // rho = sqrt(r^2 - z^2) in {x > a, y > b}, whose area is
-  //   rho^2/2 (acos(b/rho) - asin(a/rho)) - (b sqrt(rho^2-b^2) + a sqrt(rho^2-a^2))/2 + a b,
-  // with asin(a/rho) = pi/2 - acos(a/rho).
-  const double zm = ab.w;
-  const double sa2 = r * r - a * a;
-  const double sb2 = r * r - b * b;
-  // At z_m, acos(b/rho) = atan2(a, b) and acos(a/rho) = pi/2 - atan2(a, b)
-  // (both pi/2 when a = b = 0, the limit of acos(0)).
-  const bool both_zero = a == 0.0 && b == 0.0;
-  const double acos_b_top = both_zero ? 0.5 * pi : o.ab;
-  const double acos_a_top = both_zero ? 0.5 * pi : 0.5 * pi - o.ab;
-  const double asin_c_b = 0.5 * pi - bc.theta_v;  // atan2(c, w_bc)
-  const double asin_c_a = 0.5 * pi - ac.theta_v;  // atan2(c, w_ac)
-  auto cubic = [&](double z) { return r * r * z - z * z * z / 3.0; };
-  const double j_b = detail::slice_integral(r, b, zm, a, acos_b_top, ab.theta_u, o.zb) -
-                     detail::slice_integral(r, b, c, bc.w, bc.theta_u, asin_c_b, bc.tau);
-  const double j_a = detail::slice_integral(r, a, zm, b, acos_a_top, ab.theta_v, o.za) -
-                     detail::slice_integral(r, a, c, ac.w, ac.theta_u, asin_c_a, ac.tau);
-  const double r_b =
-      detail::root_integral(sb2, zm, a, ab.theta_u) - detail::root_integral(sb2, c, bc.w, asin_c_b);
-  const double r_a =
-      detail::root_integral(sa2, zm, b, ab.theta_v) - detail::root_integral(sa2, c, ac.w, asin_c_a);
-  return 0.5 * j_b + 0.5 * j_a - 0.25 * pi * (cubic(zm) - cubic(c)) - 0.5 * b * r_b - 0.5 * a * r_a +
-         a * b * (zm - c);
-}
-
 double octant_volume(double r, double a, double b, double c) {
   return octant_volume(r, a, b, c, pair_angles(r, a, b), pair_angles(r, a, c), pair_angles(r, b, c),
                        octant_angles(r, a, b));

@@ -53,10 +53,6 @@ struct OctantAngles {
 /// Both sets with std::atan2.
 PairAngles pair_angles(double r, double u, double v);
 OctantAngles octant_angles(double r, double a, double b);
-/// The octant {x > a, y > b, z > c} from the angles of its three pairs and
-/// its own.
-double octant_volume(double r, double a, double b, double c, const PairAngles& ab, const PairAngles& ac,
-                     const PairAngles& bc, const OctantAngles& o);
 
 // Inline: called per grain in the fluid's hot loop (pore_fluid_overlap.hpp).
 
@@ -98,10 +94,11 @@ inline double root_integral(double s2, double z, double q, double asin_term) {
 }
 }  // namespace detail
 
-/// The wedge {x > a, y > b} from the angles of the pair (a, b).
-inline double wedge_volume(double r, double a, double b, const PairAngles& ab) {
+/// The wedge {x > a, y > b} from the angles of the pair (a, b), for
+/// a^2 + b^2 < r^2 (no check: elsewhere the value is finite but
+/// meaningless).
+inline double wedge_volume_inside(double r, double a, double b, const PairAngles& ab) {
   constexpr double pi = std::numbers::pi;
-  if (a * a + b * b >= r * r) return 0.0;
   // Slices x = const from a to s_b = sqrt(r^2 - b^2): the disc of radius
   // sqrt(r^2 - x^2) above y = b, a circular segment. At the upper end the
   // slice closes and J reduces to its limit.
@@ -111,22 +108,65 @@ inline double wedge_volume(double r, double a, double b, const PairAngles& ab) {
   return upper - detail::slice_integral(r, b, a, ab.w, ab.theta_v, asin_a, ab.tau) -
          b * (0.25 * pi * sb2 - detail::root_integral(sb2, a, ab.w, asin_a));
 }
+/// The wedge {x > a, y > b} from the angles of the pair (a, b).
+inline double wedge_volume(double r, double a, double b, const PairAngles& ab) {
+  return a * a + b * b >= r * r ? 0.0 : wedge_volume_inside(r, a, b, ab);
+}
+
+/// The octant {x > a, y > b, z > c} from the angles of its three pairs and
+/// its own, for a^2 + b^2 + c^2 < r^2 (no check, as wedge_volume_inside).
+inline double octant_volume_inside(double r, double a, double b, double c, const PairAngles& ab,
+                                   const PairAngles& ac, const PairAngles& bc, const OctantAngles& o) {
+  constexpr double pi = std::numbers::pi;
+  // Slices z = const from c to z_m: the corner of a disc of radius
+  // rho = sqrt(r^2 - z^2) in {x > a, y > b}, whose area is
+  //   rho^2/2 (acos(b/rho) - asin(a/rho)) - (b sqrt(rho^2-b^2) + a sqrt(rho^2-a^2))/2 + a b,
+  // with asin(a/rho) = pi/2 - acos(a/rho).
+  const double zm = ab.w;
+  const double sa2 = r * r - a * a;
+  const double sb2 = r * r - b * b;
+  // At z_m, acos(b/rho) = atan2(a, b) and acos(a/rho) = pi/2 - atan2(a, b)
+  // (both pi/2 when a = b = 0, the limit of acos(0)).
+  const bool both_zero = (a == 0.0) & (b == 0.0);
+  const double acos_b_top = both_zero ? 0.5 * pi : o.ab;
+  const double acos_a_top = both_zero ? 0.5 * pi : 0.5 * pi - o.ab;
+  const double asin_c_b = 0.5 * pi - bc.theta_v;  // atan2(c, w_bc)
+  const double asin_c_a = 0.5 * pi - ac.theta_v;  // atan2(c, w_ac)
+  auto cubic = [&](double z) { return r * r * z - z * z * z / 3.0; };
+  const double j_b = detail::slice_integral(r, b, zm, a, acos_b_top, ab.theta_u, o.zb) -
+                     detail::slice_integral(r, b, c, bc.w, bc.theta_u, asin_c_b, bc.tau);
+  const double j_a = detail::slice_integral(r, a, zm, b, acos_a_top, ab.theta_v, o.za) -
+                     detail::slice_integral(r, a, c, ac.w, ac.theta_u, asin_c_a, ac.tau);
+  const double r_b =
+      detail::root_integral(sb2, zm, a, ab.theta_u) - detail::root_integral(sb2, c, bc.w, asin_c_b);
+  const double r_a =
+      detail::root_integral(sa2, zm, b, ab.theta_v) - detail::root_integral(sa2, c, ac.w, asin_c_a);
+  return 0.5 * j_b + 0.5 * j_a - 0.25 * pi * (cubic(zm) - cubic(c)) - 0.5 * b * r_b - 0.5 * a * r_a +
+         a * b * (zm - c);
+}
+/// The octant {x > a, y > b, z > c} from the angles of its three pairs and
+/// its own.
+inline double octant_volume(double r, double a, double b, double c, const PairAngles& ab,
+                            const PairAngles& ac, const PairAngles& bc, const OctantAngles& o) {
+  const double zm2 = r * r - a * a - b * b;
+  return zm2 <= c * c || zm2 <= 0.0 ? 0.0 : octant_volume_inside(r, a, b, c, ab, ac, bc, o);
+}
 
 /// Sections on the plane x_j = d_j (a disc of radius^2 rho2 = r^2 - d_j^2)
 /// beyond one more plane at distance d_l (pair angles jl, with theta_l the
 /// one of d_l) or two (d_l, d_m); zero where the planes miss the disc.
 inline double section_beyond(double rho2, double d_l, const PairAngles& jl, double theta_l) {
-  if (d_l * d_l >= rho2) return 0.0;
   // Circular segment: rho^2 atan2(h, d_l) - d_l h, with h = w of the pair.
-  return rho2 * theta_l - d_l * jl.w;
+  const double v = rho2 * theta_l - d_l * jl.w;
+  return d_l * d_l >= rho2 ? 0.0 : v;
 }
 inline double section_beyond(double rho2, double d_l, double d_m, const PairAngles& jl, double theta_l,
                              const PairAngles& jm, double theta_m) {
-  if (d_l * d_l + d_m * d_m >= rho2) return 0.0;
   // Corner of the disc (corner_area): h_l and h_m are the pairs' w, and
   // atan2(d_l, h_l) = pi/2 - theta_l.
-  return 0.5 * rho2 * (theta_m - (0.5 * std::numbers::pi - theta_l)) - 0.5 * (d_m * jm.w + d_l * jl.w) +
-         d_l * d_m;
+  const double v = 0.5 * rho2 * (theta_m - (0.5 * std::numbers::pi - theta_l)) -
+                   0.5 * (d_m * jm.w + d_l * jl.w) + d_l * d_m;
+  return d_l * d_l + d_m * d_m >= rho2 ? 0.0 : v;
 }
 
 /// Measure (m^2 x 1 m in 2D, m^3 in 3D) of the ball of radius r at the
