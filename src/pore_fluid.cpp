@@ -199,6 +199,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   const std::size_t n = grid.size();
   compute_solid(particles);
   compute_cell_properties();
+  pressure_older_.swap(pressure_old_);
   pressure_old_ = pressure_;
 
   // Storage and Biot source.
@@ -250,7 +251,13 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     }
   }
 
-  for (std::size_t c = 0; c < n; ++c) solution_[static_cast<Eigen::Index>(c)] = pressure_[c];
+  // Initial guess (CG): the pressure extrapolated linearly from the last
+  // two fluid steps, which follows a smoothly changing flow.
+  const bool extrapolate = updates_ > 0 && pressure_older_.size() == n;
+  for (std::size_t c = 0; c < n; ++c) {
+    solution_[static_cast<Eigen::Index>(c)] =
+        extrapolate ? 2.0 * pressure_[c] - pressure_older_[c] : pressure_[c];
+  }
   last_solve_ = solver_.solve(matrix_, rhs_, solution_);
   for (std::size_t c = 0; c < n; ++c) pressure_[c] = solution_[static_cast<Eigen::Index>(c)];
 

@@ -157,7 +157,8 @@ class PoreFluid final : public ParticleForceField<D> {
   };
   std::vector<SolidSums> block_solid_;
   std::vector<double> pressure_, pressure_old_, porosity_, solid_, solid_old_;
-  std::vector<double> porosity_used_;  ///< porosity clamped to the permeability's [min, max]
+  std::vector<double> pressure_older_;  ///< the pressure one fluid step before pressure_old_
+  std::vector<double> porosity_used_;   ///< porosity clamped to the permeability's [min, max]
   std::vector<Vec<D>> solid_flux_, solid_velocity_, kappa_;
   /// Per cell, at its clamped porosity, what the force on a grain needs: the
   /// drag per unit grain volume and unit slip, beta/(1-n), is
