@@ -335,27 +335,15 @@ void PoreFluid<D>::centre_coordinate(int k, double s, int& cell, double& frac) c
 template <int D>
 void PoreFluid<D>::interpolate(const std::array<double, D>& s_of, std::array<double, D>& grad,
                                std::array<double, D>& flux) const {
-  // Per coordinate: the cell holding x (for the axis's own faces) and the
-  // pair of cell centres around it (for the other axes), with fractions.
-  // Beyond the outer centres the fraction is clamped to 0 or 1, which holds
-  // the outer value; with one cell along an axis there is no pair.
-  std::array<std::size_t, D> face_cell{};
-  std::array<double, D> face_frac{};
-  std::array<std::size_t, D> centre_cell{};
-  std::array<double, D> centre_frac{};
-  std::array<bool, D> paired{};
-  for (int k = 0; k < D; ++k) {
-    const double s = s_of[k];
-    const int last = grid.cells[k] - 1;
-    const int b = FluidGrid<D>::clamp_cell(std::floor(s), 0, last);
-    face_cell[k] = static_cast<std::size_t>(b);
-    face_frac[k] = std::clamp(s - b, 0.0, 1.0);
-    const double t = s - 0.5;
-    const int c = FluidGrid<D>::clamp_cell(std::floor(t), 0, std::max(last - 1, 0));
-    paired[k] = last > 0;
-    centre_cell[k] = static_cast<std::size_t>(c);
-    centre_frac[k] = paired[k] ? std::clamp(t - c, 0.0, 1.0) : 0.0;
-  }
+  Stencil st;
+  for (int k = 0; k < D; ++k)
+    stencil_axis(k, s_of[k], st.face_cell[k], st.face_frac[k], st.centre_cell[k], st.centre_frac[k]);
+  interpolate(st, grad, flux);
+}
+
+template <int D>
+void PoreFluid<D>::interpolate(const Stencil& st, std::array<double, D>& grad,
+                               std::array<double, D>& flux) const {
   // (grad, flux) pairs as two-lane vectors (GCC/Clang vector extension):
   // one load and one multiply-add per lerp for both.
   using Pair = double __attribute__((vector_size(16)));
@@ -374,13 +362,13 @@ void PoreFluid<D>::interpolate(const std::array<double, D>& s_of, std::array<dou
     std::array<double, D> fr{};
     for (int k = 0; k < D; ++k) {
       if (k == A) {
-        base += face_cell[k] * stride[k];
+        base += static_cast<std::size_t>(st.face_cell[k]) * stride[k];
         step[k] = stride[k];
-        fr[k] = face_frac[k];
+        fr[k] = st.face_frac[k];
       } else {
-        base += centre_cell[k] * stride[k];
-        step[k] = paired[k] ? stride[k] : 0;
-        fr[k] = centre_frac[k];
+        base += static_cast<std::size_t>(st.centre_cell[k]) * stride[k];
+        step[k] = grid.cells[k] > 1 ? stride[k] : 0;
+        fr[k] = st.centre_frac[k];
       }
     }
     const std::array<double, 2>* g = face_gq_[A].data() + base;
@@ -454,71 +442,85 @@ std::vector<Vec<D>> PoreFluid<D>::darcy_velocity() const {
 template <int D>
 void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravity,
                                    std::vector<Vec<D>>& force) const {
-  // In chunks of grains: first the pressure-gradient force and the slip of
-  // each grain, then Wen-Yu's Re^0.687 for the whole chunk at once
-  // (core/vector_math.hpp), then the drag.
+  // In chunks of grains, in stages: loops without branches over the chunk
+  // (which the compiler vectorises) locate each grain on the grid; grain by
+  // grain, the staggered interpolation and the cell's coefficients are
+  // loaded; then the slip, Wen-Yu's Re^0.687 for the whole chunk at once
+  // (core/vector_math.hpp) and the force, again over the chunk.
   constexpr std::int64_t chunk = 256;
-  constexpr std::uint32_t outside = ~std::uint32_t{0};
   const auto count = static_cast<std::int64_t>(p.size());
   const bool ergun = drag == DragLaw::ergun;
   auto run = [&](std::int64_t b) {
     const std::int64_t begin = b * chunk;
-    const std::int64_t end = std::min(count, begin + chunk);
-    std::array<std::uint32_t, chunk> cell_of;
-    std::array<double, chunk> speed;
-    std::array<double, chunk> re;
-    std::array<double, chunk> re_pow;
-    std::array<std::array<double, D>, chunk> slip;
-    for (std::int64_t i = begin; i < end; ++i) {
-      const std::int64_t j = i - begin;
-      const std::array<double, D> s = cell_units(p.position[i]);
-      std::array<int, D> cell{};
-      bool inside = true;
-      for (int k = 0; k < D; ++k) {
-        inside = inside && s[k] >= 0.0 && s[k] < grid.cells[k];
-        cell[k] = inside ? static_cast<int>(s[k]) : 0;
+    const std::int64_t n = std::min(count, begin + chunk) - begin;
+    std::array<std::array<double, chunk>, D> s;
+    std::array<std::array<int, chunk>, D> face_cell, centre_cell;
+    std::array<std::array<double, chunk>, D> face_frac, centre_frac;
+    std::array<std::array<double, chunk>, D> grad, slip, darcy;
+    std::array<double, chunk> inside, vp, inv_d, re, re_pow, speed, viscous, inertial, wen_yu;
+    // Where each grain is.
+    for (int k = 0; k < D; ++k) {
+      const double cells = grid.cells[k];
+#pragma omp simd
+      for (std::int64_t j = 0; j < n; ++j) {
+        s[k][j] = (p.position[begin + j][k] - grid.origin[k]) * inv_spacing_[k];
+        stencil_axis(k, s[k][j], face_cell[k][j], face_frac[k][j], centre_cell[k][j], centre_frac[k][j]);
       }
-      re[j] = 0.0;
-      speed[j] = 0.0;
-      if (!inside) {
-        cell_of[j] = outside;
-        force[i].setZero();
-        continue;
+      for (std::int64_t j = 0; j < n; ++j) {
+        const bool in = s[k][j] >= 0.0 && s[k][j] < cells;
+        inside[j] = (k == 0 || inside[j] > 0.0) && in ? 1.0 : 0.0;
       }
-      const std::size_t c = grid.index(cell);
-      cell_of[j] = static_cast<std::uint32_t>(c);
-      const CellDrag& cd = cell_drag_[c];
-      const double vp = particle_volume<D>(p.radius[i]);
-      // Component by component in plain arrays (assembling small Eigen
-      // vectors element-wise stalls on store-to-load forwarding here).
-      std::array<double, D> grad{};
+    }
+    // Grain by grain: the interpolated gradient and flux, the cell's values.
+    for (std::int64_t j = 0; j < n; ++j) {
+      const std::int64_t i = begin + j;
+      Stencil st;
+      std::size_t c = 0;
+      for (int k = D - 1; k >= 0; --k) {
+        st.face_cell[k] = face_cell[k][j];
+        st.face_frac[k] = face_frac[k][j];
+        st.centre_cell[k] = centre_cell[k][j];
+        st.centre_frac[k] = centre_frac[k][j];
+        c = c * static_cast<std::size_t>(grid.cells[k]) + static_cast<std::size_t>(face_cell[k][j]);
+      }
+      std::array<double, D> g{};
       std::array<double, D> q{};
-      interpolate(s, grad, q);
-      double slip2 = 0.0;
+      interpolate(st, g, q);
+      const CellDrag& cd = cell_drag_[c];
       for (int k = 0; k < D; ++k) {
-        force[i][k] = -vp * (grad[k] + fluid.density * gravity[k]);
-        slip[j][k] = solid_velocity_[c][k] + q[k] * cd.inv_n - p.velocity[i][k];
-        slip2 += slip[j][k] * slip[j][k];
+        grad[k][j] = g[k];
+        slip[k][j] = solid_velocity_[c][k] + q[k] * cd.inv_n - p.velocity[i][k];
+        darcy[k][j] = cd.darcy[k];
       }
-      speed[j] = slip2;
-      re[j] = cd.re_factor * 2.0 * p.radius[i];
+      viscous[j] = cd.viscous;
+      inertial[j] = cd.inertial;
+      wen_yu[j] = cd.wen_yu;
+      re[j] = cd.re_factor;
     }
-    // Slip speeds and Re four at a time.
-    for (std::int64_t j = 0; j < end - begin; ++j) {
-      speed[j] = std::sqrt(speed[j]);
-      re[j] *= speed[j];
+    // Slip speed and Re.
+#pragma omp simd
+    for (std::int64_t j = 0; j < n; ++j) {
+      const double r = p.radius[begin + j];
+      vp[j] = particle_volume<D>(r);
+      inv_d[j] = 0.5 / r;
+      double slip2 = 0.0;
+      for (int k = 0; k < D; ++k) slip2 += slip[k][j] * slip[k][j];
+      speed[j] = std::sqrt(slip2);
+      re[j] *= 2.0 * r * speed[j];
     }
-    if (ergun) pow_batch(re.data(), 0.687, re_pow.data(), static_cast<std::size_t>(end - begin));
-    for (std::int64_t i = begin; i < end; ++i) {
-      const std::int64_t j = i - begin;
-      if (cell_of[j] == outside) continue;
-      const CellDrag& cd = cell_drag_[cell_of[j]];
-      const double vp = particle_volume<D>(p.radius[i]);
-      const double inv_d = 0.5 / p.radius[i];
-      // C_d Re of Wen and Yu (wen_yu_cd_re), with the batch's Re^0.687.
-      const double cd_re = ergun ? (re[j] < 1000.0 ? 24.0 * (1.0 + 0.15 * re_pow[j]) : 0.44 * re[j]) : 0.0;
-      const double beta = (cd.viscous + cd.wen_yu * cd_re) * inv_d * inv_d + cd.inertial * speed[j] * inv_d;
-      for (int k = 0; k < D; ++k) force[i][k] += vp * (cd.darcy[k] + beta) * slip[j][k];
+    if (ergun) pow_batch(re.data(), 0.687, re_pow.data(), static_cast<std::size_t>(n));
+    // -V_p (grad u + rho_f g) + drag; zero for grains outside the grid.
+    for (int k = 0; k < D; ++k) {
+      const double weight = fluid.density * gravity[k];
+#pragma omp simd
+      for (std::int64_t j = 0; j < n; ++j) {
+        // C_d Re of Wen and Yu (wen_yu_cd_re), with the batch's Re^0.687.
+        const double cd_re = ergun ? (re[j] < 1000.0 ? 24.0 * (1.0 + 0.15 * re_pow[j]) : 0.44 * re[j]) : 0.0;
+        const double beta =
+            (viscous[j] + wen_yu[j] * cd_re) * inv_d[j] * inv_d[j] + inertial[j] * speed[j] * inv_d[j];
+        const double f = -vp[j] * (grad[k][j] + weight) + vp[j] * (darcy[k][j] + beta) * slip[k][j];
+        force[begin + j][k] = inside[j] > 0.0 ? f : 0.0;
+      }
     }
   };
   const std::int64_t chunks = (count + chunk - 1) / chunk;

@@ -16,6 +16,7 @@
 // Forces on each grain (every DEM step): -V_p grad u + drag + buoyancy.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -121,9 +122,36 @@ class PoreFluid final : public ParticleForceField<D> {
   /// for the component along an axis, linear between the two faces of the
   /// cell holding x along that axis, and between cell centres along the
   /// others (held beyond the outer ones), as on a staggered (MAC) grid.
+  /// Where a point lies for the staggered interpolation, per axis: the cell
+  /// holding it and its fraction across that cell (for the axis's own
+  /// faces), and the lower of the two cell centres around it and the
+  /// fraction between them (for the other axes).
+  struct Stencil {
+    std::array<int, D> face_cell{};
+    std::array<double, D> face_frac{};
+    std::array<int, D> centre_cell{};
+    std::array<double, D> centre_frac{};
+  };
+  /// The Stencil's values along axis k at s (cell units), without branches
+  /// (inline: called in a loop the compiler vectorises).
+  void stencil_axis(int k, double s, int& face_cell, double& face_frac, int& centre_cell,
+                    double& centre_frac) const {
+    // Beyond the outer centres the fraction is clamped to 0 or 1, which
+    // holds the outer value; with one cell along an axis there is no pair.
+    const int last = grid.cells[k] - 1;
+    s = s == s ? s : 0.0;  // a NaN position (never inside the grid) reads cell 0, not a NaN index
+    const double fb = std::clamp(std::floor(s), 0.0, static_cast<double>(last));
+    face_cell = static_cast<int>(fb);
+    face_frac = std::clamp(s - fb, 0.0, 1.0);
+    const double t = s - 0.5;
+    const double cb = std::clamp(std::floor(t), 0.0, static_cast<double>(std::max(last - 1, 0)));
+    centre_cell = static_cast<int>(cb);
+    centre_frac = last > 0 ? std::clamp(t - cb, 0.0, 1.0) : 0.0;
+  }
   /// s is x in cell units, (x - origin) / spacing.
   void interpolate(const std::array<double, D>& s, std::array<double, D>& grad,
                    std::array<double, D>& flux) const;
+  void interpolate(const Stencil& stencil, std::array<double, D>& grad, std::array<double, D>& flux) const;
   [[nodiscard]] std::array<double, D> cell_units(const Vec<D>& x) const {
     std::array<double, D> s{};
     for (int k = 0; k < D; ++k) s[k] = (x[k] - grid.origin[k]) * inv_spacing_[k];
