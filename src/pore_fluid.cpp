@@ -112,9 +112,10 @@ void PoreFluid<D>::compute_cell_properties() {
   if (drag == DragLaw::ergun) {
     blend_atan_.resize(n);
     n_power_.resize(n);
+    ones_.resize(n, 1.0);
+    // n_power_ holds the atan's arguments until the power overwrites them.
     for (std::size_t c = 0; c < n; ++c) n_power_[c] = ErgunWenYu::blend_argument(porosity_used_[c]);
-    const std::vector<double> ones(n, 1.0);
-    atan2_batch(n_power_.data(), ones.data(), blend_atan_.data(), n);
+    atan2_batch(n_power_.data(), ones_.data(), blend_atan_.data(), n);
     pow_batch(porosity_used_.data(), ErgunWenYu::wen_yu_exponent, n_power_.data(), n);
   }
   for (std::size_t c = 0; c < n; ++c) {
@@ -317,22 +318,6 @@ void PoreFluid<D>::compute_face_fields(double time) {
 }
 
 template <int D>
-void PoreFluid<D>::centre_coordinate(int k, double s, int& cell, double& frac) const {
-  // Between the centres of cells `cell` and `cell + 1`; held at the outer
-  // centres beyond them.
-  const double t = s - 0.5;
-  const int last = grid.cells[k] - 1;
-  const int b = FluidGrid<D>::clamp_cell(std::floor(t), -1, last);
-  if (b < 0 || b >= last) {
-    cell = b < 0 ? 0 : last;
-    frac = 0.0;
-  } else {
-    cell = b;
-    frac = t - b;
-  }
-}
-
-template <int D>
 void PoreFluid<D>::interpolate(const std::array<double, D>& s_of, std::array<double, D>& grad,
                                std::array<double, D>& flux) const {
   Stencil st;
@@ -406,10 +391,14 @@ Vec<D> PoreFluid<D>::gradient_at(const Vec<D>& x) const {
 
 template <int D>
 double PoreFluid<D>::pressure_at(const Vec<D>& x) const {
+  // Between the cell centres around x (the stencil's centre pairs).
   std::array<int, D> base{};
   std::array<double, D> frac{};
-  for (int k = 0; k < D; ++k)
-    centre_coordinate(k, (x[k] - grid.origin[k]) * inv_spacing_[k], base[k], frac[k]);
+  for (int k = 0; k < D; ++k) {
+    int face_cell = 0;
+    double face_frac = 0.0;
+    stencil_axis(k, (x[k] - grid.origin[k]) * inv_spacing_[k], face_cell, face_frac, base[k], frac[k]);
+  }
   double sum = 0.0;
   for (int corner = 0; corner < (1 << D); ++corner) {
     double w = 1.0;
@@ -475,14 +464,13 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
     for (std::int64_t j = 0; j < n; ++j) {
       const std::int64_t i = begin + j;
       Stencil st;
-      std::size_t c = 0;
-      for (int k = D - 1; k >= 0; --k) {
+      for (int k = 0; k < D; ++k) {
         st.face_cell[k] = face_cell[k][j];
         st.face_frac[k] = face_frac[k][j];
         st.centre_cell[k] = centre_cell[k][j];
         st.centre_frac[k] = centre_frac[k][j];
-        c = c * static_cast<std::size_t>(grid.cells[k]) + static_cast<std::size_t>(face_cell[k][j]);
       }
+      const std::size_t c = grid.index(st.face_cell);
       std::array<double, D> g{};
       std::array<double, D> q{};
       interpolate(st, g, q);

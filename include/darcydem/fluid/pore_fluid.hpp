@@ -157,8 +157,6 @@ class PoreFluid final : public ParticleForceField<D> {
     for (int k = 0; k < D; ++k) s[k] = (x[k] - grid.origin[k]) * inv_spacing_[k];
     return s;
   }
-  /// Cell-centre interpolation along axis k at s = (x - origin) / h.
-  void centre_coordinate(int k, double s, int& cell, double& frac) const;
   /// Storage n V / K_f of cell c, m^3/Pa (porosity floored at 1e-3).
   [[nodiscard]] double storage_of(std::size_t c) const {
     return std::max(porosity_[c], 1e-3) * grid.cell_volume() / fluid.bulk_modulus;
@@ -202,6 +200,7 @@ class PoreFluid final : public ParticleForceField<D> {
   };
   std::vector<CellDrag> cell_drag_;
   std::vector<double> blend_atan_, n_power_;  ///< per cell, for the Ergun/Wen-Yu coefficients
+  std::vector<double> ones_;                  ///< x = 1 for atan(y) as atan2(y, 1)
   std::vector<double> face_lambda_;           ///< kappa/mu of each interior face (faces_ order), m^2/(Pa s)
   std::array<std::vector<double>, D> grad_, flux_;
   std::array<std::vector<std::array<double, 2>>, D>
