@@ -10,6 +10,7 @@
 #include "darcydem/contact/contact_kernel.hpp"
 #include "darcydem/core/deterministic_sum.hpp"
 #include "darcydem/core/parallel.hpp"
+#include "darcydem/simulation/kick.hpp"
 
 namespace darcydem {
 
@@ -85,66 +86,56 @@ void Simulation<D>::rebuild_if_needed(double moved) {
 }
 
 namespace {
-/// Cundall's local damping of one component: a force against the velocity,
-/// proportional to the unbalanced force. The sign is computed without a
-/// branch: in a settled packing the signs are random and a branch would be
-/// mispredicted half the time.
-inline double locally_damped(double f, double v, double alpha) {
-  const double sign = static_cast<double>(v > 0.0) - static_cast<double>(v < 0.0);
-  return f - alpha * std::abs(f) * sign;
-}
-
 /// NaN would be ignored by max(): count it as an infinite displacement, so
 /// the list is rebuilt and the rebuild reports the blown-up state.
 inline double finite_or_inf(double v) { return std::isnan(v) ? std::numeric_limits<double>::infinity() : v; }
 }  // namespace
 
 template <int D>
-void Simulation<D>::kick_one(std::size_t i, double half_dt) {
+void Simulation<D>::kick_group(std::size_t first, double half_dt) {
   auto& p = particles;
-  const double alpha = damping.local;
-  const double beta = damping.viscous;
-  Vec<D> f = p.force[i];
-  AngVec<D> t = p.torque[i];
-  if (alpha > 0.0) {
-    for (int k = 0; k < D; ++k) f[k] = locally_damped(f[k], p.velocity[i][k], alpha);
-    for (int k = 0; k < rotation_dim<D>; ++k) t[k] = locally_damped(t[k], p.angular_velocity[i][k], alpha);
+  const int count = static_cast<int>(std::min<std::size_t>(4, p.size() - first));
+  const kick::Settings s{damping.local, damping.viscous, half_dt};
+  kick::kick_group<D>(p.velocity[first].data(), p.force[first].data(), &p.inv_mass[first], &p.fixed[first],
+                      count, s);
+  kick::kick_group<rotation_dim<D>>(p.angular_velocity[first].data(), p.torque[first].data(),
+                                    &p.inv_inertia[first], &p.fixed[first], count, s);
+}
+
+template <int D>
+double Simulation<D>::drift_group(std::size_t first, bool referenced) {
+  auto& p = particles;
+  const double dt = time_step;
+  const std::size_t last = std::min<std::size_t>(first + 4, p.size());
+  double moved2 = 0.0;
+  for (std::size_t i = first; i < last; ++i) {
+    p.position[i] += p.velocity[i] * dt;
+    moved2 = std::max(moved2, referenced ? finite_or_inf((p.position[i] - list_.reference()[i]).squaredNorm())
+                                         : std::numeric_limits<double>::infinity());
   }
-  Vec<D> a = f * p.inv_mass[i];
-  AngVec<D> alpha_rot = t * p.inv_inertia[i];
-  if (beta > 0.0) {
-    a -= beta * p.velocity[i];
-    alpha_rot -= beta * p.angular_velocity[i];
-  }
-  p.velocity[i] += a * half_dt;
-  p.angular_velocity[i] += alpha_rot * half_dt;
+  return moved2;
 }
 
 template <int D>
 double Simulation<D>::kick_drift() {
-  auto& p = particles;
-  const auto n = static_cast<std::int64_t>(p.size());
+  const auto groups = static_cast<std::int64_t>((particles.size() + 3) / 4);
   // Without reference positions for every particle (particles added since
   // the last build) the lists must be rebuilt: report an infinite move.
-  const bool referenced = list_.reference().size() == p.size();
+  const bool referenced = list_.reference().size() == particles.size();
+  const double half_dt = 0.5 * time_step;
+  auto one = [&](std::int64_t g) {
+    const auto first = static_cast<std::size_t>(4 * g);
+    kick_group(first, half_dt);
+    return drift_group(first, referenced);
+  };
   double moved2 = 0.0;
-  if (n > parallel_threshold) {
+  if (groups > parallel_threshold / 4) {
 #pragma omp parallel for schedule(static) reduction(max : moved2)
-    for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, kick_drift_one(i, referenced));
+    for (std::int64_t g = 0; g < groups; ++g) moved2 = std::max(moved2, one(g));
   } else {
-    for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, kick_drift_one(i, referenced));
+    for (std::int64_t g = 0; g < groups; ++g) moved2 = std::max(moved2, one(g));
   }
   return std::sqrt(moved2);
-}
-
-template <int D>
-double Simulation<D>::kick_drift_one(std::int64_t i, bool referenced) {
-  auto& p = particles;
-  const double dt = time_step;
-  if (p.fixed[i] == 0) kick_one(static_cast<std::size_t>(i), 0.5 * dt);
-  p.position[i] += p.velocity[i] * dt;
-  return referenced ? finite_or_inf((p.position[i] - list_.reference()[i]).squaredNorm())
-                    : std::numeric_limits<double>::infinity();
 }
 
 template <int D>
@@ -350,30 +341,40 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     // if the pair touches (compaction without a branch: about a third of the
     // pairs of a settled bed are within the skin but apart). A cross pair's
     // slot is zeroed here and a parted pair's history; the flush writes the
-    // touching pairs' results.
+    // touching pairs' results. The arrays are reached through local
+    // pointers and the batch's fill count is a local, so that the stores
+    // into the batch do not force the compiler to reload them every pair.
+    const Vec<D>* __restrict x = p.position.data();
+    const Vec<D>* __restrict vel = p.velocity.data();
+    const AngVec<D>* __restrict omega = p.angular_velocity.data();
+    const double* __restrict radius = p.radius.data();
+    const double* __restrict inv_mass = p.inv_mass.data();
+    const std::uint32_t* __restrict row = L.row_offset.data();
+    const std::uint32_t* __restrict neighbour = L.neighbour.data();
+    Vec<D>* __restrict history = L.tangential.data();
+    int q = 0;
     for (std::int64_t i = lo; i < hi; ++i) {
-      const Vec<D> xi = p.position[i];
-      const Vec<D> vi = p.velocity[i];
-      const AngVec<D> wi = p.angular_velocity[i];
-      const double ri = p.radius[i];
-      const double inv_mi = p.inv_mass[i];
-      const auto mat_i = p.material[i];
-      for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
-        const std::uint32_t j = L.neighbour[k];
+      const Vec<D> xi = x[i];
+      const Vec<D> vi = vel[i];
+      const AngVec<D> wi = omega[i];
+      const double ri = radius[i];
+      const double inv_mi = inv_mass[i];
+      const std::uint32_t row_end = row[i + 1];
+      for (std::uint32_t k = row[i]; k < row_end; ++k) {
+        const std::uint32_t j = neighbour[k];
         std::uint32_t pair_slot_k = no_slot;
         if (j >= hi) {
           pair_slot_k = slot++;
           L.cross_force[pair_slot_k].setZero();
           L.cross_torque[pair_slot_k].setZero();
         }
-        const int q = batch.size;
         pair_i[q] = static_cast<std::uint32_t>(i);
         pair_k[q] = k;
         pair_slot[q] = pair_slot_k;
-        const Vec<D> d = p.position[j] - xi;
-        const Vec<D> dv = vi - p.velocity[j];
-        const AngVec<D>& wj = p.angular_velocity[j];
-        const Vec<D> h = L.tangential[k];
+        const Vec<D> d = x[j] - xi;
+        const Vec<D> dv = vi - vel[j];
+        const AngVec<D> wj = omega[j];
+        const Vec<D> h = history[k];
         for (int c = 0; c < D; ++c) {
           batch.d[c][q] = d[c];
           batch.v[c][q] = dv[c];
@@ -383,25 +384,32 @@ double Simulation<D>::compute_forces_with(Finish finish) {
           batch.wi[c][q] = wi[c];
           batch.wj[c][q] = wj[c];
         }
-        const double rj = p.radius[j];
-        const double inv_m = inv_mi + p.inv_mass[j];
+        const double rj = radius[j];
+        const double inv_m = inv_mi + inv_mass[j];
         batch.ri[q] = ri;
         batch.rj[q] = rj;
         batch.inv_m[q] = inv_m;
-        if (uniform == nullptr) batch.set_parameters(q, contact_table(mat_i, p.material[j]));
+        if (uniform == nullptr) batch.set_parameters(q, contact_table(p.material[i], p.material[j]));
         const double reach = ri + rj;
         const bool touch = (d.squaredNorm() < reach * reach) & (inv_m > 0.0);
         // A pair that stopped touching loses its history; one already at
         // zero needs no store (a rare, well-predicted branch).
-        if (!touch & (h != Vec<D>::Zero())) L.tangential[k].setZero();
-        batch.size += touch ? 1 : 0;
+        if (!touch & (h != Vec<D>::Zero())) history[k].setZero();
+        q += touch ? 1 : 0;
         touching += touch ? 1.0 : 0.0;
-        if (batch.size == LinearContactBatch<D>::capacity) flush();
+        if (q == LinearContactBatch<D>::capacity) {
+          batch.size = q;
+          flush();
+          q = 0;
+        }
       }
     }
+    batch.size = q;
     flush();
-    // Walls, particle by particle, after the pairs.
+    // Walls, particle by particle, after the pairs (only particles with a
+    // wall within reach: most have none).
     for (std::int64_t i = lo; i < hi; ++i) {
+      if (W.offset[i] == W.offset[i + 1]) continue;
       Vec<D> f = p.force[i];
       AngVec<D> t = p.torque[i];
       wall_contacts(i, p.position[i], p.velocity[i], p.angular_velocity[i], f, t, magnitude_sum, touching);
@@ -453,17 +461,26 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     if (p.inv_mass[j] > 0.0) f += g / p.inv_mass[j];
     p.force[j] = f;
     p.torque[j] = t;
-    if (finish == Finish::none) return 0.0;
-    if (p.fixed[j] == 0) kick_one(static_cast<std::size_t>(j), half_dt);
-    if (finish == Finish::kick) return 0.0;
-    return kick_drift_one(j, referenced);
   };
+  // Four particles at a time (kick.hpp): their forces, then the kicks and
+  // the drift.
+  auto finish_group = [&](std::int64_t group) {
+    const auto first = static_cast<std::size_t>(4 * group);
+    const auto last = std::min<std::int64_t>(4 * group + 4, n);
+    for (auto j = static_cast<std::int64_t>(first); j < last; ++j) finish_one(j);
+    if (finish == Finish::none) return 0.0;
+    kick_group(first, half_dt);
+    if (finish == Finish::kick) return 0.0;
+    kick_group(first, half_dt);
+    return drift_group(first, referenced);
+  };
+  const std::int64_t groups = (n + 3) / 4;
   double moved2 = 0.0;
   if (n > parallel_threshold) {
 #pragma omp parallel for schedule(static) reduction(max : moved2)
-    for (std::int64_t j = 0; j < n; ++j) moved2 = std::max(moved2, finish_one(j));
+    for (std::int64_t k = 0; k < groups; ++k) moved2 = std::max(moved2, finish_group(k));
   } else {
-    for (std::int64_t j = 0; j < n; ++j) moved2 = std::max(moved2, finish_one(j));
+    for (std::int64_t k = 0; k < groups; ++k) moved2 = std::max(moved2, finish_group(k));
   }
 
   for (auto& w : walls) w.force.setZero();

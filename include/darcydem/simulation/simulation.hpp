@@ -92,13 +92,15 @@ class Simulation {
   template <class Law>
   double compute_forces_for_law(Finish finish);
   double compute_forces(Finish finish);
-  [[gnu::always_inline]] inline void kick_one(std::size_t i, double half_dt);
+  /// Half kick (with damping) of the four particles from `first` on (fewer
+  /// at the end), translation and rotation (kick.hpp).
+  [[gnu::always_inline]] inline void kick_group(std::size_t first, double half_dt);
+  /// Drift of the same particles; returns their largest squared
+  /// displacement since the last build (infinite without reference positions).
+  [[gnu::always_inline]] inline double drift_group(std::size_t first, bool referenced);
   /// First half kick and drift; returns the largest displacement since the
   /// last list build (m).
   double kick_drift();
-  /// Both for one particle; returns its squared displacement since the last
-  /// build (infinite without a reference position).
-  [[gnu::always_inline]] inline double kick_drift_one(std::int64_t i, bool referenced);
   void rebuild_if_needed(double moved);
   void rebuild();
 
