@@ -47,7 +47,7 @@ inline Lanes load(const double* p) {
 inline void store(double* p, Lanes v) { std::memcpy(p, &v, sizeof v); }
 
 /// One vector of components: loads f and v, returns the kicked v.
-inline Lanes kick_lanes(Lanes f, Lanes v, Lanes inv_mass, LaneMask free, const Settings& s) {
+[[gnu::always_inline]] inline Lanes kick_lanes(Lanes f, Lanes v, Lanes inv_mass, LaneMask free, Settings s) {
   if (s.local > 0.0) {
     const Lanes one = {1.0, 1.0, 1.0, 1.0};
     const LaneMask one_bits = reinterpret_cast<LaneMask>(one);
@@ -66,16 +66,20 @@ inline Lanes kick_lanes(Lanes f, Lanes v, Lanes inv_mass, LaneMask free, const S
 /// Kicks particles [first, first + count) (count <= 4) of a field with W
 /// components per particle: v += ... from the load f and inverse masses.
 template <int W>
-inline void kick_group(double* velocity, const double* load_, const double* inv_mass,
-                       const std::uint8_t* fixed, int count, const Settings& s) {
-  alignas(32) double pad_v[4 * W] = {};
-  alignas(32) double pad_f[4 * W] = {};
+[[gnu::always_inline]] inline void kick_group(double* velocity, const double* load_, const double* inv_mass,
+                                              const std::uint8_t* fixed, int count, Settings s) {
+  // Copies for a group of fewer than four: the lanes past `count` hold
+  // zeros and are never written back.
+  alignas(32) double pad_v[4 * W];
+  alignas(32) double pad_f[4 * W];
   Lanes m = {0.0, 0.0, 0.0, 0.0};
   LaneMask free = {0, 0, 0, 0};
   const bool full = count == 4;
   double* v = velocity;
   const double* f = load_;
   if (!full) {
+    std::fill(pad_v, pad_v + 4 * W, 0.0);
+    std::fill(pad_f, pad_f + 4 * W, 0.0);
     std::copy(velocity, velocity + count * W, pad_v);
     std::copy(load_, load_ + count * W, pad_f);
     v = pad_v;
