@@ -340,7 +340,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     // Gather: every pair is written at the batch's end, which advances only
     // if the pair touches (compaction without a branch: about a third of the
     // pairs of a settled bed are within the skin but apart). A cross pair's
-    // slot is zeroed here and a parted pair's history; the flush writes the
+    // slot and every history are zeroed here; the flush writes the
     // touching pairs' results. The arrays are reached through local
     // pointers and the batch's fill count is a local, so that the stores
     // into the batch do not force the compiler to reload them every pair.
@@ -392,9 +392,12 @@ double Simulation<D>::compute_forces_with(Finish finish) {
         if (uniform == nullptr) batch.set_parameters(q, contact_table(p.material[i], p.material[j]));
         const double reach = ri + rj;
         const bool touch = (d.squaredNorm() < reach * reach) & (inv_m > 0.0);
-        // A pair that stopped touching loses its history; one already at
-        // zero needs no store (a rare, well-predicted branch).
-        if (!touch & (h != Vec<D>::Zero())) history[k].setZero();
+        // The history has been copied into the batch: zero it in the list,
+        // where the flush writes the new history of a touching pair, and a
+        // pair that stopped touching keeps the zero. (Testing whether it is
+        // zero already would be a branch on whether the pair touches, which
+        // mispredicts in a third of the pairs of a settled bed.)
+        history[k].setZero();
         q += touch ? 1 : 0;
         touching += touch ? 1.0 : 0.0;
         if (q == LinearContactBatch<D>::capacity) {
