@@ -291,23 +291,23 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     std::uint32_t slot = L.cross_begin[b];
     double magnitude_sum = 0.0;
     double touching = 0.0;
+    // The flush adds each touching pair's results in pair order: i's share
+    // straight into i, j's into j or, across blocks, into the pair's slot
+    // (zeroed by the gather). Both targets are chosen without a branch:
+    // whether the next pair has a new i, and whether it crosses blocks, are
+    // close to random in a settled bed.
     auto flush = [&] {
       batch.evaluate(dt, uniform);
-      std::int64_t current = -1;
-      Vec<D> f = Vec<D>::Zero();
-      AngVec<D> t = AngVec<D>::Zero();
+      Vec<D>* force = p.force.data();
+      AngVec<D>* torque = p.torque.data();
+      Vec<D>* cross_force = L.cross_force.data();
+      AngVec<D>* cross_torque = L.cross_torque.data();
       for (int q = 0; q < batch.size; ++q) {
         const std::uint32_t i = pair_i[q];
         const std::uint32_t k = pair_k[q];
-        if (static_cast<std::int64_t>(i) != current) {
-          if (current >= 0) {
-            p.force[current] += f;
-            p.torque[current] += t;
-          }
-          current = i;
-          f.setZero();
-          t.setZero();
-        }
+        const std::uint32_t j = L.neighbour[k];
+        const bool cross = pair_slot[q] != no_slot;
+        const std::uint32_t slot = cross ? pair_slot[q] : 0;
         Vec<D> fq;
         AngVec<D> tiq;
         AngVec<D> tjq;
@@ -319,21 +319,13 @@ double Simulation<D>::compute_forces_with(Finish finish) {
           tiq[c] = batch.ti[c][q];
           tjq[c] = batch.tj[c][q];
         }
-        f += fq;
-        t += tiq;
+        force[i] += fq;
+        torque[i] += tiq;
         if (measure) magnitude_sum += std::sqrt(fq.squaredNorm());
-        if (pair_slot[q] != no_slot) {
-          L.cross_force[pair_slot[q]] = -fq;
-          L.cross_torque[pair_slot[q]] = tjq;
-        } else {
-          const std::uint32_t j = L.neighbour[k];
-          p.force[j] -= fq;
-          p.torque[j] += tjq;
-        }
-      }
-      if (current >= 0) {
-        p.force[current] += f;
-        p.torque[current] += t;
+        Vec<D>* fj = cross ? cross_force + slot : force + j;
+        AngVec<D>* tj = cross ? cross_torque + slot : torque + j;
+        *fj -= fq;
+        *tj += tjq;
       }
       batch.size = 0;
     };
