@@ -42,6 +42,18 @@ struct LinearContactBatch {
   alignas(64) double ti[R][capacity];     ///< torque on i, N m
   alignas(64) double tj[R][capacity];     ///< torque on j, N m
 
+ private:
+  // Between the two stages of evaluate_with.
+  alignas(64) double s_n[D][capacity];
+  alignas(64) double s_vt[D][capacity];
+  alignas(64) double s_h[D][capacity];
+  alignas(64) double s_fn[capacity];
+  alignas(64) double s_sqrt_m[capacity];
+  alignas(64) double s_arm_i[capacity];
+  alignas(64) double s_arm_j[capacity];
+  alignas(64) double s_on[capacity];
+
+ public:
   void set_parameters(int p, const PairParameters& pp) {
     kn[p] = pp.normal_stiffness;
     cn[p] = pp.normal_damping * pp.sqrt_normal_stiffness;
@@ -84,10 +96,6 @@ void LinearContactBatch<D>::evaluate_with(double dt, const PairParameters& u) {
   for (int p = 0; p < count; ++p) {
     const double p_kn = Uniform ? u_kn : kn[p];
     const double p_cn = Uniform ? u_cn : cn[p];
-    const double p_kt = Uniform ? u_kt : kt[p];
-    const double p_ct = Uniform ? u_ct : ct[p];
-    const double p_inv_kt = Uniform ? u_inv_kt : inv_kt[p];
-    const double p_mu = Uniform ? u_mu : mu[p];
     double dist2 = 0.0;
     for (int k = 0; k < D; ++k) dist2 += d[k][p] * d[k][p];
     const double reach = ri[p] + rj[p];
@@ -144,6 +152,40 @@ void LinearContactBatch<D>::evaluate_with(double dt, const PairParameters& u) {
     const double scale = std::sqrt((rescale ? before : 1.0) / (rescale ? after : 1.0));
     for (int k = 0; k < D; ++k) hh[k] = hh[k] * scale + vt[k] * dt;
 
+    // Stage 1 ends here: what stage 2 needs is kept per pair. Two loops
+    // rather than one: each iteration of one loop is a long chain of
+    // dependent square roots and divisions, and the processor overlaps
+    // more pairs when the chain is cut in two.
+    for (int k = 0; k < D; ++k) {
+      s_n[k][p] = n[k];
+      s_vt[k][p] = vt[k];
+      s_h[k][p] = hh[k];
+    }
+    s_fn[p] = fn;
+    s_sqrt_m[p] = sqrt_m;
+    s_arm_i[p] = arm_i;
+    s_arm_j[p] = arm_j;
+    s_on[p] = touch ? 1.0 : 0.0;
+  }
+#pragma GCC ivdep
+  for (int p = 0; p < count; ++p) {
+    const double p_kt = Uniform ? u_kt : kt[p];
+    const double p_ct = Uniform ? u_ct : ct[p];
+    const double p_inv_kt = Uniform ? u_inv_kt : inv_kt[p];
+    const double p_mu = Uniform ? u_mu : mu[p];
+    const double sqrt_m = s_sqrt_m[p];
+    const double fn = s_fn[p];
+    const double arm_i = s_arm_i[p];
+    const double arm_j = s_arm_j[p];
+    const bool touch = s_on[p] != 0.0;
+    double n[D];
+    double vt[D];
+    double hh[D];
+    for (int k = 0; k < D; ++k) {
+      n[k] = s_n[k][p];
+      vt[k] = s_vt[k][p];
+      hh[k] = s_h[k][p];
+    }
     // Tangential spring-dashpot with the Coulomb limit.
     const double c_t = p_ct * sqrt_m;
     double ft[D];
