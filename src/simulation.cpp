@@ -1,6 +1,7 @@
 #include "darcydem/simulation/simulation.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -331,9 +332,8 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     };
     // Gather: every pair is written at the batch's end, which advances only
     // if the pair touches (compaction without a branch: about a third of the
-    // pairs of a settled bed are within the skin but apart). A cross pair's
-    // slot and every history are zeroed here; the flush writes the
-    // touching pairs' results. The arrays are reached through local
+    // pairs of a settled bed are within the skin but apart). Every history
+    // is zeroed here; the flush writes the touching pairs' results. The arrays are reached through local
     // pointers and the batch's fill count is a local, so that the stores
     // into the batch do not force the compiler to reload them every pair.
     const Vec<D>* __restrict x = p.position.data();
@@ -345,6 +345,13 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     const std::uint32_t* __restrict neighbour = L.neighbour.data();
     Vec<D>* __restrict history = L.tangential.data();
     int q = 0;
+    std::int64_t touched = 0;
+    // The block's cross slots start at zero; the flush adds the touching
+    // pairs' shares.
+    std::fill(L.cross_force.begin() + L.cross_begin[b], L.cross_force.begin() + L.cross_begin[b + 1],
+              Vec<D>::Zero());
+    std::fill(L.cross_torque.begin() + L.cross_begin[b], L.cross_torque.begin() + L.cross_begin[b + 1],
+              AngVec<D>::Zero());
     for (std::int64_t i = lo; i < hi; ++i) {
       const Vec<D> xi = x[i];
       const Vec<D> vi = vel[i];
@@ -354,12 +361,9 @@ double Simulation<D>::compute_forces_with(Finish finish) {
       const std::uint32_t row_end = row[i + 1];
       for (std::uint32_t k = row[i]; k < row_end; ++k) {
         const std::uint32_t j = neighbour[k];
-        std::uint32_t pair_slot_k = no_slot;
-        if (j >= hi) {
-          pair_slot_k = slot++;
-          L.cross_force[pair_slot_k].setZero();
-          L.cross_torque[pair_slot_k].setZero();
-        }
+        const std::uint32_t cross = j >= hi ? 1U : 0U;
+        const std::uint32_t pair_slot_k = cross != 0U ? slot : no_slot;
+        slot += cross;
         pair_i[q] = static_cast<std::uint32_t>(i);
         pair_k[q] = k;
         pair_slot[q] = pair_slot_k;
@@ -382,16 +386,21 @@ double Simulation<D>::compute_forces_with(Finish finish) {
         batch.rj[q] = rj;
         batch.inv_m[q] = inv_m;
         if (uniform == nullptr) batch.set_parameters(q, contact_table(p.material[i], p.material[j]));
+        // Whether the pair touches, as 0 or 1 from the sign bit of
+        // |d|^2 - (r_i + r_j)^2 (negative exactly when |d|^2 is smaller), so
+        // that the compiler cannot turn it into a branch.
         const double reach = ri + rj;
-        const bool touch = (d.squaredNorm() < reach * reach) & (inv_m > 0.0);
+        const double reach2 = reach * reach;
+        const auto apart = std::bit_cast<std::uint64_t>(d.squaredNorm() - reach2);
+        const auto touch = static_cast<int>(apart >> 63U) & static_cast<int>(inv_m > 0.0);
         // The history has been copied into the batch: zero it in the list,
         // where the flush writes the new history of a touching pair, and a
         // pair that stopped touching keeps the zero. (Testing whether it is
         // zero already would be a branch on whether the pair touches, which
         // mispredicts in a third of the pairs of a settled bed.)
         history[k].setZero();
-        q += touch ? 1 : 0;
-        touching += touch ? 1.0 : 0.0;
+        q += touch;
+        touched += touch;
         if (q == LinearContactBatch<D>::capacity) {
           batch.size = q;
           flush();
@@ -401,6 +410,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     }
     batch.size = q;
     flush();
+    touching += static_cast<double>(touched);
     // Walls, particle by particle, after the pairs (only particles with a
     // wall within reach: most have none).
     for (std::int64_t i = lo; i < hi; ++i) {
