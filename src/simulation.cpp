@@ -1,5 +1,7 @@
 #include "darcydem/simulation/simulation.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -433,12 +435,6 @@ double Simulation<D>::compute_forces_with(Finish finish) {
       block_pass(b);
     }
   };
-  if (blocks > 1) {
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::int64_t b = 0; b < blocks; ++b) pass(b);
-  } else {
-    for (std::int64_t b = 0; b < blocks; ++b) pass(b);
-  }
 
   // Pass 2: each particle adds its cross shares in slot order, then gravity,
   // external forces and the force field; in a step it takes its second half
@@ -446,10 +442,6 @@ double Simulation<D>::compute_forces_with(Finish finish) {
   // drift (the same operations as separate sweeps, one sweep fewer).
   const Vec<D> g = gravity;
   const bool field = force_field != nullptr;
-  if (field) {
-    field_force_.resize(p.size());
-    force_field->particle_forces(p, gravity, field_force_);
-  }
   const bool external = !p.external_force.empty();
   const double half_dt = 0.5 * dt;
   const bool referenced = L.reference().size() == p.size();
@@ -468,7 +460,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     p.torque[j] = t;
   };
   // Four particles at a time (kick.hpp): their forces, then the kicks and
-  // the drift.
+  // the drift. Blocks hold whole groups of four (verlet_list.cpp).
   auto finish_group = [&](std::int64_t group) {
     const auto first = static_cast<std::size_t>(4 * group);
     const auto last = std::min<std::int64_t>(4 * group + 4, n);
@@ -479,13 +471,49 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     kick_group(first, half_dt);
     return drift_group(first, referenced);
   };
-  const std::int64_t groups = (n + 3) / 4;
+  auto finish_block = [&](std::int64_t b) {
+    double moved2 = 0.0;
+    const std::int64_t end = (L.block_end(b, n) + 3) / 4;
+    for (std::int64_t k = L.block_begin(b) / 4; k < end; ++k) moved2 = std::max(moved2, finish_group(k));
+    return moved2;
+  };
+
+  // Each thread takes a run of consecutive blocks and, right after a block's
+  // pass 1, its pass 2 while the block's particles are still in the
+  // processor's cache, unless the block has cross pairs from another
+  // thread's blocks (they may not be written yet, and those blocks read this
+  // block's particles): such blocks wait for all pass 1 to end. A block's
+  // pass 1 reads and writes only its own and later particles, so no other
+  // block needs a finished block's old state. Each particle's sums are the
+  // same whatever the order, so results do not depend on the thread count.
+  auto run_blocks = [&](std::int64_t first, std::int64_t last, auto&& wait) {
+    double moved2 = 0.0;
+    for (std::int64_t b = first; b < last; ++b) {
+      pass(b);
+      if (L.earliest_source(b) >= first) moved2 = std::max(moved2, finish_block(b));
+    }
+    wait();
+    for (std::int64_t b = first; b < last; ++b) {
+      if (L.earliest_source(b) < first) moved2 = std::max(moved2, finish_block(b));
+    }
+    return moved2;
+  };
+  if (field) {
+    field_force_.resize(p.size());
+    force_field->particle_forces(p, gravity, field_force_);
+  }
   double moved2 = 0.0;
-  if (n > parallel_threshold) {
-#pragma omp parallel for schedule(static) reduction(max : moved2)
-    for (std::int64_t k = 0; k < groups; ++k) moved2 = std::max(moved2, finish_group(k));
+  if (blocks > 1) {
+#pragma omp parallel reduction(max : moved2)
+    {
+      const std::int64_t threads = omp_get_num_threads();
+      const std::int64_t t = omp_get_thread_num();
+      moved2 = run_blocks(blocks * t / threads, blocks * (t + 1) / threads, [] {
+#pragma omp barrier
+      });
+    }
   } else {
-    for (std::int64_t k = 0; k < groups; ++k) moved2 = std::max(moved2, finish_group(k));
+    moved2 = run_blocks(0, blocks, [] {});
   }
 
   for (auto& w : walls) w.force.setZero();

@@ -107,26 +107,36 @@ Simulation<3> settling_packing(double rolling_friction) {
   return sim;
 }
 
-// The same dense settling gives bitwise identical states with 1 and 2
+// The same dense settling gives bitwise identical states with 1, 2 and 3
 // threads: each contact is computed once and each particle sums its
 // contacts in a fixed order. The 3000 particles make two force blocks, so
-// pairs across blocks are exercised, and the particles are reordered along
-// the cells at every list build (sort_threshold lowered for the test). Both
-// contact paths: pair by pair (with rolling resistance) and batched.
+// pairs across blocks are exercised: with two threads the second block
+// waits for the first one's cross pairs, with one thread it does not, and
+// with three one thread has no block. The particles are reordered along the
+// cells at every list build (sort_threshold lowered for the test). Both
+// contact paths: pair by pair (with rolling resistance) and batched; single
+// steps and advance() (each step's pass 2 then also takes the next step's
+// first kick and drift).
 class Reproducibility : public ::testing::TestWithParam<double> {};
 
 TEST_P(Reproducibility, BitwiseIdenticalForAnyThreadCount) {
-  auto run = [&](int threads) {
+  auto run = [&](int threads, bool single_steps) {
     omp_set_num_threads(threads);
     auto sim = settling_packing(GetParam());
     sim.prepare();
-    for (int s = 0; s < 4000; ++s) sim.step();
+    for (int s = 0; s < 4000; s += 10) {
+      if (single_steps) {
+        for (int k = 0; k < 10; ++k) sim.step();
+      } else {
+        sim.advance(10);
+      }
+    }
     return sim;
   };
   const int saved = omp_get_max_threads();
-  const auto a = run(1);
-  const auto b = run(2);
-  const auto c = run(2);
+  const auto a = run(1, true);
+  const auto b = run(2, false);
+  const auto c = run(3, false);
   omp_set_num_threads(saved);
   ASSERT_GT(a.contact_count(), 1000U) << "the packing must be in contact";
   ASSERT_GT(a.list_builds(), 2U) << "the particles must have been reordered";

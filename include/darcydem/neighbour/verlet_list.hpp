@@ -46,6 +46,10 @@ class VerletList {
   [[nodiscard]] std::int64_t block_end(std::int64_t b, std::int64_t n) const {
     return (b + 1) * block_size_ < n ? (b + 1) * block_size_ : n;
   }
+  /// The earliest block with a pair whose j lies in block b (b itself if
+  /// none): block b's particles are read and their cross slots written by
+  /// the blocks from there up to b.
+  [[nodiscard]] std::int64_t earliest_source(std::int64_t b) const { return earliest_source_[b]; }
   /// Bytes held by the list's arrays (capacity), for memory reports.
   [[nodiscard]] std::size_t memory_bytes() const;
 
@@ -71,6 +75,7 @@ class VerletList {
   double cell_size_ = 0.0;
   std::int64_t block_size_ = 1;
   std::int64_t block_count_ = 0;
+  std::vector<std::int64_t> earliest_source_;
 };
 
 }  // namespace darcydem
