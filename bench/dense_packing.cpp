@@ -58,9 +58,9 @@ void BM_DensePacking(benchmark::State& state) {
 }
 
 // The workload: dropped from a loose lattice and settled (the
-// settling is not timed). It takes 7 minutes at 10^4 on 2 cores and would
-// take over an hour at 10^5, so only 10^4 is run; the FCC stack below
-// stands in for the dense regime at 10^5 and 10^6.
+// settling is not timed; about 5 minutes at 10^5 on 2 cores, or read from
+// DARCYDEM_BENCH_CACHE, see packing.hpp). The FCC stack below is the
+// heavier dense case, also at 10^6.
 void BM_DroppedPacking(benchmark::State& state) {
   const auto n = state.range(0);
   const int threads = static_cast<int>(state.range(1));
