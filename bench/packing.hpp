@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "darcydem/contact/contact_laws.hpp"
 #include "darcydem/simulation/simulation.hpp"
@@ -93,6 +95,11 @@ inline std::string settled_cache_path(std::int64_t target) {
 /// Writes the particles' positions, velocities and angular velocities.
 inline void save_state(const Simulation<3>& sim, const std::string& path) {
   std::ofstream out(path, std::ios::binary);
+  if (!out) {
+    std::fprintf(stderr, "DARCYDEM_BENCH_CACHE: cannot write %s (does the folder exist?); not cached\n",
+                 path.c_str());
+    return;
+  }
   const auto& p = sim.particles;
   const std::uint64_t n = p.size();
   out.write(reinterpret_cast<const char*>(&n), sizeof n);
@@ -107,15 +114,29 @@ inline void save_state(const Simulation<3>& sim, const std::string& path) {
 /// there is no such file or it does not match.
 inline bool load_state(Simulation<3>& sim, const std::string& path) {
   std::ifstream in(path, std::ios::binary);
+  if (!in) return false;  // not cached yet
   std::uint64_t n = 0;
-  if (!in.read(reinterpret_cast<char*>(&n), sizeof n) || n != sim.particles.size()) return false;
-  auto& p = sim.particles;
-  for (std::uint64_t i = 0; i < n; ++i) {
-    in.read(reinterpret_cast<char*>(p.position[i].data()), 3 * sizeof(double));
-    in.read(reinterpret_cast<char*>(p.velocity[i].data()), 3 * sizeof(double));
-    in.read(reinterpret_cast<char*>(p.angular_velocity[i].data()), 3 * sizeof(double));
+  if (!in.read(reinterpret_cast<char*>(&n), sizeof n) || n != sim.particles.size()) {
+    std::fprintf(stderr, "DARCYDEM_BENCH_CACHE: %s holds another packing; settling anew\n", path.c_str());
+    return false;
   }
-  return static_cast<bool>(in);
+  // Into copies first: a truncated file leaves the lattice as it was.
+  auto position = sim.particles.position;
+  auto velocity = sim.particles.velocity;
+  auto angular_velocity = sim.particles.angular_velocity;
+  for (std::uint64_t i = 0; i < n; ++i) {
+    in.read(reinterpret_cast<char*>(position[i].data()), 3 * sizeof(double));
+    in.read(reinterpret_cast<char*>(velocity[i].data()), 3 * sizeof(double));
+    in.read(reinterpret_cast<char*>(angular_velocity[i].data()), 3 * sizeof(double));
+  }
+  if (!in) {
+    std::fprintf(stderr, "DARCYDEM_BENCH_CACHE: %s is truncated; settling anew\n", path.c_str());
+    return false;
+  }
+  sim.particles.position = std::move(position);
+  sim.particles.velocity = std::move(velocity);
+  sim.particles.angular_velocity = std::move(angular_velocity);
+  return true;
 }
 
 /// The workload: the same spheres and contacts dropped from a loose

@@ -335,9 +335,10 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     // Gather: every pair is written at the batch's end, which advances only
     // if the pair touches (compaction without a branch: about a third of the
     // pairs of a settled bed are within the skin but apart). Every history
-    // is zeroed here; the flush writes the touching pairs' results. The arrays are reached through local
-    // pointers and the batch's fill count is a local, so that the stores
-    // into the batch do not force the compiler to reload them every pair.
+    // is zeroed here; the flush writes the touching pairs' results. The
+    // arrays are reached through local pointers and the batch's fill count
+    // is a local, so that the stores into the batch do not force the
+    // compiler to reload them every pair.
     const Vec<D>* __restrict x = p.position.data();
     const Vec<D>* __restrict vel = p.velocity.data();
     const AngVec<D>* __restrict omega = p.angular_velocity.data();

@@ -122,7 +122,7 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
   // The earliest block with a cross pair into each block.
   earliest_source_.resize(static_cast<std::size_t>(block_count_));
   for (std::int64_t b = 0; b < block_count_; ++b) earliest_source_[b] = b;
-  for (std::int64_t b = block_count_ - 1; b >= 0; --b) {
+  for (std::int64_t b = 0; b < block_count_; ++b) {
     for (std::uint32_t s = cross_begin[b]; s < cross_begin[b + 1]; ++s) {
       auto& first = earliest_source_[partner[s] / block_size_];
       first = std::min(first, b);

@@ -68,8 +68,8 @@ inline void store(double* p, Lanes v) { std::memcpy(p, &v, sizeof v); }
 template <int W>
 [[gnu::always_inline]] inline void kick_group(double* velocity, const double* load_, const double* inv_mass,
                                               const std::uint8_t* fixed, int count, Settings s) {
-  // Copies for a group of fewer than four: the lanes past `count` hold
-  // zeros and are never written back.
+  // A group of fewer than four works on copies whose lanes past `count`
+  // hold zeros; they are never written back.
   alignas(32) double pad_v[4 * W];
   alignas(32) double pad_f[4 * W];
   Lanes m = {0.0, 0.0, 0.0, 0.0};
@@ -77,23 +77,18 @@ template <int W>
   const bool full = count == 4;
   double* v = velocity;
   const double* f = load_;
-  if (!full) {
-    std::fill(pad_v, pad_v + 4 * W, 0.0);
-    std::fill(pad_f, pad_f + 4 * W, 0.0);
-    std::copy(velocity, velocity + count * W, pad_v);
-    std::copy(load_, load_ + count * W, pad_f);
-    v = pad_v;
-    f = pad_f;
-  }
   if (full) {
     m = load(inv_mass);
-    for (int l = 0; l < 4; ++l) free[l] = fixed[l] == 0 ? -1 : 0;
   } else {
-    for (int l = 0; l < count; ++l) {
-      m[l] = inv_mass[l];
-      free[l] = fixed[l] == 0 ? -1 : 0;
-    }
+    std::copy(velocity, velocity + count * W, pad_v);
+    std::copy(load_, load_ + count * W, pad_f);
+    std::fill(pad_v + count * W, pad_v + 4 * W, 0.0);
+    std::fill(pad_f + count * W, pad_f + 4 * W, 0.0);
+    v = pad_v;
+    f = pad_f;
+    for (int l = 0; l < count; ++l) m[l] = inv_mass[l];
   }
+  for (int l = 0; l < count; ++l) free[l] = fixed[l] == 0 ? -1 : 0;
   [&]<int... K>(std::integer_sequence<int, K...>) {
     ((store(v + 4 * K, kick_lanes(load(f + 4 * K), load(v + 4 * K), spread<W, K>(m), spread<W, K>(free), s))),
      ...);
