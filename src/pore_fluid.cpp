@@ -42,45 +42,47 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles) {
 template <int D>
 void PoreFluid<D>::compute_solid(const ParticleData<D>& particles) {
   // Grains in fixed blocks (their number depends on the grain count only),
-  // each summed into its own arrays in parallel (the first block into the
-  // fields themselves), then the blocks added in order: the same result for
-  // any number of threads.
+  // each summed into its own arrays in parallel, then the blocks added in
+  // order: the same result for any number of threads.
+  static_assert(D + 1 <= lane_count);
   const std::size_t count = particles.size();
   const std::size_t blocks = std::clamp<std::size_t>(count / 25'000, 1, 8);
-  block_solid_.resize(blocks - 1);
-  auto sum_block = [&](std::size_t b, std::vector<double>& solid, std::vector<Vec<D>>& flux,
-                       std::array<std::vector<double>, D>& face_flux) {
-    solid.assign(grid.size(), 0.0);
-    flux.assign(grid.size(), Vec<D>::Zero());
-    for (int k = 0; k < D; ++k) face_flux[k].assign(grid.face_count(k), 0.0);
+  block_solid_.resize(blocks);
+  auto sum_block = [&](std::size_t b) {
+    SolidSums& sums = block_solid_[b];
+    sums.cell.assign(grid.size(), Lanes{});
+    for (int k = 0; k < D; ++k) sums.face_flux[k].assign(grid.face_count(k), 0.0);
+    Lanes* cell = sums.cell.data();
     for_each_overlap(
         particles, count * b / blocks, count * (b + 1) / blocks,
-        [&](std::size_t cell, std::size_t i, double v) {
-          solid[cell] += v;
-          flux[cell] += v * particles.velocity[i];
+        [&](std::size_t c, std::size_t i, double v) {
+          const Vec<D>& u = particles.velocity[i];
+          Lanes weights{1.0, u[0], u[1], 0.0};
+          if constexpr (D == 3) weights[3] = u[2];
+          cell[c] += v * weights;
         },
         [&](int axis, std::size_t face, std::size_t i, double area) {
-          face_flux[axis][face] += area * particles.velocity[i][axis];
+          sums.face_flux[axis][face] += area * particles.velocity[i][axis];
         },
         carry_with_solid);
   };
   const auto nb = static_cast<std::int64_t>(blocks);
 #pragma omp parallel for schedule(static) if (blocks > 1)
-  for (std::int64_t b = 0; b < nb; ++b) {
-    if (b == 0) {
-      sum_block(0, solid_, solid_flux_, solid_face_flux_);
-    } else {
-      SolidSums& s = block_solid_[b - 1];
-      sum_block(static_cast<std::size_t>(b), s.solid, s.flux, s.face_flux);
-    }
+  for (std::int64_t b = 0; b < nb; ++b) sum_block(static_cast<std::size_t>(b));
+  const std::size_t n = grid.size();
+  solid_.resize(n);
+  solid_flux_.resize(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    Lanes sum = block_solid_[0].cell[c];
+    for (std::size_t b = 1; b < blocks; ++b) sum += block_solid_[b].cell[c];
+    solid_[c] = sum[0];
+    for (int k = 0; k < D; ++k) solid_flux_[c][k] = sum[1 + k];
   }
-  for (const SolidSums& s : block_solid_) {
-    for (std::size_t c = 0; c < grid.size(); ++c) {
-      solid_[c] += s.solid[c];
-      solid_flux_[c] += s.flux[c];
-    }
-    for (int k = 0; k < D; ++k) {
-      for (std::size_t f = 0; f < s.face_flux[k].size(); ++f) solid_face_flux_[k][f] += s.face_flux[k][f];
+  for (int k = 0; k < D; ++k) {
+    solid_face_flux_[k] = block_solid_[0].face_flux[k];
+    for (std::size_t b = 1; b < blocks; ++b) {
+      const auto& from = block_solid_[b].face_flux[k];
+      for (std::size_t f = 0; f < from.size(); ++f) solid_face_flux_[k][f] += from[f];
     }
   }
 }
@@ -438,8 +440,9 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
   // (core/vector_math.hpp) and the force, again over the chunk.
   constexpr std::int64_t chunk = 256;
   const auto count = static_cast<std::int64_t>(p.size());
-  const bool ergun = drag == DragLaw::ergun;
-  auto run = [&](std::int64_t b) {
+  // Ergun/Wen-Yu or the Darcy law: each compiled on its own, so that a
+  // grain does only its law's work.
+  auto run = [&]<bool Ergun>(std::int64_t b) {
     const std::int64_t begin = b * chunk;
     const std::int64_t n = std::min(count, begin + chunk) - begin;
     std::array<std::array<double, chunk>, D> s;
@@ -478,12 +481,14 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
       for (int k = 0; k < D; ++k) {
         grad[k][j] = g[k];
         slip[k][j] = solid_velocity_[c][k] + q[k] * cd.inv_n - p.velocity[i][k];
-        darcy[k][j] = cd.darcy[k];
+        if constexpr (!Ergun) darcy[k][j] = cd.darcy[k];
       }
-      viscous[j] = cd.viscous;
-      inertial[j] = cd.inertial;
-      wen_yu[j] = cd.wen_yu;
-      re[j] = cd.re_factor;
+      if constexpr (Ergun) {
+        viscous[j] = cd.viscous;
+        inertial[j] = cd.inertial;
+        wen_yu[j] = cd.wen_yu;
+        re[j] = cd.re_factor;
+      }
     }
     // Slip speed and Re.
 #pragma omp simd
@@ -491,32 +496,51 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
       const double r = p.radius[begin + j];
       vp[j] = particle_volume<D>(r);
       inv_d[j] = 0.5 / r;
-      double slip2 = 0.0;
-      for (int k = 0; k < D; ++k) slip2 += slip[k][j] * slip[k][j];
-      speed[j] = std::sqrt(slip2);
-      re[j] *= 2.0 * r * speed[j];
+      if constexpr (Ergun) {
+        double slip2 = 0.0;
+        for (int k = 0; k < D; ++k) slip2 += slip[k][j] * slip[k][j];
+        speed[j] = std::sqrt(slip2);
+        re[j] *= 2.0 * r * speed[j];
+      }
     }
-    if (ergun) pow_batch(re.data(), 0.687, re_pow.data(), static_cast<std::size_t>(n));
+    if constexpr (Ergun) {
+      // Re = 0 (no slip, as in fluid at rest) would take the vector pow's
+      // slow path; the smallest normal double gives the same C_d Re (24).
+#pragma omp simd
+      for (std::int64_t j = 0; j < n; ++j) re_pow[j] = lane_max(re[j], std::numeric_limits<double>::min());
+      pow_batch(re_pow.data(), 0.687, re_pow.data(), static_cast<std::size_t>(n));
+    }
     // -V_p (grad u + rho_f g) + drag; zero for grains outside the grid.
     for (int k = 0; k < D; ++k) {
       const double weight = fluid.density * gravity[k];
 #pragma omp simd
       for (std::int64_t j = 0; j < n; ++j) {
         // C_d Re of Wen and Yu (wen_yu_cd_re), with the batch's Re^0.687.
-        const double cd_re = ergun ? (re[j] < 1000.0 ? 24.0 * (1.0 + 0.15 * re_pow[j]) : 0.44 * re[j]) : 0.0;
-        const double beta =
-            (viscous[j] + wen_yu[j] * cd_re) * inv_d[j] * inv_d[j] + inertial[j] * speed[j] * inv_d[j];
-        const double f = -vp[j] * (grad[k][j] + weight) + vp[j] * (darcy[k][j] + beta) * slip[k][j];
+        double beta = 0.0;
+        if constexpr (Ergun) {
+          const double cd_re = re[j] < 1000.0 ? 24.0 * (1.0 + 0.15 * re_pow[j]) : 0.44 * re[j];
+          beta = (viscous[j] + wen_yu[j] * cd_re) * inv_d[j] * inv_d[j] + inertial[j] * speed[j] * inv_d[j];
+        } else {
+          beta = darcy[k][j];
+        }
+        const double f = -vp[j] * (grad[k][j] + weight) + vp[j] * beta * slip[k][j];
         force[begin + j][k] = inside[j] > 0.0 ? f : 0.0;
       }
     }
   };
   const std::int64_t chunks = (count + chunk - 1) / chunk;
-  if (count > parallel_threshold) {
+  auto run_all = [&]<bool Ergun>() {
+    if (count > parallel_threshold) {
 #pragma omp parallel for schedule(static)
-    for (std::int64_t b = 0; b < chunks; ++b) run(b);
+      for (std::int64_t b = 0; b < chunks; ++b) run.template operator()<Ergun>(b);
+    } else {
+      for (std::int64_t b = 0; b < chunks; ++b) run.template operator()<Ergun>(b);
+    }
+  };
+  if (drag == DragLaw::ergun) {
+    run_all.template operator()<true>();
   } else {
-    for (std::int64_t b = 0; b < chunks; ++b) run(b);
+    run_all.template operator()<false>();
   }
 }
 

@@ -17,6 +17,8 @@
 #include <limits>
 #include <numbers>
 
+#include "darcydem/core/lanes.hpp"
+
 namespace darcydem::ball_overlap {
 
 inline constexpr double unbounded = std::numeric_limits<double>::infinity();
@@ -35,21 +37,29 @@ double octant_volume(double r, double a, double b, double c);
 /// planes, the octant of three and the sections of the ball on its planes
 /// all use the same few angles.
 ///
+/// The inline closed forms below take T = double or T = Lanes (four balls
+/// at once, core/lanes.hpp): the same formulas, with every case chosen by
+/// `condition ? a : b` rather than a branch.
+///
 /// Distances are >= +0 (not -0: atan2(+0, -0) is pi, not 0).
 /// For two planes at distances u, v (w = sqrt(r^2 - u^2 - v^2), the
 /// half-chord where both planes meet the ball):
-struct PairAngles {
-  double w = 0.0;
-  double theta_u = 0.0;  ///< atan2(w, u)
-  double theta_v = 0.0;  ///< atan2(w, v)
-  double tau = 0.0;      ///< atan2(u v, r w)
+template <class T>
+struct PairAnglesOf {
+  T w{};
+  T theta_u{};  ///< atan2(w, u)
+  T theta_v{};  ///< atan2(w, v)
+  T tau{};      ///< atan2(u v, r w)
 };
+using PairAngles = PairAnglesOf<double>;
 /// The octant's own, for planes at a and b (zm = sqrt(r^2 - a^2 - b^2)):
-struct OctantAngles {
-  double ab = 0.0;  ///< atan2(a, b)
-  double zb = 0.0;  ///< atan2(zm b, r a)
-  double za = 0.0;  ///< atan2(zm a, r b)
+template <class T>
+struct OctantAnglesOf {
+  T ab{};  ///< atan2(a, b)
+  T zb{};  ///< atan2(zm b, r a)
+  T za{};  ///< atan2(zm a, r b)
 };
+using OctantAngles = OctantAnglesOf<double>;
 /// Both sets with std::atan2.
 PairAngles pair_angles(double r, double u, double v);
 OctantAngles octant_angles(double r, double a, double b);
@@ -57,15 +67,17 @@ OctantAngles octant_angles(double r, double a, double b);
 // Inline: called per grain in the fluid's hot loop (pore_fluid_overlap.hpp).
 
 /// 3D: volume of the sphere above the plane x = a.
-inline double cap_volume(double r, double a) {
-  if (a >= r) return 0.0;
-  if (a <= -r) return 4.0 / 3.0 * std::numbers::pi * r * r * r;
-  return std::numbers::pi * (r - a) * (r - a) * (2.0 * r + a) / 3.0;
+template <class T>
+inline T cap_volume(T r, T a) {
+  constexpr double pi = std::numbers::pi;
+  const T inside = pi * (r - a) * (r - a) * (2.0 * r + a) / 3.0;
+  return a >= r ? 0.0 : (a <= -r ? 4.0 / 3.0 * pi * r * r * r : inside);
 }
 
 /// w of the pair (u, v), zero where the planes meet outside the ball.
-inline double pair_chord(double r, double u, double v) {
-  return std::sqrt(std::max(0.0, r * r - u * u - v * v));
+template <class T>
+inline T pair_chord(T r, T u, T v) {
+  return lane_sqrt(lane_max(0.0, r * r - u * u - v * v));
 }
 
 namespace detail {
@@ -80,16 +92,17 @@ namespace detail {
 // octant's top z = zm, q is the other plane's distance.
 
 /// J(beta, z) from its three angles.
-inline double slice_integral(double r, double beta, double z, double q, double acos_term, double asin_term,
-                             double atan_term) {
-  const double s2 = r * r - beta * beta;
+template <class T>
+inline T slice_integral(T r, T beta, T z, T q, T acos_term, T asin_term, T atan_term) {
+  const T s2 = r * r - beta * beta;
   return (r * r * z - z * z * z / 3.0) * acos_term +
          beta / 3.0 * ((0.5 * s2 - 2.0 * r * r) * asin_term - 0.5 * z * q) +
          2.0 * r * r * r / 3.0 * atan_term;
 }
 
 /// R(s, z) from asin(z/s).
-inline double root_integral(double s2, double z, double q, double asin_term) {
+template <class T>
+inline T root_integral(T s2, T z, T q, T asin_term) {
   return 0.5 * (z * q + s2 * asin_term);
 }
 }  // namespace detail
@@ -97,75 +110,81 @@ inline double root_integral(double s2, double z, double q, double asin_term) {
 /// The wedge {x > a, y > b} from the angles of the pair (a, b), for
 /// a^2 + b^2 < r^2 (no check: elsewhere the value is finite but
 /// meaningless).
-inline double wedge_volume_inside(double r, double a, double b, const PairAngles& ab) {
+template <class T>
+inline T wedge_volume_inside(T r, T a, T b, const PairAnglesOf<T>& ab) {
   constexpr double pi = std::numbers::pi;
   // Slices x = const from a to s_b = sqrt(r^2 - b^2): the disc of radius
   // sqrt(r^2 - x^2) above y = b, a circular segment. At the upper end the
   // slice closes and J reduces to its limit.
-  const double sb2 = r * r - b * b;
-  const double upper = b / 3.0 * (0.5 * sb2 - 2.0 * r * r) * (0.5 * pi) + r * r * r / 3.0 * pi;
-  const double asin_a = 0.5 * pi - ab.theta_u;  // asin(a / s_b) = atan2(a, w)
+  const T sb2 = r * r - b * b;
+  const T upper = b / 3.0 * (0.5 * sb2 - 2.0 * r * r) * (0.5 * pi) + r * r * r / 3.0 * pi;
+  const T asin_a = 0.5 * pi - ab.theta_u;  // asin(a / s_b) = atan2(a, w)
   return upper - detail::slice_integral(r, b, a, ab.w, ab.theta_v, asin_a, ab.tau) -
          b * (0.25 * pi * sb2 - detail::root_integral(sb2, a, ab.w, asin_a));
 }
 /// The wedge {x > a, y > b} from the angles of the pair (a, b).
-inline double wedge_volume(double r, double a, double b, const PairAngles& ab) {
-  return a * a + b * b >= r * r ? 0.0 : wedge_volume_inside(r, a, b, ab);
+template <class T>
+inline T wedge_volume(T r, T a, T b, const PairAnglesOf<T>& ab) {
+  const T inside = wedge_volume_inside(r, a, b, ab);
+  return a * a + b * b >= r * r ? 0.0 : inside;
 }
 
 /// The octant {x > a, y > b, z > c} from the angles of its three pairs and
 /// its own, for a^2 + b^2 + c^2 < r^2 (no check, as wedge_volume_inside).
-inline double octant_volume_inside(double r, double a, double b, double c, const PairAngles& ab,
-                                   const PairAngles& ac, const PairAngles& bc, const OctantAngles& o) {
+template <class T>
+inline T octant_volume_inside(T r, T a, T b, T c, const PairAnglesOf<T>& ab, const PairAnglesOf<T>& ac,
+                              const PairAnglesOf<T>& bc, const OctantAnglesOf<T>& o) {
   constexpr double pi = std::numbers::pi;
   // Slices z = const from c to z_m: the corner of a disc of radius
   // rho = sqrt(r^2 - z^2) in {x > a, y > b}, whose area is
   //   rho^2/2 (acos(b/rho) - asin(a/rho)) - (b sqrt(rho^2-b^2) + a sqrt(rho^2-a^2))/2 + a b,
   // with asin(a/rho) = pi/2 - acos(a/rho).
-  const double zm = ab.w;
-  const double sa2 = r * r - a * a;
-  const double sb2 = r * r - b * b;
+  const T zm = ab.w;
+  const T sa2 = r * r - a * a;
+  const T sb2 = r * r - b * b;
   // At z_m, acos(b/rho) = atan2(a, b) and acos(a/rho) = pi/2 - atan2(a, b)
   // (both pi/2 when a = b = 0, the limit of acos(0)).
-  const bool both_zero = (a == 0.0) & (b == 0.0);
-  const double acos_b_top = both_zero ? 0.5 * pi : o.ab;
-  const double acos_a_top = both_zero ? 0.5 * pi : 0.5 * pi - o.ab;
-  const double asin_c_b = 0.5 * pi - bc.theta_v;  // atan2(c, w_bc)
-  const double asin_c_a = 0.5 * pi - ac.theta_v;  // atan2(c, w_ac)
-  auto cubic = [&](double z) { return r * r * z - z * z * z / 3.0; };
-  const double j_b = detail::slice_integral(r, b, zm, a, acos_b_top, ab.theta_u, o.zb) -
-                     detail::slice_integral(r, b, c, bc.w, bc.theta_u, asin_c_b, bc.tau);
-  const double j_a = detail::slice_integral(r, a, zm, b, acos_a_top, ab.theta_v, o.za) -
-                     detail::slice_integral(r, a, c, ac.w, ac.theta_u, asin_c_a, ac.tau);
-  const double r_b =
-      detail::root_integral(sb2, zm, a, ab.theta_u) - detail::root_integral(sb2, c, bc.w, asin_c_b);
-  const double r_a =
-      detail::root_integral(sa2, zm, b, ab.theta_v) - detail::root_integral(sa2, c, ac.w, asin_c_a);
+  const auto both_zero = (a == 0.0) & (b == 0.0);
+  const T acos_b_top = both_zero ? 0.5 * pi : o.ab;
+  const T acos_a_top = both_zero ? 0.5 * pi : 0.5 * pi - o.ab;
+  const T asin_c_b = 0.5 * pi - bc.theta_v;  // atan2(c, w_bc)
+  const T asin_c_a = 0.5 * pi - ac.theta_v;  // atan2(c, w_ac)
+  auto cubic = [&](T z) { return r * r * z - z * z * z / 3.0; };
+  const T j_b = detail::slice_integral(r, b, zm, a, acos_b_top, ab.theta_u, o.zb) -
+                detail::slice_integral(r, b, c, bc.w, bc.theta_u, asin_c_b, bc.tau);
+  const T j_a = detail::slice_integral(r, a, zm, b, acos_a_top, ab.theta_v, o.za) -
+                detail::slice_integral(r, a, c, ac.w, ac.theta_u, asin_c_a, ac.tau);
+  const T r_b = detail::root_integral(sb2, zm, a, ab.theta_u) - detail::root_integral(sb2, c, bc.w, asin_c_b);
+  const T r_a = detail::root_integral(sa2, zm, b, ab.theta_v) - detail::root_integral(sa2, c, ac.w, asin_c_a);
   return 0.5 * j_b + 0.5 * j_a - 0.25 * pi * (cubic(zm) - cubic(c)) - 0.5 * b * r_b - 0.5 * a * r_a +
          a * b * (zm - c);
 }
 /// The octant {x > a, y > b, z > c} from the angles of its three pairs and
 /// its own.
-inline double octant_volume(double r, double a, double b, double c, const PairAngles& ab,
-                            const PairAngles& ac, const PairAngles& bc, const OctantAngles& o) {
-  const double zm2 = r * r - a * a - b * b;
-  return zm2 <= c * c || zm2 <= 0.0 ? 0.0 : octant_volume_inside(r, a, b, c, ab, ac, bc, o);
+template <class T>
+inline T octant_volume(T r, T a, T b, T c, const PairAnglesOf<T>& ab, const PairAnglesOf<T>& ac,
+                       const PairAnglesOf<T>& bc, const OctantAnglesOf<T>& o) {
+  const T zm2 = r * r - a * a - b * b;
+  const T inside = octant_volume_inside(r, a, b, c, ab, ac, bc, o);
+  return (zm2 <= c * c) | (zm2 <= 0.0) ? 0.0 : inside;
 }
 
 /// Sections on the plane x_j = d_j (a disc of radius^2 rho2 = r^2 - d_j^2)
 /// beyond one more plane at distance d_l (pair angles jl, with theta_l the
 /// one of d_l) or two (d_l, d_m); zero where the planes miss the disc.
-inline double section_beyond(double rho2, double d_l, const PairAngles& jl, double theta_l) {
+template <class T>
+inline T section_beyond(T rho2, T d_l, const PairAnglesOf<T>& jl, T theta_l) {
   // Circular segment: rho^2 atan2(h, d_l) - d_l h, with h = w of the pair.
-  const double v = rho2 * theta_l - d_l * jl.w;
+  const T v = rho2 * theta_l - d_l * jl.w;
   return d_l * d_l >= rho2 ? 0.0 : v;
 }
-inline double section_beyond(double rho2, double d_l, double d_m, const PairAngles& jl, double theta_l,
-                             const PairAngles& jm, double theta_m) {
+template <class T>
+inline T section_beyond(T rho2, T d_l, T d_m, const PairAnglesOf<T>& jl, T theta_l, const PairAnglesOf<T>& jm,
+                        T theta_m) {
   // Corner of the disc (corner_area): h_l and h_m are the pairs' w, and
   // atan2(d_l, h_l) = pi/2 - theta_l.
-  const double v = 0.5 * rho2 * (theta_m - (0.5 * std::numbers::pi - theta_l)) -
-                   0.5 * (d_m * jm.w + d_l * jl.w) + d_l * d_m;
+  const T v = 0.5 * rho2 * (theta_m - (0.5 * std::numbers::pi - theta_l)) - 0.5 * (d_m * jm.w + d_l * jl.w) +
+              d_l * d_m;
   return d_l * d_l + d_m * d_m >= rho2 ? 0.0 : v;
 }
 

@@ -22,6 +22,7 @@
 
 #include <Eigen/Sparse>
 
+#include "darcydem/core/lanes.hpp"
 #include "darcydem/core/vec.hpp"
 #include "darcydem/fluid/fluid_boundary.hpp"
 #include "darcydem/fluid/fluid_grid.hpp"
@@ -174,11 +175,11 @@ class PoreFluid final : public ParticleForceField<D> {
     std::size_t index;  ///< in the face arrays of the side's axis
   };
 
-  /// Solid volumes, solid volume fluxes and face fluxes of the blocks of
-  /// grains after the first (compute_solid).
+  /// Sums over one block of grains (compute_solid): per cell, the solid
+  /// volume and the solid volume flux side by side (one vector add per
+  /// grain and cell), and the solid flux through each face.
   struct SolidSums {
-    std::vector<double> solid;
-    std::vector<Vec<D>> flux;
+    std::vector<Lanes> cell;  ///< (V_s, V_s v_x, V_s v_y[, V_s v_z])
     std::array<std::vector<double>, D> face_flux;
   };
   std::vector<SolidSums> block_solid_;

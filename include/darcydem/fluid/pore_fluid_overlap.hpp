@@ -21,9 +21,11 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <numbers>
 #include <vector>
 
+#include "darcydem/core/lanes.hpp"
 #include "darcydem/core/vector_math.hpp"
 #include "darcydem/fluid/ball_overlap.hpp"
 #include "darcydem/fluid/pore_fluid.hpp"
@@ -38,6 +40,27 @@ struct GrainCut {
   std::array<int, D> home{};
   std::array<int, D> other{};
   std::array<double, D> dist{};
+};
+
+/// The cuts of a chunk of grains, axis by axis (filled by loops over the
+/// chunk that the compiler vectorises), and each grain's set of crossed
+/// axes (bit k: axis k).
+template <int D>
+struct ChunkCuts {
+  static constexpr std::size_t capacity = 256;
+  std::array<std::array<int, capacity>, D> home;
+  std::array<std::array<int, capacity>, D> other;
+  std::array<std::array<double, capacity>, D> dist;
+  std::array<int, capacity> mask;
+  [[nodiscard]] GrainCut<D> of(std::size_t g) const {
+    GrainCut<D> cut;
+    for (int k = 0; k < D; ++k) {
+      cut.home[k] = home[k][g];
+      cut.other[k] = other[k][g];
+      cut.dist[k] = dist[k][g];
+    }
+    return cut;
+  }
 };
 
 /// Linear indices on the grid: of cells (FluidGrid::index) and of the faces
@@ -64,8 +87,8 @@ struct GridStrides {
 
 /// In place, m[S] <- sum over T containing S of (-1)^{|T|-|S|} m[T]: from
 /// the measures beyond at least the planes of S to beyond exactly them.
-template <int K, std::size_t N>
-inline void beyond_exactly(std::array<double, N>& m) {
+template <int K, class T, std::size_t N>
+inline void beyond_exactly(std::array<T, N>& m) {
   for (int j = 0; j < K; ++j) {
     for (int s = 0; s < (1 << K); ++s) {
       if ((s & (1 << j)) == 0) m[s] -= m[s | (1 << j)];
@@ -88,211 +111,231 @@ constexpr int axis_of(int j) {
 /// Index of the pair (j, l), j < l, of crossing axes: (0,1) 0, (0,2) 1, (1,2) 2.
 constexpr int pair_slot(int j, int l) { return j + l - 1; }
 
-/// Scratch space of one chunk.
-struct OverlapScratch {
-  std::vector<double> ys, xs, angle;
+/// Where the cells (or faces) of a grain's subsets lie: the linear index
+/// of the home one, the index step across each crossed plane, and whether
+/// the home one and the one across each plane are inside the grid.
+struct Reach {
+  std::int64_t home = 0;
+  std::array<std::int64_t, 3> shift{};
+  bool home_in = true;
+  std::array<bool, 3> home_l{};   ///< home inside along crossed axis j
+  std::array<bool, 3> other_l{};  ///< the neighbour inside along crossed axis j
 };
 
-/// The section of a grain on the face of its J-th crossing axis
-/// (cut_sections): a (D-1)-ball of radius rho = sqrt(r^2 - d_J^2), shared
-/// among the faces beyond the other crossed planes in the same way as the
-/// volume among the cells.
-template <int D, int K, int J, class G>
-void section_on(const FluidGrid<D>& grid, const GridStrides<D>& strides, const GrainCut<D>& cut,
-                const std::array<int, 3>& axes, const std::array<bool, 3>& in, const std::array<double, 3>& d,
-                const std::array<ball_overlap::PairAngles, 3>& pa, double r, std::size_t i, G& section) {
+/// Emits value[s] for each subset s of the K crossed planes at
+/// reach.home moved across the planes of s, where inside the grid.
+template <int K, class E>
+inline void emit_subsets(const Reach& reach, const std::array<double, 1 << K>& value, E&& emit) {
+  for (int s = 0; s < (1 << K); ++s) {
+    std::int64_t at = reach.home;
+    bool inside = reach.home_in;
+    for (int t = 0; t < K; ++t) {
+      const bool moved = ((s >> t) & 1) != 0;
+      at += moved ? reach.shift[t] : 0;
+      inside = inside && (moved ? reach.other_l[t] : reach.home_l[t]);
+    }
+    if (value[s] > 0.0 && inside) emit(static_cast<std::size_t>(at), value[s]);
+  }
+}
+
+/// The cells of a grain crossing the planes of `axes` (K of them).
+template <int D, int K>
+inline Reach cell_reach(const FluidGrid<D>& grid, const GridStrides<D>& strides, const GrainCut<D>& cut,
+                        const std::array<int, 3>& axes) {
+  Reach reach;
+  for (int k = 0; k < D; ++k) {
+    reach.home += static_cast<std::int64_t>(cut.home[k]) * strides.cell[k];
+    bool crossed = false;
+    for (int j = 0; j < K; ++j) crossed = crossed || axes[j] == k;
+    if (!crossed) reach.home_in = reach.home_in && cut.home[k] >= 0 && cut.home[k] < grid.cells[k];
+  }
+  for (int j = 0; j < K; ++j) {
+    const int k = axes[j];
+    reach.shift[j] = static_cast<std::int64_t>(cut.other[k] - cut.home[k]) * strides.cell[k];
+    reach.home_l[j] = cut.home[k] >= 0 && cut.home[k] < grid.cells[k];
+    reach.other_l[j] = cut.other[k] >= 0 && cut.other[k] < grid.cells[k];
+  }
+  return reach;
+}
+
+/// The faces normal to crossed axis J that the grain's section lies on:
+/// the face between home and its neighbour along axes[J], moved across the
+/// other crossed planes (inside the grid there if 0..cells-1; the face
+/// itself is inside if 0..cells along its own axis).
+template <int D, int K, int J>
+inline Reach face_reach(const FluidGrid<D>& grid, const GridStrides<D>& strides, const GrainCut<D>& cut,
+                        const std::array<int, 3>& axes) {
+  const int k = axes[J];
+  const auto& fs = strides.face[k];
+  const int along = std::max(cut.home[k], cut.other[k]);
+  Reach reach;
+  reach.home = static_cast<std::int64_t>(along) * fs[k];
+  reach.home_in = along >= 0 && along <= grid.cells[k];
+  for (int a = 0; a < D; ++a) {
+    if (a == k) continue;
+    reach.home += static_cast<std::int64_t>(cut.home[a]) * fs[a];
+    bool crossed = false;
+    for (int j = 0; j < K; ++j) crossed = crossed || axes[j] == a;
+    if (!crossed) reach.home_in = reach.home_in && cut.home[a] >= 0 && cut.home[a] < grid.cells[a];
+  }
+  int t = 0;
+  for (int j = 0; j < K; ++j) {
+    if (j == J) continue;
+    const int a = axes[j];
+    reach.shift[t] = static_cast<std::int64_t>(cut.other[a] - cut.home[a]) * fs[a];
+    reach.home_l[t] = cut.home[a] >= 0 && cut.home[a] < grid.cells[a];
+    reach.other_l[t] = cut.other[a] >= 0 && cut.other[a] < grid.cells[a];
+    ++t;
+  }
+  return reach;
+}
+
+/// The section of four grains on the plane of their J-th crossing axis: a
+/// (D-1)-ball of radius rho = sqrt(r^2 - d_J^2), shared among the faces
+/// beyond the other crossed planes in the same way as the volume among the
+/// cells (subset bit t: the t-th other crossed axis).
+template <int D, int K, int J>
+inline std::array<Lanes, 1 << (K - 1)> section_measures(
+    Lanes r, const std::array<Lanes, 3>& d, const std::array<ball_overlap::PairAnglesOf<Lanes>, 3>& pa) {
   namespace bo = ball_overlap;
   constexpr int others = K - 1;
   // The other crossing axes, in order.
   constexpr int L0 = J == 0 ? 1 : 0;
   constexpr int L1 = J == 2 ? 1 : 2;
   // The pair (J, l) and, in it, the angle of d_l.
-  auto pair_of = [&](auto l) -> const bo::PairAngles& {
-    return pa[pair_slot(std::min(J, decltype(l)::value), std::max(J, decltype(l)::value))];
+  auto pair_of = [&](int l) -> const bo::PairAnglesOf<Lanes>& {
+    return pa[pair_slot(std::min(J, l), std::max(J, l))];
   };
-  auto theta = [&](auto l) { return decltype(l)::value > J ? pair_of(l).theta_v : pair_of(l).theta_u; };
-  using l0 = std::integral_constant<int, L0>;
-  using l1 = std::integral_constant<int, L1>;
-  const double rho2 = std::max(0.0, r * r - d[J] * d[J]);
-  std::array<double, 1 << others> ms{};
+  auto theta = [&](int l) { return l > J ? pair_of(l).theta_v : pair_of(l).theta_u; };
+  const Lanes rho2 = lane_max(0.0, r * r - d[J] * d[J]);
+  std::array<Lanes, 1 << others> ms{};
   if constexpr (D == 2) {
-    const double rho = std::sqrt(rho2);
+    const Lanes rho = lane_sqrt(rho2);
     ms[0] = 2.0 * rho;
-    if constexpr (others == 1) ms[1] = std::max(0.0, rho - d[L0]);
+    if constexpr (others == 1) ms[1] = lane_max(0.0, rho - d[L0]);
   } else {
     ms[0] = std::numbers::pi * rho2;
-    if constexpr (others >= 1) ms[1] = bo::section_beyond(rho2, d[L0], pair_of(l0{}), theta(l0{}));
+    if constexpr (others >= 1) ms[1] = bo::section_beyond(rho2, d[L0], pair_of(L0), theta(L0));
     if constexpr (others == 2) {
-      ms[2] = bo::section_beyond(rho2, d[L1], pair_of(l1{}), theta(l1{}));
-      ms[3] = bo::section_beyond(rho2, d[L0], d[L1], pair_of(l0{}), theta(l0{}), pair_of(l1{}), theta(l1{}));
+      ms[2] = bo::section_beyond(rho2, d[L1], pair_of(L1), theta(L1));
+      ms[3] = bo::section_beyond(rho2, d[L0], d[L1], pair_of(L0), theta(L0), pair_of(L1), theta(L1));
     }
   }
   beyond_exactly<others>(ms);
-  // The face between home and other along k (inside if 0..cells), moved
-  // across the other crossed planes of s (inside there if 0..cells-1).
-  const int k = axes[J];
-  const auto& fs = strides.face[k];
-  const int along = std::max(cut.home[k], cut.other[k]);
-  std::int64_t base = static_cast<std::int64_t>(along) * fs[k];
-  for (int a = 0; a < D; ++a) {
-    if (a != k) base += static_cast<std::int64_t>(cut.home[a]) * fs[a];
-  }
-  // Moving across the other crossed plane l: its index step, and whether
-  // the home coordinate there (replaced) or the neighbour's is in range.
-  std::array<std::int64_t, 2> shift{};
-  std::array<bool, 2> home_l{};
-  std::array<bool, 2> other_l{};
-  const std::array<int, 2> ls = {L0, L1};
-  for (int t = 0; t < others; ++t) {
-    const int a = axes[ls[t]];
-    shift[t] = static_cast<std::int64_t>(cut.other[a] - cut.home[a]) * fs[a];
-    home_l[t] = cut.home[a] >= 0 && cut.home[a] < grid.cells[a];
-    other_l[t] = in[ls[t]];
-  }
-  // In range along k and across the axes not crossed; across a crossed
-  // plane l, home_l or other_l as the face moved or not.
-  bool rest_ok = along >= 0 && along <= grid.cells[k];
-  for (int a = 0; a < D; ++a) {
-    bool crossed = a == k;
-    for (int t = 0; t < others; ++t) crossed = crossed || a == axes[ls[t]];
-    if (!crossed) rest_ok = rest_ok && cut.home[a] >= 0 && cut.home[a] < grid.cells[a];
-  }
-  for (int s = 0; s < (1 << others); ++s) {
-    std::int64_t face = base;
-    bool inside = rest_ok;
-    for (int t = 0; t < others; ++t) {
-      const bool moved = ((s >> t) & 1) != 0;
-      face += moved ? shift[t] : 0;
-      inside = inside && (moved ? other_l[t] : home_l[t]);
-    }
-    if (ms[s] > 0.0 && inside) section(k, static_cast<std::size_t>(face), i, ms[s]);
-  }
+  return ms;
 }
 
-/// The sections of a grain on the faces it crosses (cut_bucket), as
-/// section(axis, face index, grain, area). `in[j]`: the neighbour across
-/// crossing axis j lies in the grid along that axis.
-template <int D, int K, class G>
-void cut_sections(const FluidGrid<D>& grid, const GridStrides<D>& strides, const GrainCut<D>& cut,
-                  const std::array<int, 3>& axes, const std::array<bool, 3>& in,
-                  const std::array<double, 3>& d, const std::array<ball_overlap::PairAngles, 3>& pa, double r,
-                  std::size_t i, G& section) {
-  section_on<D, K, 0>(grid, strides, cut, axes, in, d, pa, r, i, section);
-  if constexpr (K >= 2) section_on<D, K, 1>(grid, strides, cut, axes, in, d, pa, r, i, section);
-  if constexpr (K == 3) section_on<D, K, 2>(grid, strides, cut, axes, in, d, pa, r, i, section);
+/// Lane l of each of the vectors.
+template <std::size_t N>
+inline std::array<double, N> lane_of(const std::array<Lanes, N>& v, int l) {
+  std::array<double, N> out{};
+  for (std::size_t s = 0; s < N; ++s) out[s] = v[s][l];
+  return out;
 }
 
 /// The grains `members` (indices into the chunk starting at `start`), which
-/// all cross exactly the faces of the axes in Mask.
+/// all cross exactly the faces of the axes in Mask, four at a time: the
+/// measures for four grains on vector lanes (the last group padded with
+/// copies of its first grain, whose results are not used), then each
+/// grain's cells and faces one by one.
 template <int D, int Mask, class F, class G>
 void cut_bucket(const FluidGrid<D>& grid, const GridStrides<D>& strides, const ParticleData<D>& p,
-                const GrainCut<D>* cuts, const std::uint16_t* members, std::size_t count, std::size_t start,
-                OverlapScratch& scratch, F& f, G& section, bool sections) {
+                const ChunkCuts<D>& cuts, const std::uint16_t* members, std::size_t count, std::size_t start,
+                F& f, G& section, bool sections) {
   namespace bo = ball_overlap;
   constexpr int K = __builtin_popcount(Mask);
   constexpr int subsets = 1 << K;
-  std::array<int, 3> axes{};
-  for (int j = 0; j < K; ++j) axes[j] = axis_of<Mask>(j);
-  // Arctangents, 3 per pair of crossing axes and 3 more for the octant.
+  constexpr std::array<int, 3> axes = {axis_of<Mask>(0), axis_of<Mask>(1), axis_of<Mask>(2)};
+  // Arctangents (3D), 3 per pair of crossing axes and 3 more for the octant.
   constexpr int pairs_count = K * (K - 1) / 2;
-  constexpr int per_grain = D == 3 ? 3 * pairs_count + (K == 3 ? 3 : 0) : 0;
-  if constexpr (per_grain > 0) {
-    scratch.ys.resize(per_grain * count);
-    scratch.xs.resize(per_grain * count);
-    scratch.angle.resize(per_grain * count);
-    for (std::size_t g = 0; g < count; ++g) {
-      const GrainCut<D>& cut = cuts[members[g]];
-      const double r = p.radius[start + members[g]];
-      double* y = scratch.ys.data() + per_grain * g;
-      double* x = scratch.xs.data() + per_grain * g;
+  constexpr int angles = D == 3 ? 3 * pairs_count + (K == 3 ? 3 : 0) : 0;
+  for (std::size_t g0 = 0; g0 < count; g0 += lane_count) {
+    const int used = static_cast<int>(std::min<std::size_t>(lane_count, count - g0));
+    std::array<std::size_t, lane_count> g{};
+    for (int l = 0; l < lane_count; ++l) g[l] = members[g0 + (l < used ? l : 0)];
+    auto gather = [&](auto value) { return Lanes{value(g[0]), value(g[1]), value(g[2]), value(g[3])}; };
+    const Lanes r = gather([&](std::size_t k) { return p.radius[start + k]; });
+    std::array<Lanes, 3> d{};
+    for (int j = 0; j < K; ++j) d[j] = gather([&](std::size_t k) { return cuts.dist[axes[j]][k]; });
+    std::array<bo::PairAnglesOf<Lanes>, 3> pa{};
+    bo::OctantAnglesOf<Lanes> oa{};
+    if constexpr (angles > 0) {
+      alignas(32) std::array<double, lane_count * angles> ys;
+      alignas(32) std::array<double, lane_count * angles> xs;
+      alignas(32) std::array<double, lane_count * angles> at;
+      auto put = [&](int slot, Lanes y, Lanes x) {
+        store_lanes(ys.data() + lane_count * slot, y);
+        store_lanes(xs.data() + lane_count * slot, x);
+      };
       for (int j = 0; j < K; ++j) {
         for (int l = j + 1; l < K; ++l) {
-          const double u = cut.dist[axes[j]];
-          const double v = cut.dist[axes[l]];
-          const double w = bo::pair_chord(r, u, v);
-          const int s = 3 * pair_slot(j, l);
-          y[s] = w;
-          x[s] = u;
-          y[s + 1] = w;
-          x[s + 1] = v;
-          y[s + 2] = u * v;
-          x[s + 2] = r * w;
+          const int s = pair_slot(j, l);
+          const Lanes w = bo::pair_chord(r, d[j], d[l]);
+          pa[s].w = w;
+          put(3 * s, w, d[j]);
+          put(3 * s + 1, w, d[l]);
+          put(3 * s + 2, d[j] * d[l], r * w);
         }
       }
       if constexpr (K == 3) {
-        const double a = cut.dist[0];
-        const double b = cut.dist[1];
-        const double zm = bo::pair_chord(r, a, b);
-        y[9] = a;
-        x[9] = b;
-        y[10] = zm * b;
-        x[10] = r * a;
-        y[11] = zm * a;
-        x[11] = r * b;
+        const Lanes zm = pa[0].w;  // the chord of the pair (0, 1)
+        put(9, d[0], d[1]);
+        put(10, zm * d[1], r * d[0]);
+        put(11, zm * d[0], r * d[1]);
       }
-    }
-    atan2_batch(scratch.ys.data(), scratch.xs.data(), scratch.angle.data(), per_grain * count);
-  }
-  for (std::size_t g = 0; g < count; ++g) {
-    const GrainCut<D>& cut = cuts[members[g]];
-    const std::size_t i = start + members[g];
-    const double r = p.radius[i];
-    std::array<double, 3> d{};
-    for (int j = 0; j < K; ++j) d[j] = cut.dist[axes[j]];
-    // Pair angles (3D): w is the first atan2's y.
-    std::array<bo::PairAngles, 3> pa{};
-    if constexpr (per_grain > 0) {
-      const double* a = scratch.angle.data() + per_grain * g;
-      const double* y = scratch.ys.data() + per_grain * g;
-      for (int s = 0; s < pairs_count; ++s) pa[s] = {y[3 * s], a[3 * s], a[3 * s + 1], a[3 * s + 2]};
+      atan2_batch(ys.data(), xs.data(), at.data(), lane_count * angles);
+      auto angle = [&](int slot) { return load_lanes(at.data() + lane_count * slot); };
+      for (int s = 0; s < pairs_count; ++s) {
+        pa[s].theta_u = angle(3 * s);
+        pa[s].theta_v = angle(3 * s + 1);
+        pa[s].tau = angle(3 * s + 2);
+      }
+      if constexpr (K == 3) oa = {angle(9), angle(10), angle(11)};
     }
     // M(T) for every subset T of the crossing axes (bit j: axes[j]).
-    std::array<double, subsets> m{};
-    m[0] = particle_volume<D>(r);
+    std::array<Lanes, subsets> m{};
+    for (int l = 0; l < lane_count; ++l) m[0][l] = particle_volume<D>(r[l]);
     if constexpr (D == 2) {
-      for (int j = 0; j < K; ++j) m[1 << j] = bo::segment_area(r, d[j]);
-      if constexpr (K == 2) m[3] = bo::corner_area(r, d[0], d[1]);
+      for (int l = 0; l < lane_count; ++l) {
+        for (int j = 0; j < K; ++j) m[1 << j][l] = bo::segment_area(r[l], d[j][l]);
+        if constexpr (K == 2) m[3][l] = bo::corner_area(r[l], d[0][l], d[1][l]);
+      }
     } else {
       for (int j = 0; j < K; ++j) m[1 << j] = bo::cap_volume(r, d[j]);
       for (int j = 0; j < K; ++j) {
-        for (int l = j + 1; l < K; ++l) {
+        for (int l = j + 1; l < K; ++l)
           m[(1 << j) | (1 << l)] = bo::wedge_volume(r, d[j], d[l], pa[pair_slot(j, l)]);
-        }
       }
-      if constexpr (K == 3) {
-        const double* a = scratch.angle.data() + per_grain * g + 9;
-        m[7] = bo::octant_volume(r, d[0], d[1], d[2], pa[0], pa[1], pa[2], {a[0], a[1], a[2]});
-      }
+      if constexpr (K == 3) m[7] = bo::octant_volume(r, d[0], d[1], d[2], pa[0], pa[1], pa[2], oa);
     }
     beyond_exactly<K>(m);
-    // The cell of subset s: home, moved across the crossed faces of s.
-    std::int64_t home = 0;
-    std::array<bool, D> home_ok{};
-    for (int k = 0; k < D; ++k) {
-      home += static_cast<std::int64_t>(cut.home[k]) * strides.cell[k];
-      home_ok[k] = cut.home[k] >= 0 && cut.home[k] < grid.cells[k];
+    // The sections on the faces crossed.
+    std::array<std::array<Lanes, (1 << K) / 2>, 3> ms{};
+    if constexpr (K > 0) {
+      if (sections) {
+        ms[0] = section_measures<D, K, 0>(r, d, pa);
+        if constexpr (K >= 2) ms[1] = section_measures<D, K, 1>(r, d, pa);
+        if constexpr (K == 3) ms[2] = section_measures<D, K, 2>(r, d, pa);
+      }
     }
-    std::array<bool, 3> in{};
-    for (int j = 0; j < K; ++j) {
-      const int k = axes[j];
-      in[j] = cut.other[k] >= 0 && cut.other[k] < grid.cells[k];
-    }
-    for (int s = 0; s < subsets; ++s) {
-      std::int64_t cell = home;
-      std::array<bool, D> ok = home_ok;
-      for (int j = 0; j < K; ++j) {
-        if ((s >> j) & 1) {
-          const int k = axes[j];
-          cell += static_cast<std::int64_t>(cut.other[k] - cut.home[k]) * strides.cell[k];
-          ok[k] = in[j];
+    // Each grain's cells and faces.
+    for (int l = 0; l < used; ++l) {
+      const GrainCut<D> cut = cuts.of(members[g0 + l]);
+      const std::size_t i = start + members[g0 + l];
+      emit_subsets<K>(cell_reach<D, K>(grid, strides, cut, axes), lane_of(m, l),
+                      [&](std::size_t cell, double v) { f(cell, i, v); });
+      if constexpr (K > 0) {
+        if (sections) {
+          auto on = [&]<int J>() {
+            constexpr int k = axes[J];
+            emit_subsets<K - 1>(face_reach<D, K, J>(grid, strides, cut, axes), lane_of(ms[J], l),
+                                [&](std::size_t face, double a) { section(k, face, i, a); });
+          };
+          on.template operator()<0>();
+          if constexpr (K >= 2) on.template operator()<1>();
+          if constexpr (K == 3) on.template operator()<2>();
         }
       }
-      bool inside = true;
-      for (int k = 0; k < D; ++k) inside = inside && ok[k];
-      if (m[s] > 0.0 && inside) f(static_cast<std::size_t>(cell), i, m[s]);
-    }
-    if constexpr (K > 0) {
-      if (sections) cut_sections<D, K>(grid, strides, cut, axes, in, d, pa, r, i, section);
     }
   }
 }
@@ -304,44 +347,54 @@ template <class F, class G>
 void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, std::size_t begin, std::size_t end, F&& f,
                                     G&& section, bool sections) const {
   using overlap_detail::cut_bucket;
-  using overlap_detail::GrainCut;
-  constexpr std::size_t chunk = 1024;
+  using Cuts = overlap_detail::ChunkCuts<D>;
+  constexpr std::size_t chunk = Cuts::capacity;
   constexpr int masks = 1 << D;
-  std::vector<GrainCut<D>> cuts(std::min(chunk, end - begin));
+  auto cuts = std::make_unique<Cuts>();
   std::array<std::vector<std::uint16_t>, masks> bucket;
-  for (auto& b : bucket) b.resize(cuts.size());
-  overlap_detail::OverlapScratch scratch;
+  for (auto& b : bucket) b.resize(std::min(chunk, end - begin));
   const overlap_detail::GridStrides<D> strides(grid);
-  std::array<double, D> inv_h{};
-  for (int k = 0; k < D; ++k) inv_h[k] = 1.0 / grid.spacing[k];
   for (std::size_t start = begin; start < end; start += chunk) {
-    const std::size_t stop = std::min(end, start + chunk);
-    std::array<std::size_t, masks> filled{};
-    for (std::size_t i = start; i < stop; ++i) {
-      GrainCut<D>& cut = cuts[i - start];
-      const double r = p.radius[i];
-      const Vec<D>& x = p.position[i];
-      int mask = 0;
-      for (int k = 0; k < D; ++k) {
+    const std::size_t n = std::min(end, start + chunk) - start;
+    const double* radius = p.radius.data() + start;
+    for (int k = 0; k < D; ++k) {
+      const double origin = grid.origin[k];
+      const double h = grid.spacing[k];
+      const double inv_h = 1.0 / h;
+      const double last = grid.cells[k];
+      int* home = cuts->home[k].data();
+      int* other = cuts->other[k].data();
+      double* dist = cuts->dist[k].data();
+      int* mask = cuts->mask.data();
+#pragma omp simd
+      for (std::size_t g = 0; g < n; ++g) {
+        const double x = p.position[start + g][k];
+        const double r = radius[g];
         // As grid.cell_along, with the inverse spacing: a grain on a face
         // may land on either side, where its distance to it is +0.
-        cut.home[k] =
-            FluidGrid<D>::clamp_cell(std::floor((x[k] - grid.origin[k]) * inv_h[k]), -1, grid.cells[k]);
-        const double lo = grid.origin[k] + cut.home[k] * grid.spacing[k];
-        const double below = x[k] - lo;
-        const double above = lo + grid.spacing[k] - x[k];
-        const bool down = below < r;
-        const bool up = !down && above < r;
-        cut.other[k] = cut.home[k] + (up ? 1 : 0) - (down ? 1 : 0);
+        const double raw = std::floor((x - origin) * inv_h);
+        const double cell = raw < -1.0 ? -1.0 : (raw > last ? last : raw);
+        const double lo = origin + cell * h;
+        const double below = x - lo;
+        const double above = lo + h - x;
+        // Without short-circuits, which would be branches.
+        const int down = below < r ? 1 : 0;
+        const int up = (1 - down) & (above < r ? 1 : 0);
+        home[g] = static_cast<int>(cell);
+        other[g] = home[g] + up - down;
         // +0 at least: the closed forms take distances >= +0.
-        cut.dist[k] = std::max(0.0, down ? below : above);
-        mask |= (down || up) ? (1 << k) : 0;
+        dist[g] = lane_max(0.0, down != 0 ? below : above);
+        mask[g] = (k == 0 ? 0 : mask[g]) | ((down | up) << k);
       }
-      bucket[mask][filled[mask]++] = static_cast<std::uint16_t>(i - start);
+    }
+    std::array<std::size_t, masks> filled{};
+    for (std::size_t g = 0; g < n; ++g) {
+      const int m = cuts->mask[g];
+      bucket[m][filled[m]++] = static_cast<std::uint16_t>(g);
     }
     auto run = [&]<int Mask>() {
-      cut_bucket<D, Mask>(grid, strides, p, cuts.data(), bucket[Mask].data(), filled[Mask], start, scratch, f,
-                          section, sections);
+      cut_bucket<D, Mask>(grid, strides, p, *cuts, bucket[Mask].data(), filled[Mask], start, f, section,
+                          sections);
     };
     run.template operator()<0>();
     run.template operator()<1>();

@@ -15,10 +15,12 @@
 #include <cstring>
 #include <utility>
 
+#include "darcydem/core/lanes.hpp"
+
 namespace darcydem::kick {
 
-using Lanes = double __attribute__((vector_size(32)));
-using LaneMask = std::int64_t __attribute__((vector_size(32)));
+using darcydem::LaneMask;
+using darcydem::Lanes;
 
 struct Settings {
   double local = 0.0;    ///< Cundall's alpha
@@ -39,12 +41,8 @@ inline LaneMask spread(LaneMask per_particle) {
   return __builtin_shuffle(per_particle, index);
 }
 
-inline Lanes load(const double* p) {
-  Lanes v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-inline void store(double* p, Lanes v) { std::memcpy(p, &v, sizeof v); }
+inline Lanes load(const double* p) { return load_lanes(p); }
+inline void store(double* p, Lanes v) { store_lanes(p, v); }
 
 /// One vector of components: loads f and v, returns the kicked v.
 [[gnu::always_inline]] inline Lanes kick_lanes(Lanes f, Lanes v, Lanes inv_mass, LaneMask free, Settings s) {
