@@ -16,7 +16,8 @@
 // count (fluid above the bed), with cells at least one grain wide.
 // The time per iteration is the time per step (or per update, per force
 // evaluation); counters: fluid_update_ms (the update's part of a coupled
-// step), solver_iterations, particle_steps_per_second, ns_per_grain (in
+// step) and its parts (overlaps_ms, properties_ms, assembly_ms, solve_ms,
+// fields_ms: FluidUpdateTimes), solver_iterations, particle_steps_per_second, ns_per_grain (in
 // nanoseconds; the console prints it with a unit of seconds). JSON with
 //   bench_coupled_step --benchmark_out=bench/results/coupled_step.json
 #include <benchmark/benchmark.h>
@@ -89,6 +90,7 @@ void BM_CoupledStep(benchmark::State& state) {
   sim.force_field = fluid.get();
   sim.prepare();
   double fluid_seconds = 0.0;
+  darcydem::FluidUpdateTimes parts;
   long iterations = 0;
   for (auto _ : state) {
     sim.step();
@@ -96,7 +98,19 @@ void BM_CoupledStep(benchmark::State& state) {
     fluid->update(sim.particles, sim.time_step, sim.time);
     fluid_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     iterations += fluid->last_solve().iterations;
+    const auto& t = fluid->last_times();
+    parts.overlaps += t.overlaps;
+    parts.properties += t.properties;
+    parts.assembly += t.assembly;
+    parts.solve += t.solve;
+    parts.fields += t.fields;
   }
+  const double per_step_ms = 1e3 / static_cast<double>(state.iterations());
+  state.counters["overlaps_ms"] = parts.overlaps * per_step_ms;
+  state.counters["properties_ms"] = parts.properties * per_step_ms;
+  state.counters["assembly_ms"] = parts.assembly * per_step_ms;
+  state.counters["solve_ms"] = parts.solve * per_step_ms;
+  state.counters["fields_ms"] = parts.fields * per_step_ms;
   state.counters["cells"] = static_cast<double>(fluid->grid.size());
   state.counters["fluid_update_ms"] = 1e3 * fluid_seconds / static_cast<double>(state.iterations());
   state.counters["solver_iterations"] =

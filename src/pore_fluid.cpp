@@ -4,6 +4,7 @@
 #include "darcydem/core/vector_math.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -47,12 +48,27 @@ void PoreFluid<D>::compute_solid(const ParticleData<D>& particles) {
   static_assert(D + 1 <= lane_count);
   const std::size_t count = particles.size();
   const std::size_t blocks = std::clamp<std::size_t>(count / 25'000, 1, 8);
-  block_solid_.resize(blocks);
+  const std::size_t n = grid.size();
+  if (block_solid_.size() != blocks || block_solid_[0].cell.size() != n) {
+    block_solid_.assign(blocks, SolidSums{});
+    for (SolidSums& sums : block_solid_) {
+      sums.cell.assign(n, Lanes{});
+      for (int k = 0; k < D; ++k) sums.face_flux[k].assign(grid.face_count(k), 0.0);
+    }
+  }
   auto sum_block = [&](std::size_t b) {
     SolidSums& sums = block_solid_[b];
-    sums.cell.assign(grid.size(), Lanes{});
-    for (int k = 0; k < D; ++k) sums.face_flux[k].assign(grid.face_count(k), 0.0);
     Lanes* cell = sums.cell.data();
+    std::fill(cell + sums.cell_lo, cell + sums.cell_hi, Lanes{});
+    for (int k = 0; k < D; ++k) {
+      std::fill(sums.face_flux[k].begin() + static_cast<std::ptrdiff_t>(sums.face_lo[k]),
+                sums.face_flux[k].begin() + static_cast<std::ptrdiff_t>(sums.face_hi[k]), 0.0);
+    }
+    std::size_t lo = n;
+    std::size_t hi = 0;
+    std::array<std::size_t, D> face_lo;
+    std::array<std::size_t, D> face_hi{};
+    for (int k = 0; k < D; ++k) face_lo[k] = grid.face_count(k);
     for_each_overlap(
         particles, count * b / blocks, count * (b + 1) / blocks,
         [&](std::size_t c, std::size_t i, double v) {
@@ -60,35 +76,51 @@ void PoreFluid<D>::compute_solid(const ParticleData<D>& particles) {
           Lanes weights{1.0, u[0], u[1], 0.0};
           if constexpr (D == 3) weights[3] = u[2];
           cell[c] += v * weights;
+          lo = std::min(lo, c);
+          hi = std::max(hi, c + 1);
         },
         [&](int axis, std::size_t face, std::size_t i, double area) {
           sums.face_flux[axis][face] += area * particles.velocity[i][axis];
+          face_lo[axis] = std::min(face_lo[axis], face);
+          face_hi[axis] = std::max(face_hi[axis], face + 1);
         },
         carry_with_solid);
+    sums.cell_lo = std::min(lo, hi);
+    sums.cell_hi = hi;
+    for (int k = 0; k < D; ++k) {
+      sums.face_lo[k] = std::min(face_lo[k], face_hi[k]);
+      sums.face_hi[k] = face_hi[k];
+    }
   };
   const auto nb = static_cast<std::int64_t>(blocks);
 #pragma omp parallel for schedule(static) if (blocks > 1)
   for (std::int64_t b = 0; b < nb; ++b) sum_block(static_cast<std::size_t>(b));
-  const std::size_t n = grid.size();
+  // Block after block, each over its range (zero elsewhere): per cell the
+  // same additions in the same order as over the whole grid.
+  std::vector<Lanes>& total = block_total_;
+  total.assign(n, Lanes{});
+  for (const SolidSums& sums : block_solid_) {
+    for (std::size_t c = sums.cell_lo; c < sums.cell_hi; ++c) total[c] += sums.cell[c];
+  }
   solid_.resize(n);
   solid_flux_.resize(n);
   for (std::size_t c = 0; c < n; ++c) {
-    Lanes sum = block_solid_[0].cell[c];
-    for (std::size_t b = 1; b < blocks; ++b) sum += block_solid_[b].cell[c];
-    solid_[c] = sum[0];
-    for (int k = 0; k < D; ++k) solid_flux_[c][k] = sum[1 + k];
+    solid_[c] = total[c][0];
+    for (int k = 0; k < D; ++k) solid_flux_[c][k] = total[c][1 + k];
   }
   for (int k = 0; k < D; ++k) {
-    solid_face_flux_[k] = block_solid_[0].face_flux[k];
-    for (std::size_t b = 1; b < blocks; ++b) {
-      const auto& from = block_solid_[b].face_flux[k];
-      for (std::size_t f = 0; f < from.size(); ++f) solid_face_flux_[k][f] += from[f];
+    solid_face_flux_[k].assign(grid.face_count(k), 0.0);
+    for (const SolidSums& sums : block_solid_) {
+      for (std::size_t f = sums.face_lo[k]; f < sums.face_hi[k]; ++f)
+        solid_face_flux_[k][f] += sums.face_flux[k][f];
     }
   }
 }
 
 template <int D>
 void PoreFluid<D>::compute_cell_properties() {
+  // Every cell (and face) on its own: in parallel on a large grid, with the
+  // same result for any number of threads.
   const std::size_t n = grid.size();
   const double volume = grid.cell_volume();
   porosity_.resize(n);
@@ -97,53 +129,68 @@ void PoreFluid<D>::compute_cell_properties() {
   const bool update_kappa = !permeability_frozen || kappa_.size() != n;
   kappa_.resize(n);
   cell_drag_.resize(n);
-  for (std::size_t c = 0; c < n; ++c) {
-    porosity_[c] = 1.0 - solid_[c] / volume;
-    porosity_used_[c] = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
-    solid_velocity_[c] = solid_[c] > 1e-12 * volume ? Vec<D>(solid_flux_[c] / solid_[c]) : Vec<D>::Zero();
-    if (update_kappa) {
-      if (permeability.model == PermeabilityModel::constant) {
-        kappa_[c] = permeability.intrinsic;
-      } else {
-        kappa_[c] = kozeny_carman(permeability.diameter, porosity_used_[c]) * permeability.anisotropy;
-      }
-    }
-  }
-  // Drag coefficients per cell; Ergun/Wen-Yu's atan and power for all the
-  // cells at once (core/vector_math.hpp).
-  if (drag == DragLaw::ergun) {
+  const bool ergun = drag == DragLaw::ergun;
+  if (ergun) {
     blend_atan_.resize(n);
     n_power_.resize(n);
     ones_.resize(n, 1.0);
-    // n_power_ holds the atan's arguments until the power overwrites them.
-    for (std::size_t c = 0; c < n; ++c) n_power_[c] = ErgunWenYu::blend_argument(porosity_used_[c]);
-    atan2_batch(n_power_.data(), ones_.data(), blend_atan_.data(), n);
-    pow_batch(porosity_used_.data(), ErgunWenYu::wen_yu_exponent, n_power_.data(), n);
   }
-  for (std::size_t c = 0; c < n; ++c) {
-    const double nu = porosity_used_[c];
-    CellDrag& cd = cell_drag_[c];
-    cd = CellDrag{};
-    cd.inv_n = 1.0 / nu;
-    if (drag == DragLaw::ergun) {
-      const ErgunWenYu e = ErgunWenYu::with(nu, blend_atan_[c], n_power_[c], fluid);
-      cd.viscous = e.phi * e.ergun_viscous / (1.0 - nu);
-      cd.inertial = e.phi * e.ergun_inertial / (1.0 - nu);
-      cd.wen_yu = (1.0 - e.phi) * e.wen_yu / (1.0 - nu);
-      cd.re_factor = fluid.density * nu / fluid.viscosity;
-    } else {
-      for (int k = 0; k < D; ++k) cd.darcy[k] = nu * nu * fluid.viscosity / kappa_[c][k] / (1.0 - nu);
+  // Cells in runs, so that Ergun/Wen-Yu's atan and power are computed for a
+  // run at once (core/vector_math.hpp); the runs in parallel on a large grid.
+  constexpr std::size_t run = 512;
+  auto cells_of_run = [&](std::int64_t r) {
+    const std::size_t begin = static_cast<std::size_t>(r) * run;
+    const std::size_t end = std::min(n, begin + run);
+    for (std::size_t c = begin; c < end; ++c) {
+      porosity_[c] = 1.0 - solid_[c] / volume;
+      porosity_used_[c] = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
+      solid_velocity_[c] = solid_[c] > 1e-12 * volume ? Vec<D>(solid_flux_[c] / solid_[c]) : Vec<D>::Zero();
+      if (update_kappa) {
+        if (permeability.model == PermeabilityModel::constant) {
+          kappa_[c] = permeability.intrinsic;
+        } else {
+          kappa_[c] = kozeny_carman(permeability.diameter, porosity_used_[c]) * permeability.anisotropy;
+        }
+      }
     }
+    if (ergun) {
+      // n_power_ holds the atan's arguments until the power overwrites them.
+      for (std::size_t c = begin; c < end; ++c) n_power_[c] = ErgunWenYu::blend_argument(porosity_used_[c]);
+      atan2_batch(n_power_.data() + begin, ones_.data() + begin, blend_atan_.data() + begin, end - begin);
+      pow_batch(porosity_used_.data() + begin, ErgunWenYu::wen_yu_exponent, n_power_.data() + begin,
+                end - begin);
+    }
+    for (std::size_t c = begin; c < end; ++c) {
+      const double nu = porosity_used_[c];
+      CellDrag& cd = cell_drag_[c];
+      cd = CellDrag{};
+      for (int k = 0; k < D; ++k) cd.solid_velocity[k] = solid_velocity_[c][k];
+      cd.inv_n = 1.0 / nu;
+      if (ergun) {
+        const ErgunWenYu e = ErgunWenYu::with(nu, blend_atan_[c], n_power_[c], fluid);
+        cd.law = {e.phi * e.ergun_viscous / (1.0 - nu), e.phi * e.ergun_inertial / (1.0 - nu),
+                  (1.0 - e.phi) * e.wen_yu / (1.0 - nu), fluid.density * nu / fluid.viscosity};
+      } else {
+        for (int k = 0; k < D; ++k) cd.law[k] = nu * nu * fluid.viscosity / kappa_[c][k] / (1.0 - nu);
+      }
+    }
+  };
+  const auto runs = static_cast<std::int64_t>((n + run - 1) / run);
+  if (static_cast<std::int64_t>(n) > parallel_threshold) {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t r = 0; r < runs; ++r) cells_of_run(r);
+  } else {
+    for (std::int64_t r = 0; r < runs; ++r) cells_of_run(r);
   }
   // Darcy conductance kappa/mu of each interior face: the harmonic mean of
   // its two cells'.
   face_lambda_.resize(faces_.size());
-  for (std::size_t k = 0; k < faces_.size(); ++k) {
-    const Face& f = faces_[k];
+  for_each_index(static_cast<std::int64_t>(faces_.size()), [&](std::int64_t k) {
+    const Face& f = faces_[static_cast<std::size_t>(k)];
     const double ka = kappa_[f.a][f.axis];
     const double kb = kappa_[f.b][f.axis];
-    face_lambda_[k] = 2.0 * ka * kb / ((ka + kb) * fluid.viscosity);
-  }
+    face_lambda_[static_cast<std::size_t>(k)] = 2.0 * ka * kb / ((ka + kb) * fluid.viscosity);
+  });
 }
 
 template <int D>
@@ -200,8 +247,17 @@ template <int D>
 void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double time) {
   if (!initialized_) throw std::logic_error("PoreFluid::update before initialize");
   const std::size_t n = grid.size();
+  using Clock = std::chrono::steady_clock;
+  auto lap = [last = Clock::now()]() mutable {
+    const auto now = Clock::now();
+    const double s = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return s;
+  };
   compute_solid(particles);
+  last_times_.overlaps = lap();
   compute_cell_properties();
+  last_times_.properties = lap();
   pressure_older_.swap(pressure_old_);
   pressure_old_ = pressure_;
 
@@ -261,7 +317,9 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     solution_[static_cast<Eigen::Index>(c)] =
         extrapolate ? 2.0 * pressure_[c] - pressure_older_[c] : pressure_[c];
   }
+  last_times_.assembly = lap();
   last_solve_ = solver_.solve(matrix_, rhs_, solution_);
+  last_times_.solve = lap();
   for (std::size_t c = 0; c < n; ++c) pressure_[c] = solution_[static_cast<Eigen::Index>(c)];
 
   compute_face_fields(time);
@@ -286,15 +344,17 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   solid_old_ = solid_;
   time_ = time;
   ++updates_;
+  last_times_.fields = lap();
 }
 
 template <int D>
 void PoreFluid<D>::compute_face_fields(double time) {
-  for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
+  for_each_index(static_cast<std::int64_t>(faces_.size()), [&](std::int64_t k) {
+    const std::size_t fi = static_cast<std::size_t>(k);
     const Face& f = faces_[fi];
     const double g = (pressure_[f.b] - pressure_[f.a]) * inv_spacing_[f.axis];
     face_gq_[f.axis][f.index] = {g, -face_lambda_[fi] * g};
-  }
+  });
   side_inflow_.fill(0.0);
   for (const auto& bf : boundary_faces_) {
     const FluidBoundary& side = sides[bf.side];
@@ -480,14 +540,14 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
       const CellDrag& cd = cell_drag_[c];
       for (int k = 0; k < D; ++k) {
         grad[k][j] = g[k];
-        slip[k][j] = solid_velocity_[c][k] + q[k] * cd.inv_n - p.velocity[i][k];
-        if constexpr (!Ergun) darcy[k][j] = cd.darcy[k];
+        slip[k][j] = cd.solid_velocity[k] + q[k] * cd.inv_n - p.velocity[i][k];
+        if constexpr (!Ergun) darcy[k][j] = cd.law[k];
       }
       if constexpr (Ergun) {
-        viscous[j] = cd.viscous;
-        inertial[j] = cd.inertial;
-        wen_yu[j] = cd.wen_yu;
-        re[j] = cd.re_factor;
+        viscous[j] = cd.law[0];
+        inertial[j] = cd.law[1];
+        wen_yu[j] = cd.law[2];
+        re[j] = cd.law[3];
       }
     }
     // Slip speed and Re.

@@ -42,6 +42,15 @@ struct FluidBalance {
   [[nodiscard]] double imbalance() const { return inflow - stored - pore_change; }
 };
 
+/// Wall-clock seconds of the parts of the last fluid update.
+struct FluidUpdateTimes {
+  double overlaps = 0.0;    ///< grain/cell overlaps, solid volumes and fluxes
+  double properties = 0.0;  ///< porosity, permeability, drag coefficients per cell
+  double assembly = 0.0;    ///< the matrix and right-hand side
+  double solve = 0.0;       ///< the linear solve
+  double fields = 0.0;      ///< face gradients and fluxes, the balance
+};
+
 template <int D>
 class PoreFluid final : public ParticleForceField<D> {
  public:
@@ -91,6 +100,7 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] const FluidBalance& last_balance() const { return last_; }
   [[nodiscard]] const FluidBalance& total_balance() const { return total_; }
   [[nodiscard]] const SolveStats& last_solve() const { return last_solve_; }
+  [[nodiscard]] const FluidUpdateTimes& last_times() const { return last_times_; }
   [[nodiscard]] std::uint64_t updates() const { return updates_; }
   [[nodiscard]] const PressureSolver& solver() const { return solver_; }
 
@@ -178,26 +188,33 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Sums over one block of grains (compute_solid): per cell, the solid
   /// volume and the solid volume flux side by side (one vector add per
   /// grain and cell), and the solid flux through each face.
+  /// The sums are kept zero outside the range of cells (faces) that the
+  /// block touched, and only that range is added and cleared: with the
+  /// grains in spatial order (Simulation sorts them), a block covers a slab
+  /// of the grid, not all of it.
   struct SolidSums {
     std::vector<Lanes> cell;  ///< (V_s, V_s v_x, V_s v_y[, V_s v_z])
     std::array<std::vector<double>, D> face_flux;
+    std::size_t cell_lo = 0, cell_hi = 0;  ///< touched: [lo, hi)
+    std::array<std::size_t, D> face_lo{}, face_hi{};
   };
   std::vector<SolidSums> block_solid_;
+  std::vector<Lanes> block_total_;  ///< the blocks' cell sums added
   std::vector<double> pressure_, pressure_old_, porosity_, solid_, solid_old_;
   std::vector<double> pressure_older_;  ///< the pressure one fluid step before pressure_old_
   std::vector<double> porosity_used_;   ///< porosity clamped to the permeability's [min, max]
   std::vector<Vec<D>> solid_flux_, solid_velocity_, kappa_;
-  /// Per cell, at its clamped porosity, what the force on a grain needs: the
-  /// drag per unit grain volume and unit slip, beta/(1-n), is
-  ///   darcy[k] + viscous/d^2 + inertial |slip|/d + wen_yu C_dRe(re)/d^2,
-  /// with re = re_factor d |slip| (Ergun/Wen-Yu: darcy = 0; Darcy: the rest 0).
-  struct CellDrag {
+  /// Per cell, what the force on a grain needs, in one cache line: the mean
+  /// solid velocity, 1/n and, at the clamped porosity, the drag per unit
+  /// grain volume and unit slip, beta/(1-n):
+  ///   Ergun/Wen-Yu: law = (viscous, inertial, wen_yu, re_factor) and
+  ///     beta/(1-n) = viscous/d^2 + inertial |slip|/d + wen_yu C_dRe(re)/d^2,
+  ///     re = re_factor d |slip|;
+  ///   Darcy: law = (beta/(1-n) along each axis).
+  struct alignas(64) CellDrag {
+    std::array<double, D> solid_velocity{};
     double inv_n = 1.0;
-    double viscous = 0.0;
-    double inertial = 0.0;
-    double wen_yu = 0.0;
-    double re_factor = 0.0;
-    Vec<D> darcy = Vec<D>::Zero();
+    std::array<double, 4> law{};
   };
   std::vector<CellDrag> cell_drag_;
   std::vector<double> blend_atan_, n_power_;  ///< per cell, for the Ergun/Wen-Yu coefficients
@@ -217,6 +234,7 @@ class PoreFluid final : public ParticleForceField<D> {
   Eigen::VectorXd rhs_, solution_;
   PressureSolver solver_;
   SolveStats last_solve_;
+  FluidUpdateTimes last_times_;
   FluidBalance last_, total_;
   std::uint64_t updates_ = 0;
   double time_ = 0.0;
