@@ -236,6 +236,13 @@ void PoreFluid<D>::build_pattern() {
     f.pos_ba = pos(f.b, f.a);
   }
   rhs_.resize(static_cast<Eigen::Index>(n));
+  std::vector<std::size_t> strides(D);
+  std::size_t stride = 1;
+  for (int k = 0; k < D; ++k) {
+    strides[static_cast<std::size_t>(k)] = stride;
+    stride *= static_cast<std::size_t>(grid.cells[k]);
+  }
+  operator_.resize(n, strides);
 }
 
 template <int D>
@@ -261,14 +268,13 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   pressure_older_.swap(pressure_old_);
   pressure_old_ = pressure_;
 
-  // Storage and Biot source.
-  double* values = matrix_.valuePtr();
-  std::fill(values, values + matrix_.nonZeros(), 0.0);
+  // Storage and Biot source, into the grid's stencil (GridOperator).
+  Eigen::VectorXd& diagonal = operator_.diagonal;
   double solid_change = 0.0;
   double solid_moved = 0.0;  // sum of |dVs|, for the balance's gross flow
   for (std::size_t c = 0; c < n; ++c) {
     const double storage = storage_of(c);
-    values[diag_pos_[c]] = storage;
+    diagonal[static_cast<Eigen::Index>(c)] = storage;
     const double d_solid = solid_[c] - solid_old_[c];
     solid_change += d_solid;
     solid_moved += std::abs(d_solid);
@@ -280,10 +286,9 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     const double lambda = face_lambda_[fi];
     const double area = grid.face_area(f.axis);
     const double t = dt * lambda * area / grid.spacing[f.axis];
-    values[diag_pos_[f.a]] += t;
-    values[diag_pos_[f.b]] += t;
-    values[f.pos_ab] -= t;
-    values[f.pos_ba] -= t;
+    diagonal[f.a] += t;
+    diagonal[f.b] += t;
+    operator_.upper[static_cast<std::size_t>(f.axis)][f.a] = t;
     if (!carry_with_solid) continue;
     // Pore fluid carried across the face by the skeleton: the skeleton's
     // volume flux (mean solid velocity of the two cells, weighted by their
@@ -303,7 +308,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     const double area = grid.face_area(axis);
     if (side.type == FluidBoundaryType::drained) {
       const double t = dt * side_lambda(axis, bf.cell) * area / (0.5 * grid.spacing[axis]);
-      values[diag_pos_[bf.cell]] += t;
+      diagonal[bf.cell] += t;
       rhs_[bf.cell] += t * side.value.at(time);
     } else if (side.type == FluidBoundaryType::flux) {
       rhs_[bf.cell] += dt * side.value.at(time) * area;
@@ -317,8 +322,19 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     solution_[static_cast<Eigen::Index>(c)] =
         extrapolate ? 2.0 * pressure_[c] - pressure_older_[c] : pressure_[c];
   }
+  if (solver_.kind() == PressureSolverKind::cholesky) {
+    // The same entries into the stored matrix.
+    double* values = matrix_.valuePtr();
+    for (std::size_t c = 0; c < n; ++c) values[diag_pos_[c]] = diagonal[static_cast<Eigen::Index>(c)];
+    for (const Face& f : faces_) {
+      const double t = operator_.upper[static_cast<std::size_t>(f.axis)][f.a];
+      values[f.pos_ab] = -t;
+      values[f.pos_ba] = -t;
+    }
+  }
   last_times_.assembly = lap();
-  last_solve_ = solver_.solve(matrix_, rhs_, solution_);
+  last_solve_ = solver_.kind() == PressureSolverKind::cholesky ? solver_.solve(matrix_, rhs_, solution_)
+                                                               : solver_.solve(operator_, rhs_, solution_);
   last_times_.solve = lap();
   for (std::size_t c = 0; c < n; ++c) pressure_[c] = solution_[static_cast<Eigen::Index>(c)];
 

@@ -12,6 +12,7 @@ struct PressureSolver::Impl {
   Eigen::SimplicialLDLT<Matrix> ldlt;
   bool analysed = false;
   Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper> cg;
+  Eigen::ConjugateGradient<GridOperator, Eigen::Lower | Eigen::Upper, GridJacobi> grid_cg;
 };
 
 PressureSolver::PressureSolver(PressureSolverKind kind, double tolerance)
@@ -49,6 +50,29 @@ SolveStats PressureSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eige
     }
   }
   stats.residual = b_norm > 0.0 ? (a * x - b).norm() / b_norm : (a * x).norm();
+  return stats;
+}
+
+SolveStats PressureSolver::solve(const GridOperator& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (kind_ != PressureSolverKind::cg) {
+    throw std::logic_error("pore pressure: the grid's stencil is solved by conjugate gradients only");
+  }
+  SolveStats stats;
+  auto& cg = impl_->grid_cg;
+  cg.setTolerance(tolerance_);
+  cg.setMaxIterations(std::max<Eigen::Index>(1000, 10 * a.rows()));
+  cg.compute(a);
+  x = cg.solveWithGuess(b, x);
+  stats.iterations = static_cast<int>(cg.iterations());
+  if (cg.info() != Eigen::Success) {
+    throw std::runtime_error(
+        fmt::format("pore pressure: conjugate gradients did not converge in {} iterations "
+                    "(error {:.3g}, tolerance {:.3g})",
+                    cg.iterations(), cg.error(), tolerance_));
+  }
+  const double b_norm = b.norm();
+  const Eigen::VectorXd ax = a * x;
+  stats.residual = b_norm > 0.0 ? (ax - b).norm() / b_norm : ax.norm();
   return stats;
 }
 

@@ -230,7 +230,8 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<std::size_t> diag_pos_;
   std::array<std::array<std::size_t, D>, D> face_stride_{};  ///< [axis][j]: index step along j
   std::array<double, 2 * D> side_inflow_{};
-  PressureSolver::Matrix matrix_;
+  PressureSolver::Matrix matrix_;  ///< the stored matrix, for the Cholesky solver
+  GridOperator operator_;          ///< the same as a stencil
   Eigen::VectorXd rhs_, solution_;
   PressureSolver solver_;
   SolveStats last_solve_;

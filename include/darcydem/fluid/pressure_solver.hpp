@@ -5,11 +5,14 @@
 // sparse SPD matrix whose pattern never changes during a run. Solved by a
 // sparse LDL^T Cholesky (symbolic analysis once, numeric factorisation each
 // fluid step) or by Jacobi-preconditioned conjugate gradients warm-started
-// from the last pressure.
+// from the last pressure, on the stored matrix or on the grid's stencil
+// (GridOperator, no stored matrix).
 #include <memory>
 #include <string>
 
 #include <Eigen/Sparse>
+
+#include "darcydem/fluid/grid_operator.hpp"
 
 namespace darcydem {
 
@@ -32,6 +35,9 @@ class PressureSolver {
   /// Solves A x = b; x holds the initial guess on entry (used by CG).
   /// Throws std::runtime_error if the factorisation or CG fails.
   SolveStats solve(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// The same by conjugate gradients on a grid's stencil (the kind must be
+  /// cg). Throws std::logic_error for a Cholesky solver.
+  SolveStats solve(const GridOperator& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
   [[nodiscard]] PressureSolverKind kind() const { return kind_; }
   [[nodiscard]] double tolerance() const { return tolerance_; }
