@@ -514,6 +514,7 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
   // grain, the staggered interpolation and the cell's coefficients are
   // loaded; then the slip, Wen-Yu's Re^0.687 for the whole chunk at once
   // (core/vector_math.hpp) and the force, again over the chunk.
+  const auto started = std::chrono::steady_clock::now();
   constexpr std::int64_t chunk = 256;
   const auto count = static_cast<std::int64_t>(p.size());
   // Ergun/Wen-Yu or the Darcy law: each compiled on its own, so that a
@@ -618,6 +619,7 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
   } else {
     run_all.template operator()<false>();
   }
+  last_force_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
 template <int D>

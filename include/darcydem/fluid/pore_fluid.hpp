@@ -101,6 +101,8 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] const FluidBalance& total_balance() const { return total_; }
   [[nodiscard]] const SolveStats& last_solve() const { return last_solve_; }
   [[nodiscard]] const FluidUpdateTimes& last_times() const { return last_times_; }
+  /// Wall-clock seconds of the last particle_forces call.
+  [[nodiscard]] double last_force_time() const { return last_force_seconds_; }
   [[nodiscard]] std::uint64_t updates() const { return updates_; }
   [[nodiscard]] const PressureSolver& solver() const { return solver_; }
 
@@ -236,6 +238,7 @@ class PoreFluid final : public ParticleForceField<D> {
   PressureSolver solver_;
   SolveStats last_solve_;
   FluidUpdateTimes last_times_;
+  mutable double last_force_seconds_ = 0.0;  ///< timing only: not part of the state
   FluidBalance last_, total_;
   std::uint64_t updates_ = 0;
   double time_ = 0.0;
