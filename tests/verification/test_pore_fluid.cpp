@@ -278,5 +278,7 @@ TEST(PoreFluid, GrainDragFollowsTheDragLaws) {
   expect_drag_law(DragLaw::ergun, 0.00382, Vec<3>(0.3, -0.2, 1.2));
   // n about 0.62 (grains cut by the grid's sides): Ergun dominant.
   expect_drag_law(DragLaw::ergun, 0.0028, Vec<3>(0.05, -0.03, 0.2));
+  // Creeping slip (Re about 1e-6): Wen-Yu's Re^0.687 near zero.
+  expect_drag_law(DragLaw::ergun, 0.0028, Vec<3>(1e-9, 0.0, 2e-9));
   expect_drag_law(DragLaw::darcy, 0.0028, Vec<3>(0.05, -0.03, 0.2));
 }
