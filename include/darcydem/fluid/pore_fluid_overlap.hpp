@@ -13,11 +13,14 @@
 // crosses (the solid area through which it moves across that face).
 //
 // Grains are taken in chunks. Each grain is first cut against the grid
-// (which faces it crosses), then the grains of a chunk are sorted by the set
-// of axes they cross, and each set is processed by code compiled for it:
-// no branch depends on a grain's position. In 3D the arctangents of the
+// (which faces it crosses; loops over the chunk, vectorised), then the
+// grains of a chunk are filed by the set of axes they cross, and each set
+// is processed by code compiled for it: no branch depends on a grain's
+// position. A set's grains go four at a time on vector lanes
+// (core/lanes.hpp) through the closed forms; in 3D the arctangents of the
 // wedges, octants and sections are shared (ball_overlap::PairAngles) and
-// computed together for all the grains of a set (core/vector_math.hpp).
+// computed together for the four (core/vector_math.hpp). Each grain's
+// shares are then emitted one grain at a time.
 #include <algorithm>
 #include <array>
 #include <cstdint>
