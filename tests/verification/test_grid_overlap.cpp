@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -79,6 +80,32 @@ TEST(GridOverlap, GrainsInAFullGridAddUpToTheirVolume) {
   double sum = 0.0;
   fluid.for_each_overlap(p, [&](std::size_t, std::size_t, double v) { sum += v; });
   EXPECT_NEAR(sum, total, 1e-12 * total);
+}
+
+TEST(GridOverlap, AGrainAtANaNPositionTouchesNoCell) {
+  // A blown-up grain (NaN position) lies outside the grid: no cell or face
+  // receives anything from it, and its neighbours in the same group of four
+  // keep their exact volumes.
+  PoreFluid<3> fluid;
+  fluid.grid.origin = Vec<3>::Zero();
+  fluid.grid.spacing = Vec<3>::Ones();
+  fluid.grid.cells = {3, 3, 3};
+  ParticleData<3> p;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  p.add(Vec<3>(1.5, 1.5, 1.5), 0.3, 1000.0, 0, false);
+  p.add(Vec<3>(nan, 1.5, 1.5), 0.3, 1000.0, 0, false);
+  p.add(Vec<3>(1.1, 1.5, 1.5), 0.3, 1000.0, 0, false);
+  std::vector<double> per_grain(3, 0.0);
+  int sections_of_nan = 0;
+  fluid.for_each_overlap(
+      p, [&](std::size_t, std::size_t i, double v) { per_grain[i] += v; },
+      [&](int, std::size_t, std::size_t i, double) { sections_of_nan += i == 1 ? 1 : 0; }, true);
+  const double v = particle_volume<3>(0.3);
+  EXPECT_EQ(per_grain[1], 0.0);
+  EXPECT_EQ(sections_of_nan, 0);
+  // Closed forms: only round-off.
+  EXPECT_NEAR(per_grain[0], v, 1e-14 * v);
+  EXPECT_NEAR(per_grain[2], v, 1e-14 * v);
 }
 
 TEST(GridOverlap, CellsAndFaceSectionsAgainstBoxFormulas) {

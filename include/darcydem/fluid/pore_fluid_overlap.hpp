@@ -375,8 +375,10 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, std::size_t begin,
         const double r = radius[g];
         // As grid.cell_along, with the inverse spacing: a grain on a face
         // may land on either side, where its distance to it is +0.
+        // Clamped to [-1, cells] (a NaN position to -1, outside the grid),
+        // so that the conversion to int is defined.
         const double raw = std::floor((x - origin) * inv_h);
-        const double cell = raw < -1.0 ? -1.0 : (raw > last ? last : raw);
+        const double cell = raw >= -1.0 ? (raw > last ? last : raw) : -1.0;
         const double lo = origin + cell * h;
         const double below = x - lo;
         const double above = lo + h - x;
