@@ -21,9 +21,37 @@ PressureSolver::~PressureSolver() = default;
 PressureSolver::PressureSolver(PressureSolver&&) noexcept = default;
 PressureSolver& PressureSolver::operator=(PressureSolver&&) noexcept = default;
 
+namespace {
+
+/// Conjugate gradients warm-started from x (Eigen's solver on a stored
+/// matrix or on the grid's stencil); throws if they do not converge.
+template <class Cg, class Operator>
+int run_cg(Cg& cg, const Operator& a, double tolerance, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  cg.setTolerance(tolerance);
+  cg.setMaxIterations(std::max<Eigen::Index>(1000, 10 * a.rows()));
+  cg.compute(a);
+  x = cg.solveWithGuess(b, x);
+  if (cg.info() != Eigen::Success) {
+    throw std::runtime_error(
+        fmt::format("pore pressure: conjugate gradients did not converge in {} iterations "
+                    "(error {:.3g}, tolerance {:.3g})",
+                    cg.iterations(), cg.error(), tolerance));
+  }
+  return static_cast<int>(cg.iterations());
+}
+
+/// |A x - b| / |b| (|A x| for b = 0).
+template <class Operator>
+double relative_residual(const Operator& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {
+  const double b_norm = b.norm();
+  const Eigen::VectorXd ax = a * x;
+  return b_norm > 0.0 ? (ax - b).norm() / b_norm : ax.norm();
+}
+
+}  // namespace
+
 SolveStats PressureSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   SolveStats stats;
-  const double b_norm = b.norm();
   if (kind_ == PressureSolverKind::cholesky) {
     if (!impl_->analysed) {
       impl_->ldlt.analyzePattern(a);
@@ -37,19 +65,9 @@ SolveStats PressureSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eige
     x = impl_->ldlt.solve(b);
     stats.iterations = 1;
   } else {
-    impl_->cg.setTolerance(tolerance_);
-    impl_->cg.setMaxIterations(std::max<Eigen::Index>(1000, 10 * a.rows()));
-    impl_->cg.compute(a);
-    x = impl_->cg.solveWithGuess(b, x);
-    stats.iterations = static_cast<int>(impl_->cg.iterations());
-    if (impl_->cg.info() != Eigen::Success) {
-      throw std::runtime_error(
-          fmt::format("pore pressure: conjugate gradients did not converge in {} iterations "
-                      "(error {:.3g}, tolerance {:.3g})",
-                      impl_->cg.iterations(), impl_->cg.error(), tolerance_));
-    }
+    stats.iterations = run_cg(impl_->cg, a, tolerance_, b, x);
   }
-  stats.residual = b_norm > 0.0 ? (a * x - b).norm() / b_norm : (a * x).norm();
+  stats.residual = relative_residual(a, b, x);
   return stats;
 }
 
@@ -58,21 +76,8 @@ SolveStats PressureSolver::solve(const GridOperator& a, const Eigen::VectorXd& b
     throw std::logic_error("pore pressure: the grid's stencil is solved by conjugate gradients only");
   }
   SolveStats stats;
-  auto& cg = impl_->grid_cg;
-  cg.setTolerance(tolerance_);
-  cg.setMaxIterations(std::max<Eigen::Index>(1000, 10 * a.rows()));
-  cg.compute(a);
-  x = cg.solveWithGuess(b, x);
-  stats.iterations = static_cast<int>(cg.iterations());
-  if (cg.info() != Eigen::Success) {
-    throw std::runtime_error(
-        fmt::format("pore pressure: conjugate gradients did not converge in {} iterations "
-                    "(error {:.3g}, tolerance {:.3g})",
-                    cg.iterations(), cg.error(), tolerance_));
-  }
-  const double b_norm = b.norm();
-  const Eigen::VectorXd ax = a * x;
-  stats.residual = b_norm > 0.0 ? (ax - b).norm() / b_norm : ax.norm();
+  stats.iterations = run_cg(impl_->grid_cg, a, tolerance_, b, x);
+  stats.residual = relative_residual(a, b, x);
   return stats;
 }
 

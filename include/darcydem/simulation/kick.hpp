@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <utility>
 
 #include "darcydem/core/lanes.hpp"
@@ -40,9 +39,6 @@ inline LaneMask spread(LaneMask per_particle) {
   constexpr LaneMask index = {(4 * K + 0) / W, (4 * K + 1) / W, (4 * K + 2) / W, (4 * K + 3) / W};
   return __builtin_shuffle(per_particle, index);
 }
-
-inline Lanes load(const double* p) { return load_lanes(p); }
-inline void store(double* p, Lanes v) { store_lanes(p, v); }
 
 /// One vector of components: loads f and v, returns the kicked v.
 [[gnu::always_inline]] inline Lanes kick_lanes(Lanes f, Lanes v, Lanes inv_mass, LaneMask free, Settings s) {
@@ -76,7 +72,7 @@ template <int W>
   double* v = velocity;
   const double* f = load_;
   if (full) {
-    m = load(inv_mass);
+    m = load_lanes(inv_mass);
   } else {
     std::copy(velocity, velocity + count * W, pad_v);
     std::copy(load_, load_ + count * W, pad_f);
@@ -88,7 +84,8 @@ template <int W>
   }
   for (int l = 0; l < count; ++l) free[l] = fixed[l] == 0 ? -1 : 0;
   [&]<int... K>(std::integer_sequence<int, K...>) {
-    ((store(v + 4 * K, kick_lanes(load(f + 4 * K), load(v + 4 * K), spread<W, K>(m), spread<W, K>(free), s))),
+    ((store_lanes(v + 4 * K, kick_lanes(load_lanes(f + 4 * K), load_lanes(v + 4 * K), spread<W, K>(m),
+                                        spread<W, K>(free), s))),
      ...);
   }
   (std::make_integer_sequence<int, W>{});
