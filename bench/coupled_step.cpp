@@ -5,8 +5,10 @@
 //   BM_CoupledStep/cells/solver/threads
 //                                   the same packing (10^5 spheres) with a pore
 //                                   fluid updated every DEM step (fluid step,
-//                                   overlaps, solve, forces); solver 0 = Cholesky, 1 = CG
+//                                   overlaps, solve, forces); solver 0 = Cholesky,
+//                                   1 = CG with Jacobi, 2 = CG with multigrid
 //   BM_PressureSolve/cells/solver   one fluid update on a frozen packing alone
+//                                   (solver as above)
 //   BM_Overlaps/cells               the exact grain/cell overlaps alone (solid
 //                                   volumes, their velocities, face sections)
 //   BM_GrainForces/cells/threads    the fluid's force on every grain alone
@@ -65,7 +67,8 @@ void shape_grid(PoreFluid<3>& f, const Simulation<3>& sim, std::int64_t cells) {
 
 std::unique_ptr<PoreFluid<3>> make_fluid(const Simulation<3>& sim, std::int64_t cells, int solver) {
   auto f = std::make_unique<PoreFluid<3>>(
-      solver == 0 ? darcydem::PressureSolverKind::cholesky : darcydem::PressureSolverKind::cg, 1e-8);
+      solver == 0 ? darcydem::PressureSolverKind::cholesky : darcydem::PressureSolverKind::cg, 1e-8,
+      solver == 2 ? darcydem::CgPreconditioner::multigrid : darcydem::CgPreconditioner::jacobi);
   shape_grid(*f, sim, cells);
   f->fluid = {1000.0, 1e-3, 1e5};
   f->drag = darcydem::DragLaw::ergun;
@@ -201,13 +204,13 @@ BENCHMARK(BM_DemStep)
     ->MinTime(2.0)
     ->UseRealTime();
 BENCHMARK(BM_CoupledStep)
-    ->ArgsProduct({{1'000, 10'000, 100'000}, {0, 1}, {1}})
+    ->ArgsProduct({{1'000, 10'000, 100'000}, {0, 1, 2}, {1}})
     ->Args({10'000, 1, 2})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0)
     ->UseRealTime();
 BENCHMARK(BM_PressureSolve)
-    ->ArgsProduct({{1'000, 10'000, 100'000}, {0, 1}})
+    ->ArgsProduct({{1'000, 10'000, 30'000, 100'000}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0)
     ->UseRealTime();

@@ -13,7 +13,8 @@
 namespace darcydem {
 
 template <int D>
-PoreFluid<D>::PoreFluid(PressureSolverKind solver, double tolerance) : solver_(solver, tolerance) {}
+PoreFluid<D>::PoreFluid(PressureSolverKind solver, double tolerance, CgPreconditioner preconditioner)
+    : solver_(solver, tolerance, preconditioner) {}
 
 template <int D>
 void PoreFluid<D>::initialize(const ParticleData<D>& particles) {

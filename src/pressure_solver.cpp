@@ -13,10 +13,11 @@ struct PressureSolver::Impl {
   bool analysed = false;
   Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper> cg;
   Eigen::ConjugateGradient<GridOperator, Eigen::Lower | Eigen::Upper, GridJacobi> grid_cg;
+  Eigen::ConjugateGradient<GridOperator, Eigen::Lower | Eigen::Upper, GridMultigrid> grid_mg_cg;
 };
 
-PressureSolver::PressureSolver(PressureSolverKind kind, double tolerance)
-    : kind_(kind), tolerance_(tolerance), impl_(std::make_unique<Impl>()) {}
+PressureSolver::PressureSolver(PressureSolverKind kind, double tolerance, CgPreconditioner preconditioner)
+    : kind_(kind), tolerance_(tolerance), preconditioner_(preconditioner), impl_(std::make_unique<Impl>()) {}
 PressureSolver::~PressureSolver() = default;
 PressureSolver::PressureSolver(PressureSolver&&) noexcept = default;
 PressureSolver& PressureSolver::operator=(PressureSolver&&) noexcept = default;
@@ -71,12 +72,19 @@ SolveStats PressureSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eige
   return stats;
 }
 
+std::string PressureSolver::describe(Eigen::Index n) const {
+  if (kind_ == PressureSolverKind::cholesky) return "cholesky";
+  return fmt::format("cg ({} preconditioner)", to_string(preconditioner_for(n)));
+}
+
 SolveStats PressureSolver::solve(const GridOperator& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (kind_ != PressureSolverKind::cg) {
     throw std::logic_error("pore pressure: the grid's stencil is solved by conjugate gradients only");
   }
   SolveStats stats;
-  stats.iterations = run_cg(impl_->grid_cg, a, tolerance_, b, x);
+  stats.iterations = preconditioner_for(a.rows()) == CgPreconditioner::multigrid
+                         ? run_cg(impl_->grid_mg_cg, a, tolerance_, b, x)
+                         : run_cg(impl_->grid_cg, a, tolerance_, b, x);
   stats.residual = relative_residual(a, b, x);
   return stats;
 }

@@ -178,8 +178,9 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         sides += fmt::format(" {}={}", side_names[k], to_string(fluid->sides[k].type));
       *options.log << fmt::format(
           "pore fluid: {} cells, K_f = {:.4g} Pa, {} solver, fluid step every {} DEM steps; sides:{}\n",
-          fluid->grid.size(), fluid->fluid.bulk_modulus, to_string(fluid->solver().kind()),
-          fluid->steps_per_update, sides);
+          fluid->grid.size(), fluid->fluid.bulk_modulus,
+          fluid->solver().describe(static_cast<Eigen::Index>(fluid->grid.size())), fluid->steps_per_update,
+          sides);
     }
   }
   std::uint64_t fluid_iterations = 0;
@@ -303,11 +304,15 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   if (fluid != nullptr) {
     const auto& tb = fluid->total_balance();
     json << fmt::format(
-        "  \"fluid\": {{\"cells\": {}, \"updates\": {}, \"solver\": \"{}\", \"iterations\": {}, "
+        "  \"fluid\": {{\"cells\": {}, \"updates\": {}, \"solver\": \"{}\", \"preconditioner\": \"{}\", "
+        "\"iterations\": {}, "
         "\"max_residual\": {:.6g}, \"inflow\": {:.17g}, \"stored\": {:.17g}, \"pore_change\": {:.17g}, "
         "\"imbalance\": {:.6g}, \"gross_flow\": {:.6g}}},\n",
-        fluid->grid.size(), fluid->updates(), to_string(fluid->solver().kind()), fluid_iterations,
-        fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), tb.gross);
+        fluid->grid.size(), fluid->updates(), to_string(fluid->solver().kind()),
+        fluid->solver().kind() == PressureSolverKind::cg
+            ? to_string(fluid->solver().preconditioner_for(static_cast<Eigen::Index>(fluid->grid.size())))
+            : "none",
+        fluid_iterations, fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), tb.gross);
   }
   if (summary.seepage_column) {
     const auto& r = *summary.seepage_column;

@@ -87,8 +87,14 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   const std::string solver = r.optional_choice("solver", {"cholesky", "cg"}).value_or("cg");
   const double tolerance =
       r.check("tolerance", r.number_or("tolerance", 1e-10), is_positive, "> 0 (CG, relative)");
+  const std::string preconditioner =
+      r.optional_choice("preconditioner", {"auto", "jacobi", "multigrid"}).value_or("auto");
+  if (solver != "cg" && r.has("preconditioner")) r.fail("preconditioner", "applies to solver = \"cg\" only");
   auto fluid = std::make_unique<PoreFluid<D>>(
-      solver == "cg" ? PressureSolverKind::cg : PressureSolverKind::cholesky, tolerance);
+      solver == "cg" ? PressureSolverKind::cg : PressureSolverKind::cholesky, tolerance,
+      preconditioner == "jacobi"      ? CgPreconditioner::jacobi
+      : preconditioner == "multigrid" ? CgPreconditioner::multigrid
+                                      : CgPreconditioner::automatic);
   fluid->fluid.density = r.check("density", r.number("density"), is_positive, "> 0 kg/m^3");
   fluid->fluid.viscosity = r.check("viscosity", r.number("viscosity"), is_positive, "> 0 Pa s");
   fluid->fluid.bulk_modulus = r.check("bulk_modulus", r.number("bulk_modulus"), is_positive, "> 0 Pa");

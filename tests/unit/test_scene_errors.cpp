@@ -212,6 +212,17 @@ TEST(SceneErrors, FluidBoundaryTypeAndValueAreChecked) {
   EXPECT_NE(msg.find("key 'times': must increase strictly"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, FluidPreconditionerIsChecked) {
+  const std::string base = "drag = \"darcy\"\n";
+  EXPECT_EQ(load_error(replace(with_fluid(), base, base + "preconditioner = \"multigrid\"\n")), "");
+  auto msg = load_error(replace(with_fluid(), base, base + "preconditioner = \"multgrid\"\n"));
+  EXPECT_NE(msg.find("did you mean \"multigrid\"?"), std::string::npos) << msg;
+  msg =
+      load_error(replace(with_fluid(), base, base + "solver = \"cholesky\"\npreconditioner = \"jacobi\"\n"));
+  EXPECT_NE(msg.find("key 'preconditioner': applies to solver = \"cg\" only"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+}
+
 TEST(SceneErrors, FluidProbeWithoutFluidIsRefused) {
   const auto msg =
       load_error(std::string(kGood) +

@@ -67,7 +67,8 @@ class PoreFluid final : public ParticleForceField<D> {
   /// compare with a closed form that assumes a constant k).
   bool permeability_frozen = false;
 
-  PoreFluid(PressureSolverKind solver = PressureSolverKind::cg, double tolerance = 1e-10);
+  PoreFluid(PressureSolverKind solver = PressureSolverKind::cg, double tolerance = 1e-10,
+            CgPreconditioner preconditioner = CgPreconditioner::automatic);
 
   /// Solid volumes, porosity and permeability from the particles; pressure
   /// zero. Call once before the first update.
