@@ -29,6 +29,9 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles) {
     std::size_t stride = 1;
     for (int k = 0; k < D; ++k) {
       face_stride_[a][k] = stride;
+      // Across the cell centres a single cell along k has no pair: the
+      // stencil's two corners along k are then the same face.
+      corner_step_[a][k] = k == a || grid.cells[k] > 1 ? stride : 0;
       stride *= static_cast<std::size_t>(k == a ? grid.cells[k] + 1 : grid.cells[k]);
     }
   }
@@ -408,48 +411,10 @@ void PoreFluid<D>::interpolate(const std::array<double, D>& s_of, std::array<dou
 template <int D>
 void PoreFluid<D>::interpolate(const Stencil& st, std::array<double, D>& grad,
                                std::array<double, D>& flux) const {
-  // (grad, flux) pairs as two-lane vectors (GCC/Clang vector extension):
-  // one load and one multiply-add per lerp for both.
-  using Pair = double __attribute__((vector_size(16)));
-  auto load = [](const std::array<double, 2>& v) {
-    Pair p;
-    std::memcpy(&p, v.data(), sizeof p);
-    return p;
-  };
-  auto lerp = [](Pair lo, Pair hi, double t) -> Pair { return lo + t * (hi - lo); };
-  // Component A: linear between the faces of the holding cell along A,
-  // between the cell centres along the others.
   auto component = [&]<int A>() {
-    const auto& stride = face_stride_[A];
-    std::size_t base = 0;
-    std::array<std::size_t, D> step{};
     std::array<double, D> fr{};
-    for (int k = 0; k < D; ++k) {
-      if (k == A) {
-        base += static_cast<std::size_t>(st.face_cell[k]) * stride[k];
-        step[k] = stride[k];
-        fr[k] = st.face_frac[k];
-      } else {
-        base += static_cast<std::size_t>(st.centre_cell[k]) * stride[k];
-        step[k] = grid.cells[k] > 1 ? stride[k] : 0;
-        fr[k] = st.centre_frac[k];
-      }
-    }
-    const std::array<double, 2>* g = face_gq_[A].data() + base;
-    Pair v{};
-    if constexpr (D == 2) {
-      v = lerp(lerp(load(g[0]), load(g[step[0]]), fr[0]),
-               lerp(load(g[step[1]]), load(g[step[1] + step[0]]), fr[0]), fr[1]);
-    } else {
-      const std::size_t s0 = step[0];
-      const std::size_t s1 = step[1];
-      const std::size_t s2 = step[2];
-      const Pair v00 = lerp(load(g[0]), load(g[s0]), fr[0]);
-      const Pair v10 = lerp(load(g[s1]), load(g[s1 + s0]), fr[0]);
-      const Pair v01 = lerp(load(g[s2]), load(g[s2 + s0]), fr[0]);
-      const Pair v11 = lerp(load(g[s2 + s1]), load(g[s2 + s1 + s0]), fr[0]);
-      v = lerp(lerp(v00, v10, fr[1]), lerp(v01, v11, fr[1]), fr[2]);
-    }
+    for (int k = 0; k < D; ++k) fr[k] = k == A ? st.face_frac[k] : st.centre_frac[k];
+    const auto v = interpolate_component<A>(stencil_base<A>(st.face_cell, st.centre_cell), fr);
     grad[A] = v[0];
     flux[A] = v[1];
   };
@@ -541,26 +506,36 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
         inside[j] = (k == 0 || inside[j] > 0.0) && in ? 1.0 : 0.0;
       }
     }
+    // The stencils' lower corners, per component, and the holding cells.
+    std::array<std::array<std::size_t, chunk>, D> base;
+    std::array<std::size_t, chunk> cell;
+    for (std::int64_t j = 0; j < n; ++j) {
+      std::array<int, D> fc{};
+      std::array<int, D> cc{};
+      for (int k = 0; k < D; ++k) {
+        fc[k] = face_cell[k][j];
+        cc[k] = centre_cell[k][j];
+      }
+      base[0][j] = stencil_base<0>(fc, cc);
+      base[1][j] = stencil_base<1>(fc, cc);
+      if constexpr (D == 3) base[2][j] = stencil_base<2>(fc, cc);
+      cell[j] = grid.index(fc);
+    }
     // Grain by grain: the interpolated gradient and flux, the cell's values.
     for (std::int64_t j = 0; j < n; ++j) {
       const std::int64_t i = begin + j;
-      Stencil st;
-      for (int k = 0; k < D; ++k) {
-        st.face_cell[k] = face_cell[k][j];
-        st.face_frac[k] = face_frac[k][j];
-        st.centre_cell[k] = centre_cell[k][j];
-        st.centre_frac[k] = centre_frac[k][j];
-      }
-      const std::size_t c = grid.index(st.face_cell);
-      std::array<double, D> g{};
-      std::array<double, D> q{};
-      interpolate(st, g, q);
-      const CellDrag& cd = cell_drag_[c];
-      for (int k = 0; k < D; ++k) {
-        grad[k][j] = g[k];
-        slip[k][j] = cd.solid_velocity[k] + q[k] * cd.inv_n - p.velocity[i][k];
-        if constexpr (!Ergun) darcy[k][j] = cd.law[k];
-      }
+      const CellDrag& cd = cell_drag_[cell[j]];
+      auto component = [&]<int A>() {
+        std::array<double, D> fr{};
+        for (int k = 0; k < D; ++k) fr[k] = k == A ? face_frac[k][j] : centre_frac[k][j];
+        const auto v = interpolate_component<A>(base[A][j], fr);
+        grad[A][j] = v[0];
+        slip[A][j] = cd.solid_velocity[A] + v[1] * cd.inv_n - p.velocity[i][A];
+        if constexpr (!Ergun) darcy[A][j] = cd.law[A];
+      };
+      component.template operator()<0>();
+      component.template operator()<1>();
+      if constexpr (D == 3) component.template operator()<2>();
       if constexpr (Ergun) {
         viscous[j] = cd.law[0];
         inertial[j] = cd.law[1];
