@@ -38,7 +38,7 @@ Eigen::VectorXd conductance_sums(const GridOperator& a) {
 
 }  // namespace
 
-void GridMultigrid::build_levels(const GridOperator& a) {
+void GridMultigrid::shape_levels(const GridOperator& a) const {
   levels_.clear();
   Level finest;
   finest.dims = dims_of(a);
@@ -80,10 +80,13 @@ void GridMultigrid::build_levels(const GridOperator& a) {
   }
 }
 
-GridMultigrid& GridMultigrid::factorize(const GridOperator& a) {
+void GridMultigrid::build() const {
+  if (built_) return;
+  if (matrix_ == nullptr) throw std::logic_error("GridMultigrid used before factorize");
+  const GridOperator& a = *matrix_;
   // The levels' shapes depend on the grid only; their values on the matrix.
   if (levels_.empty() || levels_[0].op.stride != a.stride || levels_[0].op.rows() != a.rows()) {
-    build_levels(a);
+    shape_levels(a);
   }
   levels_[0].op.diagonal = a.diagonal;
   levels_[0].op.upper = a.upper;
@@ -134,7 +137,7 @@ GridMultigrid& GridMultigrid::factorize(const GridOperator& a) {
   if (coarsest_.info() != Eigen::Success) {
     throw std::runtime_error("pore pressure: the multigrid's coarsest level is not positive definite");
   }
-  return *this;
+  built_ = true;
 }
 
 void GridMultigrid::cycle(std::size_t l) const {
@@ -169,7 +172,7 @@ void GridMultigrid::cycle(std::size_t l) const {
 }
 
 Eigen::VectorXd GridMultigrid::solve(const Eigen::VectorXd& r) const {
-  if (levels_.empty()) throw std::logic_error("GridMultigrid::solve before factorize");
+  build();
   levels_[0].b = r;
   cycle(0);
   return levels_[0].x;

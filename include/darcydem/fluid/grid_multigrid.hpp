@@ -38,19 +38,32 @@ class GridMultigrid {
 
   /// The Eigen preconditioner interface (IterativeSolverBase calls these).
   GridMultigrid& analyzePattern(const GridOperator& /*a*/) { return *this; }
-  /// Builds the coarse levels from the operator's values (every solve with
-  /// a new matrix: the conductances change with the porosity).
-  GridMultigrid& factorize(const GridOperator& a);
+  /// Takes the operator (which must outlive the solves); the coarse levels
+  /// are built from its values at the first solve() after this, so that a
+  /// CG solve whose initial guess already meets the tolerance costs nothing
+  /// here. Called for every matrix: the conductances change with the
+  /// porosity.
+  GridMultigrid& factorize(const GridOperator& a) {
+    matrix_ = &a;
+    built_ = false;
+    return *this;
+  }
   GridMultigrid& compute(const GridOperator& a) { return factorize(a); }
   [[nodiscard]] Eigen::ComputationInfo info() const { return Eigen::Success; }
 
   /// One V-cycle for A z = r from z = 0.
   [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& r) const;
 
-  /// Number of levels, the finest included (after factorize).
-  [[nodiscard]] std::size_t levels() const { return levels_.size(); }
+  /// Number of levels, the finest included.
+  [[nodiscard]] std::size_t levels() const {
+    build();
+    return levels_.size();
+  }
   /// The operator of level l (0: the matrix itself).
-  [[nodiscard]] const GridOperator& level(std::size_t l) const { return levels_[l].op; }
+  [[nodiscard]] const GridOperator& level(std::size_t l) const {
+    build();
+    return levels_[l].op;
+  }
 
  private:
   struct Level {
@@ -61,11 +74,17 @@ class GridMultigrid {
     // Work space of the cycle.
     mutable Eigen::VectorXd x, b, r;
   };
-  void build_levels(const GridOperator& a);
+  /// The levels' values from the matrix, if not built since factorize().
+  void build() const;
+  /// The levels' shapes (once per grid).
+  void shape_levels(const GridOperator& a) const;
   void cycle(std::size_t l) const;
   std::size_t coarsest_cells_;
-  std::vector<Level> levels_;
-  Eigen::LLT<Eigen::MatrixXd> coarsest_;
+  const GridOperator* matrix_ = nullptr;
+  // Built lazily by the const solve(): a cache of the matrix's hierarchy.
+  mutable bool built_ = false;
+  mutable std::vector<Level> levels_;
+  mutable Eigen::LLT<Eigen::MatrixXd> coarsest_;
 };
 
 }  // namespace darcydem
