@@ -216,6 +216,8 @@ BENCHMARK(BM_DemStep)
 BENCHMARK(BM_CoupledStep)
     ->ArgsProduct({{1'000, 10'000, 100'000}, {0, 1, 2}, {1}})
     ->Args({10'000, 1, 2})
+    ->Args({100'000, 1, 2})
+    ->Args({100'000, 2, 2})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0)
     ->UseRealTime();
