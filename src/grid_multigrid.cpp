@@ -40,16 +40,18 @@ Eigen::VectorXd conductance_sums(const GridOperator& a) {
 
 void GridMultigrid::shape_levels(const GridOperator& a) const {
   levels_.clear();
-  Level finest;
+  shaped_stride_ = a.stride;
+  shaped_rows_ = a.rows();
+  Level finest;  // its operator is the matrix itself (op(0))
   finest.dims = dims_of(a);
-  finest.op.resize(static_cast<std::size_t>(a.rows()), a.stride);
   levels_.push_back(std::move(finest));
+  auto n = static_cast<std::size_t>(a.rows());
   while (true) {
     Level& fine = levels_.back();
-    const auto n = static_cast<std::size_t>(fine.op.rows());
-    fine.x.resize(fine.op.rows());
-    fine.b.resize(fine.op.rows());
-    fine.r.resize(fine.op.rows());
+    const auto rows = static_cast<Eigen::Index>(n);
+    fine.x.resize(rows);
+    fine.b.resize(rows);
+    fine.r.resize(rows);
     bool coarsens = false;
     for (int d : fine.dims) coarsens = coarsens || d > 1;
     if (n <= coarsest_cells_ || !coarsens) break;
@@ -77,6 +79,7 @@ void GridMultigrid::shape_levels(const GridOperator& a) const {
       fine.parent[c] = static_cast<int>(p);
     }
     levels_.push_back(std::move(coarse));
+    n = cn;
   }
 }
 
@@ -85,29 +88,26 @@ void GridMultigrid::build() const {
   if (matrix_ == nullptr) throw std::logic_error("GridMultigrid used before factorize");
   const GridOperator& a = *matrix_;
   // The levels' shapes depend on the grid only; their values on the matrix.
-  if (levels_.empty() || levels_[0].op.stride != a.stride || levels_[0].op.rows() != a.rows()) {
-    shape_levels(a);
-  }
-  levels_[0].op.diagonal = a.diagonal;
-  levels_[0].op.upper = a.upper;
+  if (levels_.empty() || shaped_stride_ != a.stride || shaped_rows_ != a.rows()) shape_levels(a);
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l) {
     const Level& fine = levels_[l];
+    const GridOperator& fine_op = op(l);
     Level& coarse = levels_[l + 1];
-    const auto n = static_cast<std::size_t>(fine.op.rows());
+    const auto n = static_cast<std::size_t>(fine_op.rows());
     // P^T A P: the conductances across the aggregates' boundaries summed
     // (scaled, see the header); what each fine diagonal holds besides its
     // conductances summed.
-    const Eigen::VectorXd fine_sums = conductance_sums(fine.op);
+    const Eigen::VectorXd fine_sums = conductance_sums(fine_op);
     Eigen::VectorXd held = Eigen::VectorXd::Zero(coarse.op.rows());
     for (std::size_t c = 0; c < n; ++c) {
       const auto ci = static_cast<Eigen::Index>(c);
-      held[fine.parent[c]] += fine.op.diagonal[ci] - fine_sums[ci];
+      held[fine.parent[c]] += fine_op.diagonal[ci] - fine_sums[ci];
     }
     for (std::size_t k = 0; k < fine.dims.size(); ++k) {
       Eigen::VectorXd& up = coarse.op.upper[k];
       up.setZero();
-      const std::size_t s = fine.op.stride[k];
-      const double* t = fine.op.upper[k].data();
+      const std::size_t s = fine_op.stride[k];
+      const double* t = fine_op.upper[k].data();
       // t is zero on the fine grid's last layer along k, where c + s is not
       // c's neighbour.
       for (std::size_t c = 0; c + s < n; ++c) {
@@ -120,16 +120,16 @@ void GridMultigrid::build() const {
       throw std::runtime_error("pore pressure: a multigrid level is not positive definite");
     }
   }
-  for (Level& lv : levels_) lv.inv_diagonal = lv.op.diagonal.cwiseInverse();
+  for (std::size_t l = 0; l < levels_.size(); ++l) levels_[l].inv_diagonal = op(l).diagonal.cwiseInverse();
   // The coarsest level, dense.
-  const Level& last = levels_.back();
-  const auto m = last.op.rows();
+  const GridOperator& last = op(levels_.size() - 1);
+  const auto m = last.rows();
   Eigen::MatrixXd dense(m, m);
   Eigen::VectorXd unit = Eigen::VectorXd::Zero(m);
   Eigen::VectorXd column(m);
   for (Eigen::Index j = 0; j < m; ++j) {
     unit[j] = 1.0;
-    product(last.op, unit, column);
+    product(last, unit, column);
     dense.col(j) = column;
     unit[j] = 0.0;
   }
@@ -152,7 +152,7 @@ void GridMultigrid::cycle(std::size_t l) const {
     const double* b = lv.b.data();
     const double* inv = lv.inv_diagonal.data();
     double* out = lv.r.data();
-    lv.op.apply(lv.x,
+    op(l).apply(lv.x,
                 [&](Eigen::Index c, double ax) { out[c] = x[c] + jacobi_weight * inv[c] * (b[c] - ax); });
     lv.x.swap(lv.r);
   };
@@ -160,7 +160,7 @@ void GridMultigrid::cycle(std::size_t l) const {
   lv.x = jacobi_weight * lv.inv_diagonal.cwiseProduct(lv.b);
   sweep();
   // The residual, summed over each aggregate, is the coarse right-hand side.
-  lv.op.residual(lv.b, lv.x, lv.r);
+  op(l).residual(lv.b, lv.x, lv.r);
   const Level& coarse = levels_[l + 1];
   coarse.b.setZero();
   const auto n = lv.x.size();

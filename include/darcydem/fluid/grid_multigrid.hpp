@@ -62,12 +62,12 @@ class GridMultigrid {
   /// The operator of level l (0: the matrix itself).
   [[nodiscard]] const GridOperator& level(std::size_t l) const {
     build();
-    return levels_[l].op;
+    return op(l);
   }
 
  private:
   struct Level {
-    GridOperator op;
+    GridOperator op;  ///< unused on level 0: the matrix itself
     std::vector<int> dims;
     Eigen::VectorXd inv_diagonal;
     std::vector<int> parent;  ///< each cell's coarse cell (empty on the coarsest level)
@@ -79,11 +79,15 @@ class GridMultigrid {
   /// The levels' shapes (once per grid).
   void shape_levels(const GridOperator& a) const;
   void cycle(std::size_t l) const;
+  /// The operator of level l, the matrix itself on level 0.
+  [[nodiscard]] const GridOperator& op(std::size_t l) const { return l == 0 ? *matrix_ : levels_[l].op; }
   std::size_t coarsest_cells_;
   const GridOperator* matrix_ = nullptr;
   // Built lazily by the const solve(): a cache of the matrix's hierarchy.
   mutable bool built_ = false;
   mutable std::vector<Level> levels_;
+  mutable std::vector<std::size_t> shaped_stride_;  ///< the grid the levels were shaped for
+  mutable Eigen::Index shaped_rows_ = 0;
   mutable Eigen::LLT<Eigen::MatrixXd> coarsest_;
 };
 
