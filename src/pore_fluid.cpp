@@ -1,5 +1,7 @@
 #include "darcydem/fluid/pore_fluid.hpp"
 
+#include <fmt/format.h>
+
 #include "darcydem/core/parallel.hpp"
 #include "darcydem/core/vector_math.hpp"
 
@@ -42,6 +44,18 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles) {
   compute_face_fields(0.0);
   solution_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
   initialized_ = true;
+}
+
+template <int D>
+void PoreFluid<D>::set_pressure(const std::vector<double>& u) {
+  if (!initialized_) throw std::logic_error("PoreFluid::set_pressure before initialize");
+  if (u.size() != grid.size()) {
+    throw std::invalid_argument(
+        fmt::format("pore pressure: {} values given for a grid of {} cells", u.size(), grid.size()));
+  }
+  pressure_ = u;
+  pressure_old_ = u;
+  compute_face_fields(time_);
 }
 
 template <int D>

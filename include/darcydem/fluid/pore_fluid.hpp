@@ -74,6 +74,11 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Solid volumes, porosity and permeability from the particles; pressure
   /// zero. Call once before the first update.
   void initialize(const ParticleData<D>& particles);
+  /// Sets the excess pressure of every cell (Pa), e.g. an initial field
+  /// or a restart, after initialize(); gradients and fluxes follow, and the
+  /// next update starts from it. Throws std::invalid_argument if the size
+  /// is not the number of cells.
+  void set_pressure(const std::vector<double>& u);
   /// One fluid step of length dt ending at `time`.
   void update(const ParticleData<D>& particles, double dt, double time);
 
@@ -176,8 +181,8 @@ class PoreFluid final : public ParticleForceField<D> {
   }
   /// (grad u, Darcy flux) of component A, multilinear between the 2^D
   /// faces of axis A from `base` (stencil_base) with fractions fr along
-  /// each axis, as two-lane vectors (GCC/Clang vector extension): one load
-  /// and one multiply-add per lerp for both.
+  /// each axis, the pair as one vector (GCC/Clang vector extension): one
+  /// load and one multiply-add per lerp for both.
   template <int A>
   [[nodiscard]] std::array<double, 2> interpolate_component(std::size_t base,
                                                             const std::array<double, D>& fr) const {
@@ -190,14 +195,30 @@ class PoreFluid final : public ParticleForceField<D> {
     };
     auto lerp = [](Pair lo, Pair hi, double t) -> Pair { return lo + t * (hi - lo); };
     const auto& step = corner_step_[A];
+    const std::size_t s0 = step[0];
+    const std::size_t s1 = step[1];
+    if (s0 == 1) {
+      // The two corners along x are side by side in memory (always, unless
+      // the grid is one cell wide along x): one 4-lane load holds
+      // (grad, flux) of both, the lerps along y (and z) act on both at
+      // once, and the one along x comes last.
+      auto load_both = [&](std::size_t at) {
+        Lanes p;
+        std::memcpy(&p, g[at].data(), sizeof p);
+        return p;
+      };
+      auto lerp4 = [](Lanes lo, Lanes hi, double t) -> Lanes { return lo + t * (hi - lo); };
+      Lanes z = lerp4(load_both(0), load_both(s1), fr[1]);
+      if constexpr (D == 3) {
+        const std::size_t s2 = step[2];
+        z = lerp4(z, lerp4(load_both(s2), load_both(s2 + s1), fr[1]), fr[2]);
+      }
+      return {z[0] + fr[0] * (z[2] - z[0]), z[1] + fr[0] * (z[3] - z[1])};
+    }
     Pair v{};
     if constexpr (D == 2) {
-      const std::size_t s0 = step[0];
-      const std::size_t s1 = step[1];
       v = lerp(lerp(load(0), load(s0), fr[0]), lerp(load(s1), load(s1 + s0), fr[0]), fr[1]);
     } else {
-      const std::size_t s0 = step[0];
-      const std::size_t s1 = step[1];
       const std::size_t s2 = step[2];
       const Pair v00 = lerp(load(0), load(s0), fr[0]);
       const Pair v10 = lerp(load(s1), load(s1 + s0), fr[0]);
