@@ -26,19 +26,26 @@ namespace {
 
 /// Conjugate gradients warm-started from x (Eigen's solver on a stored
 /// matrix or on the grid's stencil); throws if they do not converge.
+/// Returns the number of iterations done (matrix products after the
+/// initial residual). Eigen's iterations() is one less when CG converges
+/// inside its loop (it stops before counting the last iteration), and 0
+/// both then and when the start already meets the tolerance; the start
+/// is left unchanged only in the second case.
 template <class Cg, class Operator>
 int run_cg(Cg& cg, const Operator& a, double tolerance, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   cg.setTolerance(tolerance);
   cg.setMaxIterations(std::max<Eigen::Index>(1000, 10 * a.rows()));
   cg.compute(a);
-  x = cg.solveWithGuess(b, x);
+  const Eigen::VectorXd start = x;
+  x = cg.solveWithGuess(b, start);
   if (cg.info() != Eigen::Success) {
     throw std::runtime_error(
         fmt::format("pore pressure: conjugate gradients did not converge in {} iterations "
                     "(error {:.3g}, tolerance {:.3g})",
                     cg.iterations(), cg.error(), tolerance));
   }
-  return static_cast<int>(cg.iterations());
+  const bool moved = b.squaredNorm() > 0.0 && x != start;
+  return moved ? static_cast<int>(cg.iterations()) + 1 : 0;
 }
 
 /// |A x - b| / |b| (|A x| for b = 0).

@@ -162,6 +162,18 @@ TEST(GridMultigrid, IterationsBarelyGrowWhenTheGridIsRefined) {
   EXPECT_LT(mg_fine, jacobi_fine / 4);
 }
 
+TEST(GridMultigrid, IterationsAreCountedAsDone) {
+  // On 60 cells the multigrid is one dense Cholesky solve, an exact
+  // preconditioner: CG converges in exactly one iteration (Eigen's own
+  // count says 0 then). From the solution itself, no iteration.
+  const GridOperator op = make_grid({5, 4, 3}, 0.1, 10.0, 0.5, 3);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(op.rows(), 1.0, 2.0);
+  PressureSolver solver(PressureSolverKind::cg, 1e-10, CgPreconditioner::multigrid);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  EXPECT_EQ(solver.solve(op, b, x).iterations, 1);
+  EXPECT_EQ(solver.solve(op, b, x).iterations, 0);
+}
+
 TEST(GridMultigrid, AutomaticChoiceFollowsTheGridSize) {
   const PressureSolver solver(PressureSolverKind::cg, 1e-10);
   EXPECT_EQ(solver.preconditioner_for(PressureSolver::multigrid_cells), CgPreconditioner::jacobi);
