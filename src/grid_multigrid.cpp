@@ -17,12 +17,6 @@ std::vector<int> dims_of(const GridOperator& a) {
   return dims;
 }
 
-/// y = A x.
-void product(const GridOperator& a, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-  y.setZero(x.size());
-  a.add_product(x, 1.0, y);
-}
-
 /// Per cell, the sum of its conductances to its neighbours.
 Eigen::VectorXd conductance_sums(const GridOperator& a) {
   Eigen::VectorXd sums = Eigen::VectorXd::Zero(a.rows());
@@ -129,7 +123,7 @@ void GridMultigrid::build() const {
   Eigen::VectorXd column(m);
   for (Eigen::Index j = 0; j < m; ++j) {
     unit[j] = 1.0;
-    product(last, unit, column);
+    column = last * unit;
     dense.col(j) = column;
     unit[j] = 0.0;
   }

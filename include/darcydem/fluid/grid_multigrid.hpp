@@ -11,10 +11,12 @@
 // conductance between two coarse cells is the sum of the fine conductances
 // across their common boundary, and what a fine cell holds on its diagonal
 // besides its conductances (storage, drained boundaries) is summed. The
-// coarse conductances are then scaled by 1/2, so that they are those of
-// the coarse grid itself (a face twice as far and, summed, 2^(D-1) times as
-// wide): plain P^T A P is twice too stiff per level for a Laplacian, which
-// would slow the convergence as levels are added.
+// coarse conductances are then scaled by `coarse_scale` = 0.6: plain
+// P^T A P is about twice too stiff per level for a Laplacian (the coarse
+// grid's own conductances, a face twice as far and, summed, 2^(D-1) times
+// as wide, would be half of it), which slows the convergence as levels are
+// added; 0.6 took the fewest iterations on the benchmark's grid
+// (docs/PERFORMANCE.md).
 // Smoothing: two weighted Jacobi sweeps before and two after the coarse
 // correction (the same on the way down and up, so that the cycle is a
 // symmetric operator, as conjugate gradients needs); on the coarsest grid

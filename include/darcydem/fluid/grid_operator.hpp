@@ -5,8 +5,8 @@
 // c and its upper neighbour c + stride_k (zero where c is on the grid's last
 // layer along k):
 //   (A x)_c = diag_c x_c - sum_k (upper_k[c] x_{c+s_k} + upper_k[c-s_k] x_{c-s_k}).
-// A x is then a few whole-vector operations (vectorised), where a stored
-// sparse matrix reads an index and a value per entry.
+// A x is then one vectorised pass over the coefficients (apply), where a
+// stored sparse matrix reads an index and a value per entry.
 #include <algorithm>
 #include <array>
 #include <cstddef>

@@ -289,7 +289,6 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<double> blend_atan_, n_power_;  ///< per cell, for the Ergun/Wen-Yu coefficients
   std::vector<double> ones_;                  ///< x = 1 for atan(y) as atan2(y, 1)
   std::vector<double> face_lambda_;           ///< kappa/mu of each interior face (faces_ order), m^2/(Pa s)
-  std::array<std::vector<double>, D> grad_, flux_;
   std::array<std::vector<std::array<double, 2>>, D>
       face_gq_;  ///< (grad, flux) side by side: one load per corner
   Vec<D> inv_spacing_ = Vec<D>::Ones();
