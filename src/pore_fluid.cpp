@@ -13,6 +13,34 @@
 #include <stdexcept>
 
 namespace darcydem {
+namespace {
+
+/// body(a, len, face) over the interior faces normal to `axis`, in pieces
+/// of its runs (FluidGrid::face_run) of at most 4096 faces: the cells
+/// [a, a + len) below the faces [face, face + len). Pieces run in parallel
+/// on a large grid, so the body may write only what belongs to its own
+/// faces.
+template <int D, class F>
+void for_each_face_piece(const FluidGrid<D>& grid, int axis, F&& body) {
+  constexpr std::size_t piece = 4096;
+  const std::size_t runs = grid.face_runs(axis);
+  const std::size_t per_run = (grid.face_run(axis, 0).count + piece - 1) / piece;
+  const auto pieces = static_cast<std::int64_t>(runs * per_run);
+  auto one = [&](std::int64_t i) {
+    const auto u = static_cast<std::size_t>(i);
+    const auto run = grid.face_run(axis, u / per_run);
+    const std::size_t begin = u % per_run * piece;
+    body(run.cell + begin, std::min(piece, run.count - begin), run.face + begin);
+  };
+  if (static_cast<std::int64_t>(grid.size()) > parallel_threshold) {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < pieces; ++i) one(i);
+  } else {
+    for (std::int64_t i = 0; i < pieces; ++i) one(i);
+  }
+}
+
+}  // namespace
 
 template <int D>
 PoreFluid<D>::PoreFluid(PressureSolverKind solver, double tolerance, CgPreconditioner preconditioner)
@@ -202,13 +230,19 @@ void PoreFluid<D>::compute_cell_properties() {
   }
   // Darcy conductance kappa/mu of each interior face: the harmonic mean of
   // its two cells'.
-  face_lambda_.resize(faces_.size());
-  for_each_index(static_cast<std::int64_t>(faces_.size()), [&](std::int64_t k) {
-    const Face& f = faces_[static_cast<std::size_t>(k)];
-    const double ka = kappa_[f.a][f.axis];
-    const double kb = kappa_[f.b][f.axis];
-    face_lambda_[static_cast<std::size_t>(k)] = 2.0 * ka * kb / ((ka + kb) * fluid.viscosity);
-  });
+  for (int k = 0; k < D; ++k) {
+    face_lambda_[k].resize(n, 0.0);
+    double* lambda = face_lambda_[k].data();
+    const std::size_t s = grid.stride(k);
+    const double inv_mu = 1.0 / fluid.viscosity;
+    for_each_face_piece(grid, k, [&](std::size_t a0, std::size_t len, std::size_t) {
+      for (std::size_t a = a0; a < a0 + len; ++a) {
+        const double ka = kappa_[a][k];
+        const double kb = kappa_[a + s][k];
+        lambda[a] = 2.0 * ka * kb / (ka + kb) * inv_mu;
+      }
+    });
+  }
 }
 
 template <int D>
@@ -225,8 +259,7 @@ void PoreFluid<D>::build_pattern() {
         auto up = cc;
         ++up[k];
         const auto b = grid.index(up);
-        faces_.push_back(
-            {static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(b), k, grid.face_index(k, up), 0, 0});
+        faces_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(b), k, 0, 0});
         triplets.emplace_back(static_cast<int>(c), static_cast<int>(b), 1.0);
         triplets.emplace_back(static_cast<int>(b), static_cast<int>(c), 1.0);
       }
@@ -298,26 +331,39 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     solid_moved += std::abs(d_solid);
     rhs_[static_cast<Eigen::Index>(c)] = storage * pressure_[c] + d_solid;
   }
-  // Darcy conductances and the fluid carried by the moving skeleton.
-  for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
-    const Face& f = faces_[fi];
-    const double lambda = face_lambda_[fi];
-    const double area = grid.face_area(f.axis);
-    const double t = dt * lambda * area / grid.spacing[f.axis];
-    diagonal[f.a] += t;
-    diagonal[f.b] += t;
-    operator_.upper[static_cast<std::size_t>(f.axis)][f.a] = t;
-    if (!carry_with_solid) continue;
-    // Pore fluid carried across the face by the skeleton: the skeleton's
-    // volume flux (mean solid velocity of the two cells, weighted by their
-    // solid volumes, times the area) minus the solid that crosses the face
-    // (the grains' exact sections times their velocities). The Biot term
-    // accounts for the solid; this for the fluid that moves with it.
-    const double vs = solid_[f.a] + solid_[f.b];
-    const double v_mix = vs > 0.0 ? (solid_flux_[f.a][f.axis] + solid_flux_[f.b][f.axis]) / vs : 0.0;
-    const double carried = dt * (v_mix * area - solid_face_flux_[f.axis][f.index]);
-    rhs_[f.a] -= carried;
-    rhs_[f.b] += carried;
+  // Darcy conductances and the fluid carried by the moving skeleton, axis
+  // by axis over the runs of interior faces (FluidGrid::face_run): the
+  // face between cell a and a + s is upper[k][a].
+  for (int k = 0; k < D; ++k) {
+    const std::size_t s = grid.stride(k);
+    const double area = grid.face_area(k);
+    const double coefficient = dt * area / grid.spacing[k];
+    const double* lambda = face_lambda_[k].data();
+    double* upper = operator_.upper[static_cast<std::size_t>(k)].data();
+    double* diag = diagonal.data();
+    double* rhs = rhs_.data();
+    for (std::size_t r = 0; r < grid.face_runs(k); ++r) {
+      const auto run = grid.face_run(k, r);
+      const std::size_t end = run.cell + run.count;
+      for (std::size_t a = run.cell; a < end; ++a) upper[a] = coefficient * lambda[a];
+      for (std::size_t a = run.cell; a < end; ++a) diag[a] += upper[a];
+      for (std::size_t a = run.cell; a < end; ++a) diag[a + s] += upper[a];
+      if (!carry_with_solid) continue;
+      // Pore fluid carried across the face by the skeleton: the
+      // skeleton's volume flux (mean solid velocity of the two cells,
+      // weighted by their solid volumes, times the area) minus the solid
+      // that crosses the face (the grains' exact sections times their
+      // velocities). The Biot term accounts for the solid; this for the
+      // fluid that moves with it.
+      const double* section_flux = solid_face_flux_[k].data() + (run.face - run.cell);
+      for (std::size_t a = run.cell; a < end; ++a) {
+        const double vs = solid_[a] + solid_[a + s];
+        const double v_mix = vs > 0.0 ? (solid_flux_[a][k] + solid_flux_[a + s][k]) / vs : 0.0;
+        const double carried = dt * (v_mix * area - section_flux[a]);
+        rhs[a] -= carried;
+        rhs[a + s] += carried;
+      }
+    }
   }
   // Boundaries.
   for (const auto& bf : boundary_faces_) {
@@ -383,12 +429,19 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
 
 template <int D>
 void PoreFluid<D>::compute_face_fields(double time) {
-  for_each_index(static_cast<std::int64_t>(faces_.size()), [&](std::int64_t k) {
-    const std::size_t fi = static_cast<std::size_t>(k);
-    const Face& f = faces_[fi];
-    const double g = (pressure_[f.b] - pressure_[f.a]) * inv_spacing_[f.axis];
-    face_gq_[f.axis][f.index] = {g, -face_lambda_[fi] * g};
-  });
+  for (int k = 0; k < D; ++k) {
+    const std::size_t s = grid.stride(k);
+    const double inv_h = inv_spacing_[k];
+    const double* lambda = face_lambda_[k].data();
+    std::array<double, 2>* gq = face_gq_[k].data();
+    for_each_face_piece(grid, k, [&](std::size_t a0, std::size_t len, std::size_t f0) {
+      for (std::size_t j = 0; j < len; ++j) {
+        const std::size_t a = a0 + j;
+        const double g = (pressure_[a + s] - pressure_[a]) * inv_h;
+        gq[f0 + j] = {g, -lambda[a] * g};
+      }
+    });
+  }
   side_inflow_.fill(0.0);
   for (const auto& bf : boundary_faces_) {
     const FluidBoundary& side = sides[bf.side];

@@ -80,6 +80,30 @@ struct FluidGrid {
     }
     return i;
   }
+  /// Index step between neighbouring cells along `axis`.
+  [[nodiscard]] std::size_t stride(int axis) const {
+    std::size_t s = 1;
+    for (int k = 0; k < axis; ++k) s *= static_cast<std::size_t>(cells[k]);
+    return s;
+  }
+  /// A run of interior faces normal to an axis, side by side in memory: the
+  /// cells a in [cell, cell + count), each below the face between a and its
+  /// neighbour a + stride(axis), which is at face + (a - cell) in the face
+  /// arrays of the axis (face_index).
+  struct FaceRun {
+    std::size_t cell = 0, count = 0, face = 0;
+  };
+  /// Number of runs of the interior faces normal to `axis`: one per line
+  /// (axis 0) or layer of cells along it.
+  [[nodiscard]] std::size_t face_runs(int axis) const {
+    return size() / (stride(axis) * static_cast<std::size_t>(cells[axis]));
+  }
+  /// The r-th run of interior faces normal to `axis`.
+  [[nodiscard]] FaceRun face_run(int axis, std::size_t r) const {
+    const std::size_t inner = stride(axis);
+    const auto m = static_cast<std::size_t>(cells[axis]);
+    return {r * inner * m, inner * (m - 1), r * inner * (m + 1) + inner};
+  }
 };
 
 /// The 2D faces of the grid's box: x_min, x_max, y_min, y_max, z_min, z_max.

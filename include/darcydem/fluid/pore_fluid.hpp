@@ -242,10 +242,11 @@ class PoreFluid final : public ParticleForceField<D> {
     return std::max(porosity_[c], 1e-3) * grid.cell_volume() / fluid.bulk_modulus;
   }
 
+  /// An interior face in the stored matrix (Cholesky solver only; the hot
+  /// loops go over FluidGrid::face_run).
   struct Face {
     std::uint32_t a, b;  ///< cells below and above along `axis`
     int axis;
-    std::size_t index;           ///< in the face arrays of `axis`
     std::size_t pos_ab, pos_ba;  ///< positions in the matrix values
   };
   struct BoundaryFace {
@@ -288,7 +289,9 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<CellDrag> cell_drag_;
   std::vector<double> blend_atan_, n_power_;  ///< per cell, for the Ergun/Wen-Yu coefficients
   std::vector<double> ones_;                  ///< x = 1 for atan(y) as atan2(y, 1)
-  std::vector<double> face_lambda_;           ///< kappa/mu of each interior face (faces_ order), m^2/(Pa s)
+  /// kappa/mu of each interior face, m^2/(Pa s): [axis][a] for the face
+  /// between cell a and a + stride(axis) (as GridOperator::upper).
+  std::array<std::vector<double>, D> face_lambda_;
   std::array<std::vector<std::array<double, 2>>, D>
       face_gq_;  ///< (grad, flux) side by side: one load per corner
   Vec<D> inv_spacing_ = Vec<D>::Ones();
