@@ -190,7 +190,8 @@ void PoreFluid<D>::compute_cell_properties() {
     for (std::size_t c = begin; c < end; ++c) {
       porosity_[c] = 1.0 - solid_[c] / volume;
       porosity_used_[c] = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
-      solid_velocity_[c] = solid_[c] > 1e-12 * volume ? Vec<D>(solid_flux_[c] / solid_[c]) : Vec<D>::Zero();
+      const double inv_solid = solid_[c] > 1e-12 * volume ? 1.0 / solid_[c] : 0.0;
+      solid_velocity_[c] = solid_flux_[c] * inv_solid;
       if (update_kappa) {
         if (permeability.model == PermeabilityModel::constant) {
           kappa_[c] = permeability.intrinsic;
@@ -214,10 +215,12 @@ void PoreFluid<D>::compute_cell_properties() {
       cd.inv_n = 1.0 / nu;
       if (ergun) {
         const ErgunWenYu e = ErgunWenYu::with(nu, blend_atan_[c], n_power_[c], fluid);
-        cd.law = {e.phi * e.ergun_viscous / (1.0 - nu), e.phi * e.ergun_inertial / (1.0 - nu),
-                  (1.0 - e.phi) * e.wen_yu / (1.0 - nu), fluid.density * nu / fluid.viscosity};
+        const double per_solid = 1.0 / (1.0 - nu);
+        cd.law = {e.phi * e.ergun_viscous * per_solid, e.phi * e.ergun_inertial * per_solid,
+                  (1.0 - e.phi) * e.wen_yu * per_solid, fluid.density * nu / fluid.viscosity};
       } else {
-        for (int k = 0; k < D; ++k) cd.law[k] = nu * nu * fluid.viscosity / kappa_[c][k] / (1.0 - nu);
+        const double per_solid = nu * nu * fluid.viscosity / (1.0 - nu);
+        for (int k = 0; k < D; ++k) cd.law[k] = per_solid / kappa_[c][k];
       }
     }
   };
