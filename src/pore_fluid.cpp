@@ -627,11 +627,11 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
       }
     }
     if constexpr (Ergun) {
-      // Re = 0 (no slip, as in fluid at rest) would take the vector pow's
-      // slow path; the smallest normal double gives the same C_d Re (24).
+      // Re = 0 (no slip, as in fluid at rest) has no finite logarithm;
+      // the smallest normal double gives the same C_d Re (24).
 #pragma omp simd
       for (std::int64_t j = 0; j < n; ++j) re_pow[j] = lane_max(re[j], std::numeric_limits<double>::min());
-      pow_batch(re_pow.data(), 0.687, re_pow.data(), static_cast<std::size_t>(n));
+      power_law_batch(re_pow.data(), 0.687, re_pow.data(), static_cast<std::size_t>(n));
     }
     // -V_p (grad u + rho_f g) + drag; zero for grains outside the grid.
     for (int k = 0; k < D; ++k) {

@@ -9,6 +9,8 @@
 // AVX2, N4 = four lanes, not masked, two vector arguments).
 extern "C" __m256d _ZGVdN4vv_atan2(__m256d y, __m256d x);
 extern "C" __m256d _ZGVdN4vv_pow(__m256d x, __m256d y);
+extern "C" __m256d _ZGVdN4v_exp(__m256d x);
+extern "C" __m256d _ZGVdN4v_log(__m256d x);
 #endif
 
 namespace darcydem {
@@ -51,6 +53,16 @@ void pow_batch(const double* x, double e, double* out, std::size_t n) {
   apply_4([exponent](__m256d a, __m256d) { return _ZGVdN4vv_pow(a, exponent); }, x, x, out, n);
 #else
   for (std::size_t i = 0; i < n; ++i) out[i] = std::pow(x[i], e);
+#endif
+}
+
+void power_law_batch(const double* x, double e, double* out, std::size_t n) {
+#ifdef DARCYDEM_VECTOR_MATH
+  const __m256d exponent = _mm256_set1_pd(e);
+  apply_4([exponent](__m256d a, __m256d) { return _ZGVdN4v_exp(_mm256_mul_pd(exponent, _ZGVdN4v_log(a))); },
+          x, x, out, n);
+#else
+  for (std::size_t i = 0; i < n; ++i) out[i] = std::exp(e * std::log(x[i]));
 #endif
 }
 
