@@ -322,51 +322,80 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   pressure_older_.swap(pressure_old_);
   pressure_old_ = pressure_;
 
-  // Storage and Biot source, into the grid's stencil (GridOperator).
-  Eigen::VectorXd& diagonal = operator_.diagonal;
-  double solid_change = 0.0;
-  double solid_moved = 0.0;  // sum of |dVs|, for the balance's gross flow
-  for (std::size_t c = 0; c < n; ++c) {
-    const double storage = storage_of(c);
-    diagonal[static_cast<Eigen::Index>(c)] = storage;
-    const double d_solid = solid_[c] - solid_old_[c];
-    solid_change += d_solid;
-    solid_moved += std::abs(d_solid);
-    rhs_[static_cast<Eigen::Index>(c)] = storage * pressure_[c] + d_solid;
-  }
-  // Darcy conductances and the fluid carried by the moving skeleton, axis
-  // by axis over the runs of interior faces (FluidGrid::face_run): the
-  // face between cell a and a + s is upper[k][a].
+  // Darcy conductances and the fluid carried by the moving skeleton on the
+  // interior faces, axis by axis over the runs of faces
+  // (FluidGrid::face_run): the face between cell a and a + s is [k][a].
   for (int k = 0; k < D; ++k) {
     const std::size_t s = grid.stride(k);
     const double area = grid.face_area(k);
     const double coefficient = dt * area / grid.spacing[k];
     const double* lambda = face_lambda_[k].data();
     double* upper = operator_.upper[static_cast<std::size_t>(k)].data();
-    double* diag = diagonal.data();
-    double* rhs = rhs_.data();
-    for (std::size_t r = 0; r < grid.face_runs(k); ++r) {
-      const auto run = grid.face_run(k, r);
-      const std::size_t end = run.cell + run.count;
-      for (std::size_t a = run.cell; a < end; ++a) upper[a] = coefficient * lambda[a];
-      for (std::size_t a = run.cell; a < end; ++a) diag[a] += upper[a];
-      for (std::size_t a = run.cell; a < end; ++a) diag[a + s] += upper[a];
-      if (!carry_with_solid) continue;
+    carried_[k].resize(n, 0.0);
+    double* carried = carried_[k].data();
+    for_each_face_piece(grid, k, [&](std::size_t a0, std::size_t len, std::size_t f0) {
+      for (std::size_t a = a0; a < a0 + len; ++a) upper[a] = coefficient * lambda[a];
+      if (!carry_with_solid) return;
       // Pore fluid carried across the face by the skeleton: the
       // skeleton's volume flux (mean solid velocity of the two cells,
       // weighted by their solid volumes, times the area) minus the solid
       // that crosses the face (the grains' exact sections times their
       // velocities). The Biot term accounts for the solid; this for the
       // fluid that moves with it.
-      const double* section_flux = solid_face_flux_[k].data() + (run.face - run.cell);
-      for (std::size_t a = run.cell; a < end; ++a) {
+      const double* section_flux = solid_face_flux_[k].data() + f0;
+      for (std::size_t j = 0; j < len; ++j) {
+        const std::size_t a = a0 + j;
         const double vs = solid_[a] + solid_[a + s];
         const double v_mix = vs > 0.0 ? (solid_flux_[a][k] + solid_flux_[a + s][k]) / vs : 0.0;
-        const double carried = dt * (v_mix * area - section_flux[a]);
-        rhs[a] -= carried;
-        rhs[a + s] += carried;
+        carried[a] = dt * (v_mix * area - section_flux[j]);
       }
+    });
+  }
+  // Per cell, into the grid's stencil (GridOperator): the storage and the
+  // conductances of its faces on the diagonal; the stored pressure, the
+  // Biot source and what its faces carry in on the right-hand side. A
+  // cell's lower face along k is [k][c - s_k]; where c is on the grid's
+  // first layer along k that is an entry of the last layer, which stays
+  // zero.
+  Eigen::VectorXd& diagonal = operator_.diagonal;
+  const bool carry = carry_with_solid;
+  // In blocks of cells (in parallel on a large grid), each in loops the
+  // compiler vectorises: first the cell's own faces, then its lower ones.
+  constexpr std::size_t block = 4096;
+  auto cells_of_block = [&](std::int64_t b) {
+    const std::size_t begin = static_cast<std::size_t>(b) * block;
+    const std::size_t end = std::min(n, begin + block);
+    double* diag = diagonal.data();
+    double* rhs = rhs_.data();
+    for (std::size_t c = begin; c < end; ++c) {
+      const double storage = storage_of(c);
+      diag[c] = storage;
+      rhs[c] = storage * pressure_[c] + (solid_[c] - solid_old_[c]);
     }
+    for (int k = 0; k < D; ++k) {
+      const std::size_t s = grid.stride(k);
+      const double* upper = operator_.upper[static_cast<std::size_t>(k)].data();
+      const double* carried = carried_[k].data();
+      for (std::size_t c = begin; c < end; ++c) diag[c] += upper[c];
+      for (std::size_t c = std::max(begin, s); c < end; ++c) diag[c] += upper[c - s];
+      if (!carry) continue;
+      for (std::size_t c = begin; c < end; ++c) rhs[c] -= carried[c];
+      for (std::size_t c = std::max(begin, s); c < end; ++c) rhs[c] += carried[c - s];
+    }
+  };
+  const auto blocks = static_cast<std::int64_t>((n + block - 1) / block);
+  if (static_cast<std::int64_t>(n) > parallel_threshold) {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t b = 0; b < blocks; ++b) cells_of_block(b);
+  } else {
+    for (std::int64_t b = 0; b < blocks; ++b) cells_of_block(b);
+  }
+  double solid_change = 0.0;
+  double solid_moved = 0.0;  // sum of |dVs|, for the balance's gross flow
+  for (std::size_t c = 0; c < n; ++c) {
+    const double d_solid = solid_[c] - solid_old_[c];
+    solid_change += d_solid;
+    solid_moved += std::abs(d_solid);
   }
   // Boundaries.
   for (const auto& bf : boundary_faces_) {

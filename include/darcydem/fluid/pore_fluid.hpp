@@ -292,6 +292,9 @@ class PoreFluid final : public ParticleForceField<D> {
   /// kappa/mu of each interior face, m^2/(Pa s): [axis][a] for the face
   /// between cell a and a + stride(axis) (as GridOperator::upper).
   std::array<std::vector<double>, D> face_lambda_;
+  /// Pore fluid carried by the skeleton through each interior face in a
+  /// fluid step, m^3, from a to a + stride(axis): [axis][a].
+  std::array<std::vector<double>, D> carried_;
   std::array<std::vector<std::array<double, 2>>, D>
       face_gq_;  ///< (grad, flux) side by side: one load per corner
   Vec<D> inv_spacing_ = Vec<D>::Ones();
