@@ -360,6 +360,21 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, std::size_t begin,
   for (std::size_t start = begin; start < end; start += chunk) {
     const std::size_t n = std::min(end, start + chunk) - start;
     const double* radius = p.radius.data() + start;
+    // The next chunk's grains are fetched into the cache while this one is
+    // computed. After a DEM step they are mostly out of the cache, and the
+    // velocities, read grain by grain in the order of the sets, would
+    // otherwise each wait on memory.
+    if (start + chunk < end) {
+      const std::size_t next = start + chunk;
+      const std::size_t m = std::min(end, next + chunk) - next;
+      auto fetch = [](const void* data, std::size_t bytes) {
+        const char* b = static_cast<const char*>(data);
+        for (std::size_t at = 0; at < bytes; at += 64) __builtin_prefetch(b + at);
+      };
+      fetch(p.position.data() + next, m * sizeof(p.position[0]));
+      fetch(p.velocity.data() + next, m * sizeof(p.velocity[0]));
+      fetch(p.radius.data() + next, m * sizeof(double));
+    }
     for (int k = 0; k < D; ++k) {
       const double origin = grid.origin[k];
       const double h = grid.spacing[k];
