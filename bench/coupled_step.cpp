@@ -7,6 +7,12 @@
 //                                   fluid updated every DEM step (fluid step,
 //                                   overlaps, solve, forces); solver 0 = Cholesky,
 //                                   1 = CG with Jacobi, 2 = CG with multigrid
+//   BM_CoupledInterval/cells/M/threads
+//                                   the same with CG (Jacobi) and a fluid step
+//                                   every M DEM steps (`fluid.steps_per_update`;
+//                                   the grains' fluid forces still every step);
+//                                   times are per DEM step, solver_iterations
+//                                   per fluid step
 //   BM_PressureSolve/cells/solver   one fluid update alone (no DEM) on the packing
 //                                   compacted uniformly, solver as above; solve_ms
 //                                   is the linear solve's part
@@ -90,10 +96,13 @@ void BM_DemStep(benchmark::State& state) {
                          benchmark::Counter::kIsRate);
 }
 
-void BM_CoupledStep(benchmark::State& state) {
-  omp_set_num_threads(static_cast<int>(state.range(2)));
+// The coupled step, with a fluid step every `interval` DEM steps (the
+// scene's `fluid.steps_per_update`); the figures are per DEM step.
+void run_coupled(benchmark::State& state, std::int64_t cells, int solver, int threads, int interval) {
+  omp_set_num_threads(threads);
   auto sim = bench::make_packing(kGrains);
-  auto fluid = make_fluid(sim, state.range(0), static_cast<int>(state.range(1)));
+  auto fluid = make_fluid(sim, cells, solver);
+  fluid->steps_per_update = interval;
   sim.force_field = fluid.get();
   sim.prepare();
   double fluid_seconds = 0.0;
@@ -105,10 +114,11 @@ void BM_CoupledStep(benchmark::State& state) {
     const auto t0 = Clock::now();
     sim.step();
     const auto t1 = Clock::now();
-    fluid->update(sim.particles, sim.time_step, sim.time);
-    fluid_seconds += std::chrono::duration<double>(Clock::now() - t1).count();
     step_seconds += std::chrono::duration<double>(t1 - t0).count();
     force_seconds += fluid->last_force_time();
+    if (sim.steps % static_cast<std::uint64_t>(interval) != 0) continue;
+    fluid->update(sim.particles, interval * sim.time_step, sim.time);
+    fluid_seconds += std::chrono::duration<double>(Clock::now() - t1).count();
     iterations += fluid->last_solve().iterations;
     const auto& t = fluid->last_times();
     parts.overlaps += t.overlaps;
@@ -133,10 +143,18 @@ void BM_CoupledStep(benchmark::State& state) {
   state.counters["cells"] = static_cast<double>(fluid->grid.size());
   state.counters["fluid_update_ms"] = 1e3 * fluid_seconds / static_cast<double>(state.iterations());
   state.counters["solver_iterations"] =
-      static_cast<double>(iterations) / static_cast<double>(state.iterations());
+      static_cast<double>(iterations) * interval / static_cast<double>(state.iterations());
   state.counters["particle_steps_per_second"] =
       benchmark::Counter(static_cast<double>(sim.particles.size()) * static_cast<double>(state.iterations()),
                          benchmark::Counter::kIsRate);
+}
+
+void BM_CoupledStep(benchmark::State& state) {
+  run_coupled(state, state.range(0), static_cast<int>(state.range(1)), static_cast<int>(state.range(2)), 1);
+}
+
+void BM_CoupledInterval(benchmark::State& state) {
+  run_coupled(state, state.range(0), 1, static_cast<int>(state.range(2)), static_cast<int>(state.range(1)));
 }
 
 void BM_PressureSolve(benchmark::State& state) {
@@ -218,6 +236,12 @@ BENCHMARK(BM_CoupledStep)
     ->Args({10'000, 1, 2})
     ->Args({100'000, 1, 2})
     ->Args({100'000, 2, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
+BENCHMARK(BM_CoupledInterval)
+    ->ArgsProduct({{10'000}, {2, 5, 10}, {1}})
+    ->Args({10'000, 5, 2})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0)
     ->UseRealTime();
