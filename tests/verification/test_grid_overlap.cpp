@@ -213,31 +213,42 @@ ParticleData<3> jittered_lattice() {
   return p;
 }
 
+/// The 40 x 25 x 20 grid (20,000 cells) over jittered_lattice(): large
+/// enough for the fluid's parallel loops.
+void lattice_grid(FluidGrid<3>& grid) {
+  grid.origin = Vec<3>::Zero();
+  grid.spacing = Vec<3>(1.5, 1.6, 1.25);
+  grid.cells = {40, 25, 20};
+}
+
+/// f() run on `threads` OpenMP threads; the thread count is restored after.
+template <class F>
+auto on_threads(int threads, F&& f) {
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  auto result = f();
+  omp_set_num_threads(saved);
+  return result;
+}
+
 TEST(GridOverlap, SolidVolumesAreTheSameForAnyThreadCount) {
   // The solid volumes are summed in fixed blocks of grains
   // (pore_fluid.cpp), so one and two threads must give the same bits; and
   // every cell must match a plain serial sum of the overlaps up to the
   // order of the additions (1e-12 of the cell's volume).
   const ParticleData<3> p = jittered_lattice();
-  auto solid = [&](int threads) {
-    const int saved = omp_get_max_threads();
-    omp_set_num_threads(threads);
+  auto solid = [&] {
     PoreFluid<3> fluid;
-    fluid.grid.origin = Vec<3>::Zero();
-    fluid.grid.spacing = Vec<3>(1.5, 1.6, 1.25);
-    fluid.grid.cells = {40, 25, 20};
+    lattice_grid(fluid.grid);
     fluid.initialize(p);
-    omp_set_num_threads(saved);
     return std::make_pair(fluid.solid_volume(), fluid.solid_velocity());
   };
-  const auto one = solid(1);
-  const auto two = solid(2);
+  const auto one = on_threads(1, solid);
+  const auto two = on_threads(2, solid);
   EXPECT_EQ(one.first, two.first);
   EXPECT_EQ(one.second, two.second);
   PoreFluid<3> fluid;
-  fluid.grid.origin = Vec<3>::Zero();
-  fluid.grid.spacing = Vec<3>(1.5, 1.6, 1.25);
-  fluid.grid.cells = {40, 25, 20};
+  lattice_grid(fluid.grid);
   std::vector<double> serial(fluid.grid.size(), 0.0);
   fluid.for_each_overlap(p, [&](std::size_t c, std::size_t, double v) { serial[c] += v; });
   double worst = 0.0;
@@ -254,13 +265,9 @@ TEST(GridOverlap, FluidStepIsTheSameForAnyThreadCount) {
   // bits for the pressure, the balance and the grains' forces, two steps
   // after the grains moved (Biot source, carried fluid, inflow).
   ParticleData<3> p = jittered_lattice();
-  auto run = [&](int threads) {
-    const int saved = omp_get_max_threads();
-    omp_set_num_threads(threads);
+  auto run = [&] {
     PoreFluid<3> fluid;
-    fluid.grid.origin = Vec<3>::Zero();
-    fluid.grid.spacing = Vec<3>(1.5, 1.6, 1.25);
-    fluid.grid.cells = {40, 25, 20};
+    lattice_grid(fluid.grid);
     fluid.fluid = {1000.0, 1e-3, 1e5};
     fluid.drag = DragLaw::ergun;
     fluid.permeability.diameter = 0.6;
@@ -274,11 +281,10 @@ TEST(GridOverlap, FluidStepIsTheSameForAnyThreadCount) {
     }
     std::vector<Vec<3>> force(moving.size());
     fluid.particle_forces(moving, Vec<3>(0.0, 0.0, -9.81), force);
-    omp_set_num_threads(saved);
     return std::make_tuple(fluid.pressure(), fluid.total_balance().stored, force);
   };
-  const auto one = run(1);
-  const auto two = run(2);
+  const auto one = on_threads(1, run);
+  const auto two = on_threads(2, run);
   EXPECT_EQ(std::get<0>(one), std::get<0>(two));
   EXPECT_EQ(std::get<1>(one), std::get<1>(two));
   EXPECT_EQ(std::get<2>(one), std::get<2>(two));
