@@ -179,7 +179,6 @@ void PoreFluid<D>::compute_cell_properties() {
   if (ergun) {
     blend_atan_.resize(n);
     n_power_.resize(n);
-    ones_.resize(n, 1.0);
   }
   // Cells in runs, so that Ergun/Wen-Yu's atan and power are computed for a
   // run at once (core/vector_math.hpp); the runs in parallel on a large grid.
@@ -203,9 +202,9 @@ void PoreFluid<D>::compute_cell_properties() {
     if (ergun) {
       // n_power_ holds the atan's arguments until the power overwrites them.
       for (std::size_t c = begin; c < end; ++c) n_power_[c] = ErgunWenYu::blend_argument(porosity_used_[c]);
-      atan2_batch(n_power_.data() + begin, ones_.data() + begin, blend_atan_.data() + begin, end - begin);
-      pow_batch(porosity_used_.data() + begin, ErgunWenYu::wen_yu_exponent, n_power_.data() + begin,
-                end - begin);
+      atan_batch(n_power_.data() + begin, blend_atan_.data() + begin, end - begin);
+      power_law_batch(porosity_used_.data() + begin, ErgunWenYu::wen_yu_exponent, n_power_.data() + begin,
+                      end - begin);
     }
     for (std::size_t c = begin; c < end; ++c) {
       const double nu = porosity_used_[c];

@@ -8,7 +8,7 @@
 // glibc's AVX2 variant of atan2 (x86_64 vector function ABI name: 'd' =
 // AVX2, N4 = four lanes, not masked, two vector arguments).
 extern "C" __m256d _ZGVdN4vv_atan2(__m256d y, __m256d x);
-extern "C" __m256d _ZGVdN4vv_pow(__m256d x, __m256d y);
+extern "C" __m256d _ZGVdN4v_atan(__m256d x);
 extern "C" __m256d _ZGVdN4v_exp(__m256d x);
 extern "C" __m256d _ZGVdN4v_log(__m256d x);
 #endif
@@ -47,12 +47,11 @@ void atan2_batch(const double* y, const double* x, double* out, std::size_t n) {
 #endif
 }
 
-void pow_batch(const double* x, double e, double* out, std::size_t n) {
+void atan_batch(const double* x, double* out, std::size_t n) {
 #ifdef DARCYDEM_VECTOR_MATH
-  const __m256d exponent = _mm256_set1_pd(e);
-  apply_4([exponent](__m256d a, __m256d) { return _ZGVdN4vv_pow(a, exponent); }, x, x, out, n);
+  apply_4([](__m256d a, __m256d) { return _ZGVdN4v_atan(a); }, x, x, out, n);
 #else
-  for (std::size_t i = 0; i < n; ++i) out[i] = std::pow(x[i], e);
+  for (std::size_t i = 0; i < n; ++i) out[i] = std::atan(x[i]);
 #endif
 }
 

@@ -13,12 +13,12 @@ namespace darcydem {
 /// out[i] = atan2(y[i], x[i]) for i in [0, n).
 void atan2_batch(const double* y, const double* x, double* out, std::size_t n);
 
-/// out[i] = pow(x[i], e) for i in [0, n).
-void pow_batch(const double* x, double e, double* out, std::size_t n);
+/// out[i] = atan(x[i]) for i in [0, n).
+void atan_batch(const double* x, double* out, std::size_t n);
 
 /// out[i] = x[i]^e as exp(e ln x[i]) for x[i] > 0, i in [0, n): about
-/// twice as fast as pow_batch with the vector library, for a power law in a
-/// hot loop. The rounding of e ln x is amplified by |e ln x|, so the
+/// twice as fast as the vector library's pow, for a power law in a hot
+/// loop. The rounding of e ln x is amplified by |e ln x|, so the
 /// relative error is within about (2 + |e ln x|) ulp, not pow's few ulp
 /// (tested).
 void power_law_batch(const double* x, double e, double* out, std::size_t n);

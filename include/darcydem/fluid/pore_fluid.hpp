@@ -288,7 +288,6 @@ class PoreFluid final : public ParticleForceField<D> {
   };
   std::vector<CellDrag> cell_drag_;
   std::vector<double> blend_atan_, n_power_;  ///< per cell, for the Ergun/Wen-Yu coefficients
-  std::vector<double> ones_;                  ///< x = 1 for atan(y) as atan2(y, 1)
   /// kappa/mu of each interior face, m^2/(Pa s): [axis][a] for the face
   /// between cell a and a + stride(axis) (as GridOperator::upper).
   std::array<std::vector<double>, D> face_lambda_;
