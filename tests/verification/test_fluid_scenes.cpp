@@ -39,8 +39,7 @@ void seepage_column(const std::string& kf, int steps_per_update = 1) {
   const auto& r = *summary.seepage_column;
   std::printf(
       "K_f = %s Pa, fluid step every %d DEM steps: settlement %.5f mm, m_v %.4e 1/Pa, n %.4f, k %.4e m/s, "
-      "uplift RMS %.3f %%, pressure max "
-      "%.3f %%\n",
+      "uplift RMS %.3f %%, pressure max %.3f %%\n",
       kf.c_str(), steps_per_update, r.settlement * 1e3, r.parameters.compressibility, r.settled_porosity,
       r.parameters.conductivity, 100 * r.uplift_rms_error, 100 * r.pressure_max_error);
   EXPECT_TRUE(r.complete);
