@@ -77,7 +77,8 @@ class Progress {
     const double elapsed = std::chrono::duration<double>(now - last_).count();
     const double rate = elapsed > 0 ? static_cast<double>(steps - last_steps_) / elapsed : 0.0;
     const double sim_rate = elapsed > 0 ? (t - last_t_) / elapsed : 0.0;
-    const double eta = sim_rate > 0 ? (t_end - t) / sim_rate : 0.0;
+    // Not below zero: the last step may end a hair past t_end.
+    const double eta = sim_rate > 0 ? std::max(0.0, (t_end - t) / sim_rate) : 0.0;
     last_ = now;
     last_steps_ = steps;
     last_t_ = t;

@@ -46,6 +46,10 @@ bed="$src/examples/fluid_cases/hydrostatic_bed.toml"
   && head -1 "$work/bed/probes.csv" | grep -q ",pressure_profile_0,.*,pressure_profile_4$" \
   && grep -q '"fluid": {"cells": 36' "$work/bed/run.json" && grep -q "fluid balance so far" "$work/bed.log" \
   && ok "fluid run writes .vti snapshots, profile probes and the balance" || bad "fluid run ($rc)"
+# The progress line at a stage's end: the time left is 0, not "-0" (the
+# last step may end a hair past the stage's end).
+grep -q "^stage settle: .* ETA 0 s$" "$work/bed.log" && ! grep -q "ETA -" "$work/bed.log" \
+  && ok "progress ends a stage with ETA 0 s" || bad "progress: $(grep ETA "$work/bed.log" | tail -1)"
 
 # A seepage-column run interrupted in its first stage still writes its
 # analysis files, marked INCOMPLETE.
