@@ -13,6 +13,10 @@
 //                                   the grains' fluid forces still every step);
 //                                   times are per DEM step, solver_iterations
 //                                   per fluid step
+//   BM_CoupledHeld/cells/M/threads  the same with the grains' fluid forces held
+//                                   between fluid steps (`fluid.hold_forces`):
+//                                   computed at the first DEM step after each
+//                                   fluid step only
 //   BM_PressureSolve/cells/solver   one fluid update alone (no DEM) on the packing
 //                                   compacted uniformly, solver as above; solve_ms
 //                                   is the linear solve's part
@@ -99,16 +103,18 @@ void BM_DemStep(benchmark::State& state) {
 
 // The coupled step, with a fluid step every `interval` DEM steps (the
 // scene's `fluid.steps_per_update`); the figures are per DEM step.
-void run_coupled(benchmark::State& state, std::int64_t cells, int solver, int threads, int interval) {
+void run_coupled(benchmark::State& state, std::int64_t cells, int solver, int threads, int interval,
+                 bool hold = false) {
   omp_set_num_threads(threads);
   auto sim = bench::make_packing(kGrains);
   auto fluid = make_fluid(sim, cells, solver);
   fluid->steps_per_update = interval;
+  fluid->hold_forces = hold;
   sim.force_field = fluid.get();
   sim.prepare();
   double fluid_seconds = 0.0;
   double step_seconds = 0.0;
-  double force_seconds = 0.0;
+  const double forces_before = fluid->force_time();
   darcydem::FluidUpdateTimes parts;
   long iterations = 0;
   long fluid_steps = 0;
@@ -117,7 +123,6 @@ void run_coupled(benchmark::State& state, std::int64_t cells, int solver, int th
     sim.step();
     const auto t1 = Clock::now();
     step_seconds += std::chrono::duration<double>(t1 - t0).count();
-    force_seconds += fluid->last_force_time();
     if (sim.steps % static_cast<std::uint64_t>(interval) != 0) continue;
     fluid->update(sim.particles, interval * sim.time_step, sim.time);
     fluid_seconds += std::chrono::duration<double>(Clock::now() - t1).count();
@@ -130,6 +135,7 @@ void run_coupled(benchmark::State& state, std::int64_t cells, int solver, int th
     parts.solve += t.solve;
     parts.fields += t.fields;
   }
+  const double force_seconds = fluid->force_time() - forces_before;
   const double per_step_ms = 1e3 / static_cast<double>(state.iterations());
   // The fluid's share measured within the run itself (robust to the
   // machine's drift between runs): the DEM's part of the step is the step
@@ -158,6 +164,11 @@ void BM_CoupledStep(benchmark::State& state) {
 
 void BM_CoupledInterval(benchmark::State& state) {
   run_coupled(state, state.range(0), 1, static_cast<int>(state.range(2)), static_cast<int>(state.range(1)));
+}
+
+void BM_CoupledHeld(benchmark::State& state) {
+  run_coupled(state, state.range(0), 1, static_cast<int>(state.range(2)), static_cast<int>(state.range(1)),
+              true);
 }
 
 void BM_PressureSolve(benchmark::State& state) {
@@ -245,6 +256,12 @@ BENCHMARK(BM_CoupledStep)
 BENCHMARK(BM_CoupledInterval)
     ->ArgsProduct({{10'000}, {2, 5, 10}, {1}})
     ->Args({10'000, 5, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
+BENCHMARK(BM_CoupledHeld)
+    ->ArgsProduct({{10'000}, {2, 5}, {1}})
+    ->Args({10'000, 2, 2})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0)
     ->UseRealTime();

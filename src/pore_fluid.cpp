@@ -48,6 +48,7 @@ PoreFluid<D>::PoreFluid(PressureSolverKind solver, double tolerance, CgPrecondit
 
 template <int D>
 void PoreFluid<D>::initialize(const ParticleData<D>& particles) {
+  held_ = {};
   const std::size_t n = grid.size();
   pressure_.assign(n, 0.0);
   pressure_old_.assign(n, 0.0);
@@ -83,6 +84,7 @@ void PoreFluid<D>::set_pressure(const std::vector<double>& u) {
   }
   pressure_ = u;
   pressure_old_ = u;
+  held_ = {};
   compute_face_fields(time_);
 }
 
@@ -306,6 +308,7 @@ double PoreFluid<D>::side_lambda(int axis, std::size_t cell) const {
 template <int D>
 void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double time) {
   if (!initialized_) throw std::logic_error("PoreFluid::update before initialize");
+  held_ = {};  // new fields: the grains' forces are due again
   const std::size_t n = grid.size();
   using Clock = std::chrono::steady_clock;
   auto lap = [last = Clock::now()]() mutable {
@@ -693,7 +696,8 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
   } else {
     run_all.template operator()<false>();
   }
-  last_force_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  held_ = {&force, p.size(), gravity};
+  force_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
 template <int D>

@@ -178,9 +178,10 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       for (int k = 0; k < 2 * D; ++k)
         sides += fmt::format(" {}={}", side_names[k], to_string(fluid->sides[k].type));
       *options.log << fmt::format(
-          "pore fluid: {} cells, K_f = {:.4g} Pa, {} solver, fluid step every {} DEM steps; sides:{}\n",
+          "pore fluid: {} cells, K_f = {:.4g} Pa, {} solver, fluid step every {} DEM steps{}; sides:{}\n",
           fluid->grid.size(), fluid->fluid.bulk_modulus,
           fluid->solver().describe(static_cast<Eigen::Index>(fluid->grid.size())), fluid->steps_per_update,
+          fluid->hold_forces && fluid->steps_per_update > 1 ? " (grain forces held between them)" : "",
           sides);
     }
   }

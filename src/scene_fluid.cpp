@@ -103,6 +103,7 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   const auto m = r.optional_integer("steps_per_update").value_or(1);
   if (m < 1) r.fail("steps_per_update", "must be >= 1 (DEM steps per fluid step)");
   fluid->steps_per_update = static_cast<int>(m);
+  fluid->hold_forces = r.boolean_or("hold_forces", false);
 
   double r_max = 0.0;
   double d_sum = 0.0;

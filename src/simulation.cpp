@@ -72,6 +72,12 @@ void Simulation<D>::rebuild() {
     if (!identity) {
       particles.permute(order);
       old_index = &order;
+      // Forces a field holds move with their particles.
+      if (field_force_.size() == order.size()) {
+        std::vector<Vec<D>> moved(order.size());
+        for (std::size_t k = 0; k < order.size(); ++k) moved[k] = field_force_[order[k]];
+        field_force_.swap(moved);
+      }
     }
   }
   list_.build(particles.position, particles.radius, skin, rolling_, old_index);
@@ -499,9 +505,13 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     }
     return moved2;
   };
-  if (field) {
+  // The field's forces, unless it holds those it gave last (to this
+  // simulation, for as many particles).
+  if (field && (field_force_.size() != p.size() || field_forces_from_ != force_field ||
+                !force_field->forces_current(p, gravity, field_force_))) {
     field_force_.resize(p.size());
     force_field->particle_forces(p, gravity, field_force_);
+    field_forces_from_ = force_field;
   }
   double moved2 = 0.0;
   if (blocks > 1) {

@@ -238,5 +238,15 @@ TEST(SceneErrors, TimeStepAboveTheCoupledCriticalStepIsRefused) {
   EXPECT_NE(msg.find("K_f/n"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, FluidCouplingIntervalIsChecked) {
+  const std::string base = "drag = \"darcy\"\n";
+  EXPECT_EQ(load_error(replace(with_fluid(), base, base + "steps_per_update = 5\nhold_forces = true\n")), "");
+  auto msg = load_error(replace(with_fluid(), base, base + "steps_per_update = 0\n"));
+  EXPECT_NE(msg.find("key 'steps_per_update': must be >= 1"), std::string::npos) << msg;
+  msg = load_error(replace(with_fluid(), base, base + "hold_forces = \"yes\"\n"));
+  EXPECT_NE(msg.find("key 'hold_forces': must be true or false"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+}
+
 }  // namespace
 }  // namespace darcydem

@@ -28,20 +28,23 @@ std::string temp_dir(const std::string& name) {
   return dir.string();
 }
 
-void seepage_column(const std::string& kf, int steps_per_update = 1) {
+void seepage_column(const std::string& kf, int steps_per_update = 1, bool hold_forces = false) {
   auto scene = darcydem::testing::load_scene<2>("examples/seepage_column/kf_" + kf + ".toml");
   scene.seepage_column->plots = false;
   scene.fluid->steps_per_update = steps_per_update;
+  scene.fluid->hold_forces = hold_forces;
   RunOptions options;
-  options.out_dir = temp_dir("seepage_" + kf + "_" + std::to_string(steps_per_update));
+  options.out_dir =
+      temp_dir("seepage_" + kf + "_" + std::to_string(steps_per_update) + (hold_forces ? "_held" : ""));
   const auto summary = run_scene(scene, options);
   ASSERT_TRUE(summary.seepage_column.has_value());
   const auto& r = *summary.seepage_column;
   std::printf(
-      "K_f = %s Pa, fluid step every %d DEM steps: settlement %.5f mm, m_v %.4e 1/Pa, n %.4f, k %.4e m/s, "
+      "K_f = %s Pa, fluid step every %d DEM steps%s: settlement %.5f mm, m_v %.4e 1/Pa, n %.4f, k %.4e m/s, "
       "uplift RMS %.3f %%, pressure max %.3f %%\n",
-      kf.c_str(), steps_per_update, r.settlement * 1e3, r.parameters.compressibility, r.settled_porosity,
-      r.parameters.conductivity, 100 * r.uplift_rms_error, 100 * r.pressure_max_error);
+      kf.c_str(), steps_per_update, hold_forces ? ", forces held" : "", r.settlement * 1e3,
+      r.parameters.compressibility, r.settled_porosity, r.parameters.conductivity, 100 * r.uplift_rms_error,
+      100 * r.pressure_max_error);
   EXPECT_TRUE(r.complete);
   // Issue 3's tolerances: RMS uplift error <= 2 % of the final uplift over
   // 0..1 s; pressure at every cell and time within 3 % of the steady bottom
@@ -75,6 +78,10 @@ TEST(FluidScenes, SeepageColumnKf1e4) { seepage_column("1e4"); }
 // case (31 % uplift error).
 TEST(FluidScenes, SeepageColumnKf1e7EveryTenSteps) { seepage_column("1e7", 10); }
 TEST(FluidScenes, SeepageColumnKf1e5EveryFiveSteps) { seepage_column("1e5", 5); }
+// The same with the grains' fluid forces held between fluid steps
+// (`hold_forces`, as PFC and CFDEM couple): the same tolerances.
+TEST(FluidScenes, SeepageColumnKf1e5EveryFiveStepsForcesHeld) { seepage_column("1e5", 5, true); }
+TEST(FluidScenes, SeepageColumnKf1e7EveryTenStepsForcesHeld) { seepage_column("1e7", 10, true); }
 
 TEST(FluidScenes, HydrostaticBed) {
   auto scene = darcydem::testing::load_scene<3>("examples/fluid_cases/hydrostatic_bed.toml");

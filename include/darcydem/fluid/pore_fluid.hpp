@@ -59,7 +59,13 @@ class PoreFluid final : public ParticleForceField<D> {
   FluidProperties fluid;
   PermeabilitySpec<D> permeability;
   DragLaw drag = DragLaw::darcy;
-  int steps_per_update = 1;                  ///< DEM steps per fluid step
+  int steps_per_update = 1;  ///< DEM steps per fluid step
+  /// Hold each grain's fluid force from the first DEM step after a fluid
+  /// step until the next fluid step (the coupling interval of PFC's and
+  /// CFDEM's fluid coupling); false: recompute it every DEM step from the
+  /// last fluid step's pressure and flux, at the grain's current position
+  /// and velocity. The same when steps_per_update is 1.
+  bool hold_forces = false;
   std::array<FluidBoundary, 2 * D> sides{};  ///< x_min, x_max, y_min, ...
   /// Count the pore fluid carried across faces by the moving skeleton, so
   /// that Darcy's flux is relative to the grains (false: the paper's scheme).
@@ -84,6 +90,14 @@ class PoreFluid final : public ParticleForceField<D> {
 
   void particle_forces(const ParticleData<D>& particles, const Vec<D>& gravity,
                        std::vector<Vec<D>>& force) const override;
+  /// With hold_forces: true if `force` is what the last particle_forces
+  /// call wrote, for as many particles under the same gravity, and no fluid
+  /// step (or new pressure) has come since.
+  [[nodiscard]] bool forces_current(const ParticleData<D>& particles, const Vec<D>& gravity,
+                                    const std::vector<Vec<D>>& force) const override {
+    return hold_forces && held_.force == &force && held_.count == particles.size() &&
+           held_.gravity == gravity;
+  }
 
   /// Critical step of the coupled system: the DEM step with the undrained
   /// stiffness K_f/n of the pore fluid added, and the drag relaxation time.
@@ -108,8 +122,8 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] const FluidBalance& total_balance() const { return total_; }
   [[nodiscard]] const SolveStats& last_solve() const { return last_solve_; }
   [[nodiscard]] const FluidUpdateTimes& last_times() const { return last_times_; }
-  /// Wall-clock seconds of the last particle_forces call.
-  [[nodiscard]] double last_force_time() const { return last_force_seconds_; }
+  /// Wall-clock seconds of all particle_forces calls so far.
+  [[nodiscard]] double force_time() const { return force_seconds_; }
   [[nodiscard]] std::uint64_t updates() const { return updates_; }
   [[nodiscard]] const PressureSolver& solver() const { return solver_; }
 
@@ -310,7 +324,16 @@ class PoreFluid final : public ParticleForceField<D> {
   PressureSolver solver_;
   SolveStats last_solve_;
   FluidUpdateTimes last_times_;
-  mutable double last_force_seconds_ = 0.0;  ///< timing only: not part of the state
+  mutable double force_seconds_ = 0.0;  ///< timing only: not part of the state
+  /// What the last particle_forces call wrote (hold_forces): the output
+  /// vector (null: none since the last fluid step), for how many particles,
+  /// under which gravity.
+  struct HeldForces {
+    const std::vector<Vec<D>>* force = nullptr;
+    std::size_t count = 0;
+    Vec<D> gravity = Vec<D>::Zero();
+  };
+  mutable HeldForces held_;
   FluidBalance last_, total_;
   std::uint64_t updates_ = 0;
   double time_ = 0.0;

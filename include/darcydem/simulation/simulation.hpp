@@ -111,6 +111,7 @@ class Simulation {
   VerletList<D> list_;
   WallContactList<D> wall_list_;
   std::vector<Vec<D>> field_force_;
+  const ParticleForceField<D>* field_forces_from_ = nullptr;  ///< the field that gave field_force_
   std::vector<std::array<double, 2>> block_sums_;  ///< per force block: sum of |F| of contacts, count
 };
 
