@@ -95,6 +95,9 @@ int main(int argc, char** argv) {
     if (threads > 0) omp_set_num_threads(threads);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
+    // A reader of the log that goes away (`darcydem run ... | head`) stops
+    // the run as Ctrl-C does, with its output kept, instead of killing it.
+    std::signal(SIGPIPE, on_signal);
     return dispatch(scene_file, out_dir, false);
   } catch (const darcydem::SceneError& e) {
     std::cerr << e.what() << "\n";

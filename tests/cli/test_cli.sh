@@ -38,6 +38,13 @@ rows=$(wc -l < "$work/long/probes.csv" 2>/dev/null || echo 0)
 [ $rc -eq 130 ] && grep -q '"status": "interrupted"' "$work/long/run.json" && [ "$rows" -gt 10 ] \
   && ok "interrupt keeps output ($rows probe rows)" || bad "interrupt (rc $rc, rows $rows)"
 
+# The same when the log's reader goes away (a closed pipe): the run stops
+# as interrupted, its output kept, instead of being killed by SIGPIPE.
+"$exe" run "$work/long.toml" --out "$work/piped" 2>&1 | head -1 > /dev/null
+rows=$(wc -l < "$work/piped/probes.csv" 2>/dev/null || echo 0)
+grep -q '"status": "interrupted"' "$work/piped/run.json" 2>/dev/null && [ "$rows" -gt 10 ] \
+  && ok "a closed log pipe stops the run with its output kept ($rows probe rows)" || bad "closed pipe (rows $rows)"
+
 # A pore-fluid scene: fluid snapshots, the profile probe, the balance in run.json.
 bed="$src/examples/fluid_cases/hydrostatic_bed.toml"
 "$exe" run "$bed" --out "$work/bed" > "$work/bed.log" 2>&1; rc=$?
