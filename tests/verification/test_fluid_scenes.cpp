@@ -1,6 +1,6 @@
 // The pore-fluid scenes in examples/ run as a user runs them (run_scene,
 // output in a temporary directory): the paper's seepage column for the three
-// K_f and the hydrostatic bed.
+// K_f, in 2D and in 3D, and the hydrostatic bed.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -28,21 +28,27 @@ std::string temp_dir(const std::string& name) {
   return dir.string();
 }
 
+/// The paper's seepage column (examples/seepage_column/, discs) or its 3D
+/// counterpart (examples/seepage_column_3d/, spheres in a square tube),
+/// run as a user runs it, against issue 3's tolerances and hand-derived
+/// numbers for the settling stage.
+template <int D>
 void seepage_column(const std::string& kf, int steps_per_update = 1, bool hold_forces = false) {
-  auto scene = darcydem::testing::load_scene<2>("examples/seepage_column/kf_" + kf + ".toml");
+  const std::string folder = D == 2 ? "examples/seepage_column/" : "examples/seepage_column_3d/";
+  auto scene = darcydem::testing::load_scene<D>(folder + "kf_" + kf + ".toml");
   scene.seepage_column->plots = false;
   scene.fluid->steps_per_update = steps_per_update;
   scene.fluid->hold_forces = hold_forces;
   RunOptions options;
-  options.out_dir =
-      temp_dir("seepage_" + kf + "_" + std::to_string(steps_per_update) + (hold_forces ? "_held" : ""));
+  options.out_dir = temp_dir("seepage_" + std::to_string(D) + "d_" + kf + "_" +
+                             std::to_string(steps_per_update) + (hold_forces ? "_held" : ""));
   const auto summary = run_scene(scene, options);
   ASSERT_TRUE(summary.seepage_column.has_value());
   const auto& r = *summary.seepage_column;
   std::printf(
-      "K_f = %s Pa, fluid step every %d DEM steps%s: settlement %.5f mm, m_v %.4e 1/Pa, n %.4f, k %.4e m/s, "
-      "uplift RMS %.3f %%, pressure max %.3f %%\n",
-      kf.c_str(), steps_per_update, hold_forces ? ", forces held" : "", r.settlement * 1e3,
+      "%dD, K_f = %s Pa, fluid step every %d DEM steps%s: settlement %.5f mm, m_v %.4e 1/Pa, n %.4f, "
+      "k %.4e m/s, uplift RMS %.3f %%, pressure max %.3f %%\n",
+      D, kf.c_str(), steps_per_update, hold_forces ? ", forces held" : "", r.settlement * 1e3,
       r.parameters.compressibility, r.settled_porosity, r.parameters.conductivity, 100 * r.uplift_rms_error,
       100 * r.pressure_max_error);
   EXPECT_TRUE(r.complete);
@@ -52,15 +58,21 @@ void seepage_column(const std::string& kf, int steps_per_update = 1, bool hold_f
   EXPECT_LE(r.uplift_rms_error, 0.02);
   EXPECT_LE(r.pressure_max_error, 0.03);
   // Stage 1 against hand-derived numbers: the contact j-th from the top of
-  // the 50-disc chain carries j submerged disc weights, so the top settles by
-  // 1275 m' g / k_n with m' = (rho_s - rho_f) pi r^2 (x 1 m); 0.5 %.
+  // the 50-grain chain carries j submerged grain weights, so the top
+  // settles by 1275 m' g / k_n, with m' = (rho_s - rho_f) V_p: a disc of
+  // pi r^2 (x 1 m) and k_n = 1e5 N/m, or a sphere of 4/3 pi r^3 and
+  // k_n = 100 N/m; 0.5 %.
   const double r0 = 0.0005;
-  const double submerged = (2650.0 - 1000.0) * std::numbers::pi * r0 * r0 * 9.80665;
-  EXPECT_NEAR(r.settlement, 1275.0 * submerged / 1e5, 0.005 * 1275.0 * submerged / 1e5);
-  // Porosity: 1 - pi/4 before; after, the column is shorter by the settlement.
-  EXPECT_NEAR(r.initial_porosity, 1.0 - std::numbers::pi / 4.0, 1e-9);
+  const double grain = D == 2 ? std::numbers::pi * r0 * r0 : 4.0 / 3.0 * std::numbers::pi * r0 * r0 * r0;
+  const double k_n = D == 2 ? 1e5 : 100.0;
+  const double settlement = 1275.0 * (2650.0 - 1000.0) * grain * 9.80665 / k_n;
+  EXPECT_NEAR(r.settlement, settlement, 0.005 * settlement);
+  // Porosity: one grain per d of the column's cross-section A (1 mm x 1 m,
+  // or 1 mm x 1 mm) before; after, the column is shorter by the settlement.
+  const double area = D == 2 ? 0.001 : 1e-6;
+  EXPECT_NEAR(r.initial_porosity, 1.0 - grain / (area * 2.0 * r0), 1e-9);
   const double h1 = 0.05 - r.settlement;
-  EXPECT_NEAR(r.settled_porosity, 1.0 - 50 * std::numbers::pi * r0 * r0 / (0.001 * h1), 1e-9);
+  EXPECT_NEAR(r.settled_porosity, 1.0 - 50 * grain / (area * h1), 1e-9);
   // Fluid volume is conserved: inflow = stored + pore change, to round-off
   // relative to the gross flow.
   const auto& b = scene.fluid->total_balance();
@@ -69,19 +81,25 @@ void seepage_column(const std::string& kf, int steps_per_update = 1, bool hold_f
 
 }  // namespace
 
-TEST(FluidScenes, SeepageColumnKf1e7) { seepage_column("1e7"); }
-TEST(FluidScenes, SeepageColumnKf1e5) { seepage_column("1e5"); }
-TEST(FluidScenes, SeepageColumnKf1e4) { seepage_column("1e4"); }
+TEST(FluidScenes, SeepageColumnKf1e7) { seepage_column<2>("1e7"); }
+TEST(FluidScenes, SeepageColumnKf1e5) { seepage_column<2>("1e5"); }
+TEST(FluidScenes, SeepageColumnKf1e4) { seepage_column<2>("1e4"); }
 // A fluid step every M DEM steps (issue 3: the Biot source accumulates over
 // the interval, Darcy's step is M dt): the same column, the same closed form
 // and tolerances. A runner that passed dt instead of M dt fails the M = 5
 // case (31 % uplift error).
-TEST(FluidScenes, SeepageColumnKf1e7EveryTenSteps) { seepage_column("1e7", 10); }
-TEST(FluidScenes, SeepageColumnKf1e5EveryFiveSteps) { seepage_column("1e5", 5); }
+TEST(FluidScenes, SeepageColumnKf1e7EveryTenSteps) { seepage_column<2>("1e7", 10); }
+TEST(FluidScenes, SeepageColumnKf1e5EveryFiveSteps) { seepage_column<2>("1e5", 5); }
 // The same with the grains' fluid forces held between fluid steps
 // (`hold_forces`, as PFC and CFDEM couple): the same tolerances.
-TEST(FluidScenes, SeepageColumnKf1e5EveryFiveStepsForcesHeld) { seepage_column("1e5", 5, true); }
-TEST(FluidScenes, SeepageColumnKf1e7EveryTenStepsForcesHeld) { seepage_column("1e7", 10, true); }
+TEST(FluidScenes, SeepageColumnKf1e5EveryFiveStepsForcesHeld) { seepage_column<2>("1e5", 5, true); }
+TEST(FluidScenes, SeepageColumnKf1e7EveryTenStepsForcesHeld) { seepage_column<2>("1e7", 10, true); }
+// The same column in 3D: 50 spheres in a square tube one sphere wide, with
+// the paper's m_v and k and half its inflow (at 1 mm/s the sphere stack,
+// whose critical gradient is lower than the discs', heaves).
+TEST(FluidScenes, SeepageColumn3DKf1e7) { seepage_column<3>("1e7"); }
+TEST(FluidScenes, SeepageColumn3DKf1e5) { seepage_column<3>("1e5"); }
+TEST(FluidScenes, SeepageColumn3DKf1e4) { seepage_column<3>("1e4"); }
 
 TEST(FluidScenes, HydrostaticBed) {
   auto scene = darcydem::testing::load_scene<3>("examples/fluid_cases/hydrostatic_bed.toml");
