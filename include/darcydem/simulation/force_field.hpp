@@ -1,7 +1,8 @@
 #pragma once
 // A body-force field acting on the particles, evaluated once per DEM step at
 // the new positions (after the drift) and half-step velocities, before the
-// second half kick. The pore fluid is one; user fields can be others.
+// second half kick, unless it says that the forces it gave last still hold
+// (forces_current). The pore fluid is one; user fields can be others.
 #include <vector>
 
 #include "darcydem/core/vec.hpp"
