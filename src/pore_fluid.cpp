@@ -701,6 +701,21 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
 }
 
 template <int D>
+std::size_t PoreFluid<D>::grains_outside(const ParticleData<D>& p) const {
+  // As particle_forces locates them: in cell units, inside if in [0, cells).
+  std::size_t outside = 0;
+  for (const Vec<D>& x : p.position) {
+    bool in = true;
+    for (int k = 0; k < D; ++k) {
+      const double s = (x[k] - grid.origin[k]) * inv_spacing_[k];
+      in = in && s >= 0.0 && s < grid.cells[k];
+    }
+    outside += in ? 0 : 1;
+  }
+  return outside;
+}
+
+template <int D>
 double PoreFluid<D>::critical_time_step(const ParticleData<D>& p, double dem_step) const {
   double m_min = std::numeric_limits<double>::infinity();
   double r_min = std::numeric_limits<double>::infinity();

@@ -268,6 +268,13 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
             "({:.3g} of the gross flow); solver residual <= {:.3g}, {} iterations\n",
             tb.inflow, tb.stored, tb.pore_change, tb.imbalance(),
             tb.gross > 0 ? std::abs(tb.imbalance()) / tb.gross : 0.0, fluid_residual, fluid_iterations);
+        const std::size_t outside = fluid->grains_outside(sim.particles);
+        if (outside > 0) {
+          *options.log << fmt::format(
+              "{} of {} grains have their centres outside the fluid grid: no fluid force or buoyancy on "
+              "them\n",
+              outside, sim.particles.size());
+        }
       }
       if (summary.interrupted) break;
       summary.stages_completed.push_back(stage.name);

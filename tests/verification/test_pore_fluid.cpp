@@ -388,3 +388,36 @@ TEST(PoreFluid, SetPressureChecksItsSize) {
   auto f = with_pressure<2>({3, 3}, Vec<2>(1e-3, 1e-3), [](const Vec<2>&) { return 1.0; });
   EXPECT_THROW(f.set_pressure(std::vector<double>(8, 0.0)), std::invalid_argument);
 }
+
+TEST(PoreFluid, GrainsOutsideTheGridFeelNoFluid) {
+  // A 2 x 2 x 2 grid of 1 mm cells and still fluid: a grain whose centre is
+  // in the grid (a cell's lower face included) feels exactly its buoyancy,
+  // rho_f g V_p upwards; one whose centre is outside (an upper face
+  // included) feels nothing, and grains_outside counts those.
+  ParticleData<3> p;
+  const double r = 2e-4;
+  const std::vector<Vec<3>> inside = {Vec<3>(5e-4, 5e-4, 5e-4), Vec<3>(0.0, 5e-4, 1.5e-3)};
+  const std::vector<Vec<3>> outside = {Vec<3>(2e-3, 5e-4, 5e-4), Vec<3>(5e-4, 5e-4, -1e-4),
+                                       Vec<3>(5e-4, 2.5e-3, 5e-4)};
+  for (const auto& x : inside) p.add(x, r, 2650.0, 0, false);
+  for (const auto& x : outside) p.add(x, r, 2650.0, 0, false);
+  PoreFluid<3> f;
+  f.grid.origin = Vec<3>::Zero();
+  f.grid.spacing = Vec<3>::Constant(1e-3);
+  f.grid.cells = {2, 2, 2};
+  f.fluid = {1000.0, 1.0e-3, 1e7};
+  f.drag = DragLaw::ergun;
+  f.permeability.model = PermeabilityModel::kozeny_carman;
+  f.permeability.diameter = 2 * r;
+  f.initialize(p);
+  EXPECT_EQ(f.grains_outside(p), outside.size());
+  std::vector<Vec<3>> force(p.size());
+  f.particle_forces(p, Vec<3>(0.0, 0.0, -g), force);
+  const double buoyancy = 1000.0 * g * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  for (std::size_t i = 0; i < inside.size(); ++i) {
+    // Only round-off: V_p is computed as (4/3) pi r^3 here too.
+    EXPECT_NEAR(force[i].z(), buoyancy, 1e-12 * buoyancy) << "grain " << i;
+    EXPECT_EQ(force[i].head<2>().norm(), 0.0) << "grain " << i;
+  }
+  for (std::size_t i = inside.size(); i < p.size(); ++i) EXPECT_EQ(force[i].norm(), 0.0) << "grain " << i;
+}

@@ -115,6 +115,9 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] double pressure_at(const Vec<D>& x) const;
   /// Pressure gradient at a point (staggered interpolation), Pa/m.
   [[nodiscard]] Vec<D> gradient_at(const Vec<D>& x) const;
+  /// Grains whose centres are outside the grid: the fluid exerts no force
+  /// (and no buoyancy) on them, as on grains above the water.
+  [[nodiscard]] std::size_t grains_outside(const ParticleData<D>& particles) const;
   /// Flow into the grid through one side in the last step, m^3/s.
   [[nodiscard]] double side_inflow(int side) const { return side_inflow_[side]; }
 
