@@ -41,6 +41,8 @@ template <int D>
 void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage) {
   if (fluid != nullptr) {
     if (stage.freeze_permeability) fluid->permeability_frozen = *stage.freeze_permeability;
+    if (stage.fluid_steps_per_update) fluid->steps_per_update = *stage.fluid_steps_per_update;
+    if (stage.fluid_hold_forces) fluid->hold_forces = *stage.fluid_hold_forces;
     for (const auto& [side, b] : stage.fluid_sides) {
       fluid->sides[side] = b;
       fluid->sides[side].value.start = sim.time;
@@ -187,6 +189,15 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   }
   std::uint64_t fluid_iterations = 0;
   double fluid_residual = 0.0;
+  // DEM steps since the last fluid step; the fluid step covers them all
+  // (steps_per_update of them, or fewer where a stage changes the interval).
+  std::uint64_t since_update = 0;
+  auto fluid_step = [&] {
+    fluid->update(sim.particles, static_cast<double>(since_update) * dt, sim.time);
+    since_update = 0;
+    fluid_iterations += static_cast<std::uint64_t>(fluid->last_solve().iterations);
+    fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);
+  };
 
   // A failure in a step (a blown-up simulation, a solver that does not
   // converge) ends the run, but what was computed is kept: probes, the last
@@ -200,10 +211,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     std::uint64_t run = n_steps - s;
     run = std::min(run, check_interval - s % check_interval);
     run = std::min(run, 256 - (s & 255U));
-    if (fluid != nullptr) {
-      const auto m = static_cast<std::uint64_t>(fluid->steps_per_update);
-      run = std::min(run, m - sim.steps % m);
-    }
+    if (fluid != nullptr)
+      run = std::min(run, static_cast<std::uint64_t>(fluid->steps_per_update) - since_update);
     if (seepage) run = 1;  // it samples the column after every step
     for (double t : {probe_time, snapshot_time}) {
       const double ahead = std::floor((t - 0.5 * dt - sim.time) / dt) - 1.0;
@@ -215,7 +224,19 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   std::string failure;
   try {
     for (const auto& stage : scene.stages) {
+      // A new coupling interval starts afresh: the steps since the last
+      // fluid step get theirs first.
+      if (fluid != nullptr && stage.fluid_steps_per_update &&
+          *stage.fluid_steps_per_update != fluid->steps_per_update && since_update > 0) {
+        fluid_step();
+      }
       apply_stage(sim, fluid, stage);
+      if (fluid != nullptr && options.log != nullptr &&
+          (stage.fluid_steps_per_update || stage.fluid_hold_forces)) {
+        *options.log << fmt::format("stage {}: fluid step every {} DEM steps{}\n", stage.name,
+                                    fluid->steps_per_update,
+                                    fluid->hold_forces ? ", grain forces held between them" : "");
+      }
       if (seepage) seepage->stage_started(scene, stage.name);
       const auto n_steps = static_cast<std::uint64_t>(std::max(1.0, std::round(stage.duration / dt)));
       const double t_end = sim.time + static_cast<double>(n_steps) * dt;
@@ -228,10 +249,9 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         const std::uint64_t run = steps_to_next_event(s, n_steps, check_interval, next_probe, next_snapshot);
         sim.advance(run);
         s += run - 1;
-        if (fluid != nullptr && sim.steps % static_cast<std::uint64_t>(fluid->steps_per_update) == 0) {
-          fluid->update(sim.particles, fluid->steps_per_update * dt, sim.time);
-          fluid_iterations += static_cast<std::uint64_t>(fluid->last_solve().iterations);
-          fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);
+        since_update += run;
+        if (fluid != nullptr && since_update >= static_cast<std::uint64_t>(fluid->steps_per_update)) {
+          fluid_step();
         }
         if (seepage) seepage->after_step(scene);
         if (sim.time >= next_probe - 0.5 * dt) {

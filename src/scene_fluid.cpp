@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <fmt/format.h>
@@ -101,7 +102,9 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   const std::string drag = r.choice("drag", {"darcy", "ergun"});
   fluid->drag = drag == "ergun" ? DragLaw::ergun : DragLaw::darcy;
   const auto m = r.optional_integer("steps_per_update").value_or(1);
-  if (m < 1) r.fail("steps_per_update", "must be >= 1 (DEM steps per fluid step)");
+  if (m < 1 || m > std::numeric_limits<int>::max()) {
+    r.fail("steps_per_update", "must be an integer from 1 to 2147483647 (DEM steps per fluid step)");
+  }
   fluid->steps_per_update = static_cast<int>(m);
   fluid->hold_forces = r.boolean_or("hold_forces", false);
 

@@ -242,10 +242,22 @@ TEST(SceneErrors, FluidCouplingIntervalIsChecked) {
   const std::string base = "drag = \"darcy\"\n";
   EXPECT_EQ(load_error(replace(with_fluid(), base, base + "steps_per_update = 5\nhold_forces = true\n")), "");
   auto msg = load_error(replace(with_fluid(), base, base + "steps_per_update = 0\n"));
-  EXPECT_NE(msg.find("key 'steps_per_update': must be >= 1"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("key 'steps_per_update': must be an integer from 1 to 2147483647"), std::string::npos)
+      << msg;
   msg = load_error(replace(with_fluid(), base, base + "hold_forces = \"yes\"\n"));
   EXPECT_NE(msg.find("key 'hold_forces': must be true or false"), std::string::npos) << msg;
   EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  // A stage can change both.
+  const std::string stage = "gravity = [0.0, -9.81]\n";
+  EXPECT_EQ(load_error(replace(with_fluid(), stage,
+                               stage + "[stage.fluid]\nsteps_per_update = 20\nhold_forces = true\n")),
+            "");
+  msg = load_error(replace(with_fluid(), stage, stage + "[stage.fluid]\nsteps_per_update = 3000000000\n"));
+  EXPECT_NE(msg.find("[[stage]] #1 fluid key 'steps_per_update': must be an integer from 1 to 2147483647"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(with_fluid(), stage, stage + "[stage.fluid]\nhold_forces = 1\n"));
+  EXPECT_NE(msg.find("key 'hold_forces': must be true or false"), std::string::npos) << msg;
 }
 
 }  // namespace

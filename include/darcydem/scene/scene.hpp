@@ -74,6 +74,8 @@ struct Stage {
   std::vector<WallChange<D>> walls;
   std::vector<std::pair<int, FluidBoundary>> fluid_sides;  ///< changes of the fluid's boundaries
   std::optional<bool> freeze_permeability;                 ///< hold (true) or resume updating k
+  std::optional<int> fluid_steps_per_update;               ///< a new coupling interval M
+  std::optional<bool> fluid_hold_forces;                   ///< hold the grains' fluid forces, or not
 };
 
 /// [analysis] kind = "seepage_column": the paper's 1D upward seepage check.
