@@ -336,12 +336,13 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         "  \"fluid\": {{\"cells\": {}, \"updates\": {}, \"solver\": \"{}\", \"preconditioner\": \"{}\", "
         "\"iterations\": {}, "
         "\"max_residual\": {:.6g}, \"inflow\": {:.17g}, \"stored\": {:.17g}, \"pore_change\": {:.17g}, "
-        "\"imbalance\": {:.6g}, \"gross_flow\": {:.6g}}},\n",
+        "\"imbalance\": {:.6g}, \"gross_flow\": {:.6g}, \"grains_outside_grid\": {}}},\n",
         fluid->grid.size(), fluid->updates(), to_string(fluid->solver().kind()),
         fluid->solver().kind() == PressureSolverKind::cg
             ? to_string(fluid->solver().preconditioner_for(static_cast<Eigen::Index>(fluid->grid.size())))
             : "none",
-        fluid_iterations, fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), tb.gross);
+        fluid_iterations, fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), tb.gross,
+        fluid->grains_outside(sim.particles));
   }
   if (summary.seepage_column) {
     const auto& r = *summary.seepage_column;
