@@ -36,9 +36,8 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
     if (scene.fluid) {
       const auto& f = *scene.fluid;
       std::cout << fmt::format(
-          "  pore fluid: {} cells, K_f = {:.4g} Pa, {} solver, fluid step every {} DEM steps{}; critical "
-          "step "
-          "{:.4g} s (dry {:.4g} s)\n",
+          "  pore fluid: {} cells, K_f = {:.4g} Pa, {} solver, fluid step every {} DEM steps{}; "
+          "critical step {:.4g} s (dry {:.4g} s)\n",
           f.grid.size(), f.fluid.bulk_modulus, darcydem::to_string(f.solver().kind()), f.steps_per_update,
           f.hold_forces ? " (forces held)" : "",
           f.critical_time_step(scene.simulation.particles, scene.simulation.critical_time_step()),

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <map>
 
 #include <fmt/format.h>
@@ -555,12 +554,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         s.fluid_sides = read_fluid_sides<D>(*bt, r.where() + " fluid.boundary", file);
       }
       if (fr.has("freeze_permeability")) s.freeze_permeability = fr.boolean_or("freeze_permeability", false);
-      if (const auto m = fr.optional_integer("steps_per_update")) {
-        if (*m < 1 || *m > std::numeric_limits<int>::max()) {
-          fr.fail("steps_per_update", "must be an integer from 1 to 2147483647 (DEM steps per fluid step)");
-        }
-        s.fluid_steps_per_update = static_cast<int>(*m);
-      }
+      if (fr.has("steps_per_update")) s.fluid_steps_per_update = read_steps_per_update(fr);
       if (fr.has("hold_forces")) s.fluid_hold_forces = fr.boolean_or("hold_forces", false);
       fr.finish();
     }

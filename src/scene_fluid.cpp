@@ -81,6 +81,14 @@ std::vector<std::pair<int, FluidBoundary>> read_fluid_sides(const toml::table& t
   return out;
 }
 
+int read_steps_per_update(TableReader& r) {
+  const auto m = r.optional_integer("steps_per_update");
+  if (!m || *m < 1 || *m > std::numeric_limits<int>::max()) {
+    r.fail("steps_per_update", "must be an integer from 1 to 2147483647 (DEM steps per fluid step)");
+  }
+  return static_cast<int>(*m);
+}
+
 template <int D>
 std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::string& file,
                                          const ParticleData<D>& particles) {
@@ -101,11 +109,7 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   fluid->fluid.bulk_modulus = r.check("bulk_modulus", r.number("bulk_modulus"), is_positive, "> 0 Pa");
   const std::string drag = r.choice("drag", {"darcy", "ergun"});
   fluid->drag = drag == "ergun" ? DragLaw::ergun : DragLaw::darcy;
-  const auto m = r.optional_integer("steps_per_update").value_or(1);
-  if (m < 1 || m > std::numeric_limits<int>::max()) {
-    r.fail("steps_per_update", "must be an integer from 1 to 2147483647 (DEM steps per fluid step)");
-  }
-  fluid->steps_per_update = static_cast<int>(m);
+  if (r.has("steps_per_update")) fluid->steps_per_update = read_steps_per_update(r);
   fluid->hold_forces = r.boolean_or("hold_forces", false);
 
   double r_max = 0.0;

@@ -73,11 +73,7 @@ void Simulation<D>::rebuild() {
       particles.permute(order);
       old_index = &order;
       // Forces a field holds move with their particles.
-      if (field_force_.size() == order.size()) {
-        std::vector<Vec<D>> moved(order.size());
-        for (std::size_t k = 0; k < order.size(); ++k) moved[k] = field_force_[order[k]];
-        field_force_.swap(moved);
-      }
+      if (field_force_.size() == order.size()) ParticleData<D>::reorder(field_force_, order);
     }
   }
   list_.build(particles.position, particles.radius, skin, rolling_, old_index);

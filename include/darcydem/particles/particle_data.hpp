@@ -56,14 +56,19 @@ struct ParticleData {
     return id.size();
   }
 
+  /// Reorders one per-particle array (left alone if empty): new entry k is
+  /// old entry order[k]. For arrays kept beside the particles, too.
+  template <class T>
+  static void reorder(std::vector<T>& v, const std::vector<std::uint32_t>& order) {
+    if (v.empty()) return;
+    std::vector<T> out(v.size());
+    for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
+    v.swap(out);
+  }
+
   /// Reorders every per-particle array: new particle k is old particle order[k].
   void permute(const std::vector<std::uint32_t>& order) {
-    auto apply = [&](auto& v) {
-      if (v.empty()) return;
-      std::remove_reference_t<decltype(v)> out(v.size());
-      for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
-      v.swap(out);
-    };
+    auto apply = [&](auto& v) { reorder(v, order); };
     apply(id);
     apply(radius);
     apply(inv_mass);

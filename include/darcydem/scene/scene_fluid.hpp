@@ -20,6 +20,10 @@ std::vector<std::pair<int, FluidBoundary>> read_fluid_sides(const toml::table& t
                                                             const std::string& where,
                                                             const std::string& file);
 
+/// `steps_per_update` of a [fluid] or [stage.fluid] table: DEM steps per
+/// fluid step, 1 to 2^31 - 1 (refused otherwise, with the key).
+int read_steps_per_update(TableReader& r);
+
 /// The pore fluid of a [fluid] table, initialised on the particles.
 template <int D>
 std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::string& file,
