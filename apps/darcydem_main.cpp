@@ -1,5 +1,5 @@
 // darcydem: the command-line program, a thin layer over the library.
-//   darcydem run SCENE --out DIR [--force] [--threads N]
+//   darcydem run SCENE --out DIR [--force | --resume] [--checkpoint-every S] [--threads N]
 //   darcydem check SCENE
 //   darcydem --version
 #include <omp.h>
@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/runner.hpp"
@@ -25,9 +26,17 @@ std::atomic<bool> g_interrupt{false};
 
 void on_signal(int) { g_interrupt.store(true); }
 
+struct RunFlags {
+  std::string out;
+  bool check_only = false;
+  bool resume = false;
+  double checkpoint_every = 0.0;
+};
+
 template <int D>
-int run(const toml::table& root, const std::string& file, const std::string& text, const std::string& out,
-        bool check_only) {
+int run(const toml::table& root, const std::string& file, const std::string& text, const RunFlags& flags) {
+  const std::string& out = flags.out;
+  const bool check_only = flags.check_only;
   auto scene = darcydem::build_scene<D>(root, file, text);
   if (check_only) {
     std::cout << fmt::format("{}: OK ({}D, {} particles, {} walls, {} stages, time step {:.4g} s)\n", file, D,
@@ -50,18 +59,23 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
   options.interrupt = &g_interrupt;
   options.log = &std::cerr;
   options.terminal = isatty(STDERR_FILENO) != 0;
+  options.resume = flags.resume;
+  options.checkpoint_every = flags.checkpoint_every;
   const auto summary = darcydem::run_scene<D>(scene, options);
   std::cerr << fmt::format("{}: {} steps, {:.6g} s simulated in {:.2f} s wall time; output in {}\n",
                            summary.interrupted ? "interrupted" : "done", summary.steps,
                            summary.simulated_time, summary.wall_time, out);
+  if (summary.interrupted && summary.checkpoint_written) {
+    std::cerr << fmt::format("to go on from here: darcydem run {} --out {} --resume\n", file, out);
+  }
   return summary.interrupted ? 130 : 0;
 }
 
-int dispatch(const std::string& file, const std::string& out, bool check_only) {
+int dispatch(const std::string& file, const RunFlags& flags) {
   std::string text;
   const toml::table root = darcydem::parse_toml_file(file, text);
   const int dim = darcydem::scene_dimension(root, file);
-  return dim == 2 ? run<2>(root, file, text, out, check_only) : run<3>(root, file, text, out, check_only);
+  return dim == 2 ? run<2>(root, file, text, flags) : run<3>(root, file, text, flags);
 }
 
 }  // namespace
@@ -74,11 +88,22 @@ int main(int argc, char** argv) {
   std::string scene_file;
   std::string out_dir;
   bool force = false;
+  bool resume = false;
+  double checkpoint_every = 0.0;
   int threads = 0;
   auto* run_cmd = app.add_subcommand("run", "run a scene and write its output directory");
   run_cmd->add_option("scene", scene_file, "scene file (TOML)")->required()->check(CLI::ExistingFile);
   run_cmd->add_option("--out,-o", out_dir, "output directory")->required();
-  run_cmd->add_flag("--force", force, "write into a non-empty output directory");
+  auto* force_flag = run_cmd->add_flag("--force", force, "write into a non-empty output directory");
+  run_cmd
+      ->add_flag("--resume", resume,
+                 "go on with the interrupted run in the output directory, from its checkpoint.bin (same scene "
+                 "file)")
+      ->excludes(force_flag);
+  run_cmd
+      ->add_option("--checkpoint-every", checkpoint_every,
+                   "seconds of wall time between checkpoints (default 0: only when interrupted)")
+      ->check(CLI::NonNegativeNumber);
   run_cmd->add_option("--threads,-j", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
 
@@ -88,8 +113,8 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*check_cmd) return dispatch(check_file, "", true);
-    if (!force && !darcydem::output_dir_is_free(out_dir)) {
+    if (*check_cmd) return dispatch(check_file, RunFlags{"", true});
+    if (!force && !resume && !darcydem::output_dir_is_free(out_dir)) {
       std::cerr << fmt::format("error: output directory '{}' is not empty; use --force to write into it\n",
                                out_dir);
       return 2;
@@ -100,9 +125,12 @@ int main(int argc, char** argv) {
     // A reader of the log that goes away (`darcydem run ... | head`) stops
     // the run as Ctrl-C does, with its output kept, instead of killing it.
     std::signal(SIGPIPE, on_signal);
-    return dispatch(scene_file, out_dir, false);
+    return dispatch(scene_file, RunFlags{out_dir, false, resume, checkpoint_every});
   } catch (const darcydem::SceneError& e) {
     std::cerr << e.what() << "\n";
+    return 2;
+  } catch (const darcydem::CheckpointError& e) {
+    std::cerr << "error: cannot resume: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -12,8 +12,10 @@
 
 #include <fmt/format.h>
 
+#include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/output/probes.hpp"
 #include "darcydem/output/vtk.hpp"
+#include "darcydem/simulation/run_checkpoint.hpp"
 #include "darcydem/version.hpp"
 
 namespace darcydem {
@@ -122,17 +124,17 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   auto& sim = scene.simulation;
   const fs::path out = options.out_dir;
   fs::create_directories(out);
-  std::ofstream probes(out / "probes.csv");
-  if (!probes) throw std::runtime_error(fmt::format("{}: cannot write probes.csv", out.string()));
-  probes << "time";
-  for (const auto& p : scene.output.probes) probes << "," << p.name;
-  probes << "\n";
+  const fs::path checkpoint_path = out / "checkpoint.bin";
+  const fs::path probes_path = out / "probes.csv";
+  std::ofstream probes;
   PvdSeries series((out / "particles.pvd").string());
   PvdSeries fluid_series((out / "fluid.pvd").string());
   PoreFluid<D>* fluid = scene.fluid.get();
   std::optional<SeepageColumnAnalysis<D>> seepage;
   if (scene.seepage_column) seepage.emplace(*scene.seepage_column, scene);
-  int snapshot_index = 0;
+  // Where the run stands; a checkpoint stores it with the state.
+  RunPosition pos;
+  const RunState<D> state{pos, sim, fluid, seepage ? &*seepage : nullptr, series, fluid_series};
   auto write_probes = [&] {
     probes << fmt::format("{:.10g}", sim.time);
     for (const auto& p : scene.output.probes)
@@ -140,15 +142,15 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     probes << "\n";
   };
   auto write_snapshot = [&] {
-    const std::string name = fmt::format("particles_{:05d}.vtu", snapshot_index);
+    const std::string name = fmt::format("particles_{:05d}.vtu", pos.snapshot_index);
     write_particles_vtu<D>((out / name).string(), sim.particles);
     series.add(sim.time, name);
     if (fluid != nullptr) {
-      const std::string fname = fmt::format("fluid_{:05d}.vti", snapshot_index);
+      const std::string fname = fmt::format("fluid_{:05d}.vti", pos.snapshot_index);
       write_fluid_vti<D>((out / fname).string(), *fluid);
       fluid_series.add(sim.time, fname);
     }
-    ++snapshot_index;
+    ++pos.snapshot_index;
   };
 
   RunSummary summary;
@@ -163,12 +165,37 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       std::any_of(scene.output.probes.begin(), scene.output.probes.end(),
                   [](const auto& p) { return p.quantity == ProbeQuantity::unbalanced_force; });
   sim.prepare();
-  write_probes();
-  write_snapshot();
+  if (options.resume) {
+    // The scene built and prepared as at the start, then the state of the
+    // interrupted run loaded over it; output goes on where it stopped.
+    read_checkpoint(checkpoint_path.string(), scene, state);
+    ++pos.resumes;
+    summary.resumed_at_step = sim.steps;
+    summary.stages_completed = pos.stages_completed;
+    std::error_code ec;
+    if (!fs::exists(probes_path, ec) || fs::file_size(probes_path, ec) < pos.probes_bytes) {
+      throw CheckpointError(fmt::format("{}: missing or shorter than when the checkpoint was written",
+                                        probes_path.string()));
+    }
+    fs::resize_file(probes_path, pos.probes_bytes);
+    probes.open(probes_path, std::ios::app);
+  } else {
+    probes.open(probes_path, std::ios::trunc);
+  }
+  if (!probes) throw std::runtime_error(fmt::format("{}: cannot write probes.csv", out.string()));
   const double dt = sim.time_step;
-  double next_probe = sim.time + scene.output.probe_interval;
-  double next_snapshot =
-      scene.output.snapshot_interval > 0 ? sim.time + scene.output.snapshot_interval : 1e300;
+  if (!options.resume) {
+    probes << "time";
+    for (const auto& p : scene.output.probes) probes << "," << p.name;
+    probes << "\n";
+    write_probes();
+    write_snapshot();
+    pos.next_probe = sim.time + scene.output.probe_interval;
+    pos.next_snapshot = scene.output.snapshot_interval > 0 ? sim.time + scene.output.snapshot_interval : 1e300;
+  }
+  double& next_probe = pos.next_probe;
+  double& next_snapshot = pos.next_snapshot;
+  const double wall_before = pos.wall_time;
   if (options.log != nullptr) {
     *options.log << fmt::format("darcydem {}: {} particles, {}D, time step {:.4g} s (critical {:.4g} s)\n",
                                 version_string, sim.particles.size(), D, dt,
@@ -187,11 +214,31 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
           sides);
     }
   }
-  std::uint64_t fluid_iterations = 0;
-  double fluid_residual = 0.0;
+  if (options.resume && options.log != nullptr) {
+    *options.log << fmt::format("resumed from {} at t = {:.6g} s, step {} (stage {}, step {} of it)\n",
+                                checkpoint_path.string(), sim.time, sim.steps,
+                                pos.stage < scene.stages.size() ? scene.stages[pos.stage].name : "-",
+                                pos.stage_steps);
+  }
+  std::uint64_t& fluid_iterations = pos.fluid_iterations;
+  double& fluid_residual = pos.fluid_residual;
   // DEM steps since the last fluid step; the fluid step covers them all
   // (steps_per_update of them, or fewer where a stage changes the interval).
-  std::uint64_t since_update = 0;
+  std::uint64_t& since_update = pos.since_update;
+  auto last_checkpoint = Clock::now();
+  // Stores the state after `steps_done` steps of stage `stage_index`, with
+  // the output as it stands (a resumed run cuts probes.csv back to here).
+  auto save_checkpoint = [&](std::size_t stage_index, std::uint64_t steps_done) {
+    probes.flush();
+    pos.stage = stage_index;
+    pos.stage_steps = steps_done;
+    pos.probes_bytes = fs::file_size(probes_path);
+    pos.wall_time = wall_before + std::chrono::duration<double>(Clock::now() - start).count();
+    pos.stages_completed = summary.stages_completed;
+    write_checkpoint(checkpoint_path.string(), scene, state);
+    summary.checkpoint_written = true;
+    last_checkpoint = Clock::now();
+  };
   auto fluid_step = [&] {
     fluid->update(sim.particles, static_cast<double>(since_update) * dt, sim.time);
     since_update = 0;
@@ -223,26 +270,33 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   };
   std::string failure;
   try {
-    for (const auto& stage : scene.stages) {
-      // A new coupling interval starts afresh: the steps since the last
-      // fluid step get theirs first.
-      if (fluid != nullptr && stage.fluid_steps_per_update &&
-          *stage.fluid_steps_per_update != fluid->steps_per_update && since_update > 0) {
-        fluid_step();
+    const std::size_t first_stage = options.resume ? pos.stage : 0;
+    for (std::size_t k = first_stage; k < scene.stages.size(); ++k) {
+      const auto& stage = scene.stages[k];
+      // A resumed stage has had its start (held in the checkpoint).
+      const bool resumed_here = options.resume && k == first_stage;
+      if (!resumed_here) {
+        // A new coupling interval starts afresh: the steps since the last
+        // fluid step get theirs first.
+        if (fluid != nullptr && stage.fluid_steps_per_update &&
+            *stage.fluid_steps_per_update != fluid->steps_per_update && since_update > 0) {
+          fluid_step();
+        }
+        apply_stage(sim, fluid, stage);
+        if (fluid != nullptr && options.log != nullptr &&
+            (stage.fluid_steps_per_update || stage.fluid_hold_forces)) {
+          *options.log << fmt::format("stage {}: fluid step every {} DEM steps{}\n", stage.name,
+                                      fluid->steps_per_update,
+                                      fluid->hold_forces ? ", grain forces held between them" : "");
+        }
+        if (seepage) seepage->stage_started(scene, stage.name);
       }
-      apply_stage(sim, fluid, stage);
-      if (fluid != nullptr && options.log != nullptr &&
-          (stage.fluid_steps_per_update || stage.fluid_hold_forces)) {
-        *options.log << fmt::format("stage {}: fluid step every {} DEM steps{}\n", stage.name,
-                                    fluid->steps_per_update,
-                                    fluid->hold_forces ? ", grain forces held between them" : "");
-      }
-      if (seepage) seepage->stage_started(scene, stage.name);
       const auto n_steps = static_cast<std::uint64_t>(std::max(1.0, std::round(stage.duration / dt)));
-      const double t_end = sim.time + static_cast<double>(n_steps) * dt;
+      const std::uint64_t first_step = resumed_here ? pos.stage_steps : 0;
+      const double t_end = sim.time + static_cast<double>(n_steps - std::min(first_step, n_steps)) * dt;
       bool stopped_early = false;
       const auto check_interval = static_cast<std::uint64_t>(stage.check_interval);
-      for (std::uint64_t s = 0; s < n_steps; ++s) {
+      for (std::uint64_t s = first_step; s < n_steps; ++s) {
         // Advance to the next step at which anything below may act (fluid
         // update, output, stop check, progress): the steps in between run
         // fused (Simulation::advance), with the same results as one by one.
@@ -268,9 +322,15 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
           break;
         }
         if (((s + 1) & 255U) == 0) {
-          if (options.interrupt != nullptr && options.interrupt->load()) {
+          if ((options.interrupt != nullptr && options.interrupt->load()) ||
+              (options.stop_at_step > 0 && sim.steps >= options.stop_at_step)) {
             summary.interrupted = true;
+            save_checkpoint(k, s + 1);
             break;
+          }
+          if (options.checkpoint_every > 0 &&
+              std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= options.checkpoint_every) {
+            save_checkpoint(k, s + 1);
           }
           progress.update(stage.name, sim.time, t_end, sim.steps);
         }
@@ -316,7 +376,13 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
 
   summary.steps = sim.steps;
   summary.simulated_time = sim.time;
-  summary.wall_time = std::chrono::duration<double>(Clock::now() - start).count();
+  summary.wall_time = wall_before + std::chrono::duration<double>(Clock::now() - start).count();
+  {
+    // A finished run has nothing to resume; a failed one keeps its last checkpoint.
+    std::error_code ec;
+    if (failure.empty() && !summary.interrupted) fs::remove(checkpoint_path, ec);
+    summary.checkpoint_written = fs::exists(checkpoint_path, ec);
+  }
   std::ofstream json(out / "run.json");
   std::string stages;
   for (const auto& s : summary.stages_completed) stages += (stages.empty() ? "" : ", ") + json_string(s);
@@ -329,7 +395,9 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
        << fmt::format("  \"time_step\": {:.17g},\n", dt) << fmt::format("  \"steps\": {},\n", summary.steps)
        << fmt::format("  \"simulated_time\": {:.17g},\n", summary.simulated_time)
        << fmt::format("  \"wall_time\": {:.6f},\n", summary.wall_time)
-       << fmt::format("  \"threads\": {},\n", omp_get_max_threads());
+       << fmt::format("  \"threads\": {},\n", omp_get_max_threads())
+       << fmt::format("  \"resumes\": {},\n", pos.resumes);
+  if (summary.checkpoint_written) json << "  \"checkpoint\": \"checkpoint.bin\",\n";
   if (fluid != nullptr) {
     const auto& tb = fluid->total_balance();
     json << fmt::format(

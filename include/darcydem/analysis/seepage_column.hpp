@@ -38,6 +38,13 @@ class SeepageColumnAnalysis {
   void after_step(const Scene<D>& scene);
   /// Computes the comparison and writes the files into out_dir.
   SeepageColumnResult finish(const Scene<D>& scene, const std::string& out_dir, std::ostream* log);
+  /// What it has measured and recorded so far (the spec comes from the scene).
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(base_, top_, area_, solid_volume_, top_initial_, top_settled_, settle_done_, inflow_active_, inflow_done_,
+       t0_, top_at_inflow_, inflow_, next_sample_, kappa_effective_, next_profile_, sample_time_, sample_uplift_,
+       profiles_);
+  }
 
  private:
   [[nodiscard]] double column_top(const Scene<D>& scene) const;
@@ -45,6 +52,10 @@ class SeepageColumnAnalysis {
   struct Profile {
     double nominal_time, actual_time;
     std::vector<double> depth, pressure;
+    template <class Archive>
+    void checkpoint(Archive& ar) {
+      ar(nominal_time, actual_time, depth, pressure);
+    }
   };
   SeepageColumnSpec spec_;
   double base_ = 0.0, top_ = 0.0, area_ = 0.0, solid_volume_ = 0.0;

@@ -25,6 +25,10 @@ struct TimeSeries {
     return values.back();
   }
   static TimeSeries constant(double v) { return TimeSeries{{0.0}, {v}, 0.0}; }
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(times, values, start);
+  }
 };
 
 enum class FluidBoundaryType {
@@ -36,6 +40,10 @@ enum class FluidBoundaryType {
 struct FluidBoundary {
   FluidBoundaryType type = FluidBoundaryType::no_flow;
   TimeSeries value;  ///< Pa for drained, m/s (positive inwards) for flux
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(type, value);
+  }
 };
 
 [[nodiscard]] inline std::string to_string(FluidBoundaryType t) {

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 #include <vector>
 
 #include <Eigen/Sparse>
@@ -97,6 +98,28 @@ class PoreFluid final : public ParticleForceField<D> {
                                     const std::vector<Vec<D>>& force) const override {
     return hold_forces && held_.force == &force && held_.count == particles.size() &&
            held_.gravity == gravity;
+  }
+
+  /// The fluid's state for a checkpoint: the settings stages change, every
+  /// cell and face field the next update or force evaluation reads, the
+  /// balance and the counters. `held_output` is the vector the simulation
+  /// gets its field forces in (Simulation::field_forces()): with
+  /// hold_forces, whether the forces it holds are current is stored, not
+  /// the address. Load it into a fluid built from the same scene and
+  /// initialized.
+  template <class Archive>
+  void checkpoint(Archive& ar, const std::vector<Vec<D>>* held_output) {
+    ar(steps_per_update, hold_forces, sides, permeability_frozen, pressure_, pressure_old_, pressure_older_,
+       porosity_, solid_, solid_old_, porosity_used_, solid_flux_, solid_velocity_, kappa_, cell_drag_,
+       blend_atan_, n_power_, face_lambda_, carried_, face_gq_, solid_face_flux_, side_inflow_, last_solve_,
+       last_, total_, updates_, time_, initialized_);
+    bool held = held_.force != nullptr;
+    if constexpr (!Archive::loading) {
+      if (held && held_.force != held_output)
+        throw std::logic_error("checkpoint: the held fluid forces belong to another vector");
+    }
+    ar(held, held_.count, held_.gravity);
+    if constexpr (Archive::loading) held_.force = held ? held_output : nullptr;
   }
 
   /// Critical step of the coupled system: the DEM step with the undrained

@@ -50,6 +50,13 @@ class VerletList {
   /// none): block b's particles are read and their cross slots written by
   /// the blocks from there up to b.
   [[nodiscard]] std::int64_t earliest_source(std::int64_t b) const { return earliest_source_[b]; }
+  /// The list, its histories and its build record, for a checkpoint (the
+  /// linked cells are rebuilt at every build and are not kept).
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(row_offset, neighbour, tangential, rolling, cross_begin, cross_force, cross_torque, cross_offset,
+       cross_slot, reference_, builds_, cell_size_, block_size_, block_count_, earliest_source_);
+  }
   /// Bytes held by the list's arrays (capacity), for memory reports.
   [[nodiscard]] std::size_t memory_bytes() const;
 

@@ -26,6 +26,11 @@ class PvdSeries {
   explicit PvdSeries(std::string path) : path_(std::move(path)) {}
   /// Adds a dataset (file name relative to the .pvd) at a time and rewrites the series.
   void add(double time, const std::string& file);
+  /// The entries so far (a resumed run rewrites the series with them).
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(entries_);
+  }
 
  private:
   std::string path_;

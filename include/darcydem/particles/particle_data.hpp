@@ -83,6 +83,13 @@ struct ParticleData {
     apply(external_force);
   }
 
+  /// Every array, in the order the checkpoint stores them (checkpoint_archive.hpp).
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(id, radius, inv_mass, inv_inertia, material, fixed, position, velocity, angular_velocity, force, torque,
+       external_force);
+  }
+
   /// Bytes held by the arrays (capacity), for memory reports.
   [[nodiscard]] std::size_t memory_bytes() const {
     auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };

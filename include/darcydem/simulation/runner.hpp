@@ -5,8 +5,10 @@
 //   fluid_NNNNN.vti      pore-fluid snapshots (with [fluid]), fluid.pvd the series
 //   run.json             version, scene hash, steps, wall time, how it ended
 //   seepage files        with [analysis] kind = "seepage_column" (seepage_column.hpp)
-// The run can be interrupted (the caller's flag); what was computed is kept
-// and run.json says so.
+//   checkpoint.bin       when interrupted (and every checkpoint_every s): the
+//                        whole state, for resuming (run_checkpoint.hpp)
+// The run can be interrupted (the caller's flag); what was computed is kept,
+// run.json says so, and the run can be resumed from its checkpoint.
 #include <atomic>
 #include <cstdint>
 #include <iosfwd>
@@ -23,6 +25,14 @@ struct RunOptions {
   std::ostream* log = nullptr;                   ///< progress and messages (nullptr: quiet)
   bool terminal = false;                         ///< progress bar (true) or plain lines
   double progress_every = 10.0;                  ///< s of wall time between plain lines
+  /// Continue the run in out_dir from its checkpoint.bin: the same scene,
+  /// the same results bit for bit as a run that never stopped.
+  bool resume = false;
+  /// s of wall time between checkpoints (0: only when interrupted).
+  double checkpoint_every = 0.0;
+  /// Stop as if interrupted once this many steps are done in all (0: never).
+  /// Checked where the interrupt flag is, every 256 steps of a stage.
+  std::uint64_t stop_at_step = 0;
 };
 
 struct RunSummary {
@@ -30,6 +40,8 @@ struct RunSummary {
   double simulated_time = 0.0;  ///< s
   double wall_time = 0.0;       ///< s
   bool interrupted = false;
+  bool checkpoint_written = false;     ///< out_dir/checkpoint.bin holds the state at the end
+  std::uint64_t resumed_at_step = 0;   ///< with RunOptions::resume: the step the run went on from
   std::vector<std::string> stages_completed;
   std::optional<SeepageColumnResult> seepage_column;  ///< with [analysis] kind = "seepage_column"
 };

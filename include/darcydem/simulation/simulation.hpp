@@ -77,6 +77,19 @@ class Simulation {
   [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
   /// Bytes held by the particle, list and wall-contact arrays (capacity).
   [[nodiscard]] std::size_t memory_bytes() const;
+  /// The whole state of the simulation for a checkpoint: particles, walls,
+  /// the settings stages change, the clock, the neighbour lists with their
+  /// contact histories, and the forces of the last evaluation. Loading it into
+  /// a simulation built from the same scene and prepared continues the run
+  /// bit for bit.
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(particles, walls, gravity, damping, skin, time_step, time, steps, list_, wall_list_, field_force_,
+       block_sums_);
+    bool from_field = field_forces_from_ != nullptr;
+    ar(from_field);
+    if constexpr (Archive::loading) field_forces_from_ = from_field ? force_field : nullptr;
+  }
   /// Forces of the force field in the last evaluation (empty without one), N.
   [[nodiscard]] const std::vector<Vec<D>>& field_forces() const { return field_force_; }
 

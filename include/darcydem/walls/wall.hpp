@@ -32,6 +32,12 @@ struct Wall {
   Vec<D> force = Vec<D>::Zero();  ///< N, force the particles exert on the wall
   Vec<D> point_at_build = Vec<D>::Zero();
 
+  /// The state a checkpoint keeps (the name comes from the scene).
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(point, normal, material, motion, velocity, servo, force, point_at_build);
+  }
+
   /// Signed distance of x from the plane, positive on the domain side.
   [[nodiscard]] double distance(const Vec<D>& x) const { return (x - point).dot(normal); }
   /// Compressive load on the wall (N): the force's component against the normal.
@@ -60,6 +66,11 @@ struct WallContactList {
   std::vector<Vec<D>> tangential;         ///< tangential history
   std::vector<AngVec<D>> rolling;         ///< rolling history (empty when unused)
   std::vector<Vec<D>> force_on_particle;  ///< this step's force, N
+
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(offset, wall, tangential, rolling, force_on_particle);
+  }
 
   /// old_index[i] (if given) is the index particle i had at the last build.
   void build(const std::vector<Vec<D>>& position, const std::vector<double>& radius,
