@@ -96,9 +96,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--out,-o", out_dir, "output directory")->required();
   auto* force_flag = run_cmd->add_flag("--force", force, "write into a non-empty output directory");
   run_cmd
-      ->add_flag("--resume", resume,
-                 "go on with the interrupted run in the output directory, from its checkpoint.bin (same scene "
-                 "file)")
+      ->add_flag(
+          "--resume", resume,
+          "go on with the interrupted run in the output directory, from its checkpoint.bin (same scene "
+          "file)")
       ->excludes(force_flag);
   run_cmd
       ->add_option("--checkpoint-every", checkpoint_every,

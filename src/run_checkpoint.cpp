@@ -87,18 +87,18 @@ template <int D>
 void read_checkpoint(const std::string& path, const Scene<D>& scene, const RunState<D>& state) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw CheckpointError(fmt::format(
-        "{}: no checkpoint to resume from (a run writes one when it is interrupted, and every "
-        "--checkpoint-every seconds)",
-        path));
+    throw CheckpointError(
+        fmt::format("{}: no checkpoint to resume from (a run writes one when it is interrupted, and every "
+                    "--checkpoint-every seconds)",
+                    path));
   }
   CheckpointReader ar(in, path);
   Header h;
   ar(h);
   const Header want = header_of(scene, state);
   if (h.format != format)
-    throw CheckpointError(fmt::format("{}: checkpoint format {}; this darcydem reads format {}", path, h.format,
-                                      format));
+    throw CheckpointError(
+        fmt::format("{}: checkpoint format {}; this darcydem reads format {}", path, h.format, format));
   if (h.byte_order != want.byte_order || h.one_and_a_half != want.one_and_a_half)
     throw CheckpointError(
         fmt::format("{}: written on a machine with another byte order or number format", path));
@@ -106,12 +106,14 @@ void read_checkpoint(const std::string& path, const Scene<D>& scene, const RunSt
     throw CheckpointError(fmt::format("{}: written by darcydem {}; this is {}: resume with the same version",
                                       path, h.version, want.version));
   if (h.dimension != D)
-    throw CheckpointError(fmt::format("{}: a {}D run; the scene {} is {}D", path, h.dimension, scene.file, D));
+    throw CheckpointError(
+        fmt::format("{}: a {}D run; the scene {} is {}D", path, h.dimension, scene.file, D));
   if (h.scene_hash != want.scene_hash)
-    throw CheckpointError(fmt::format(
-        "{}: written for a scene with hash fnv1a64:{}, but {} has fnv1a64:{}; resume needs the scene file the "
-        "run started with, unchanged",
-        path, h.scene_hash, scene.file, want.scene_hash));
+    throw CheckpointError(
+        fmt::format("{}: written for a scene with hash fnv1a64:{}, but {} has fnv1a64:{}; resume needs the "
+                    "scene file the "
+                    "run started with, unchanged",
+                    path, h.scene_hash, scene.file, want.scene_hash));
   if (h.particles != want.particles || h.fluid != want.fluid || h.analysis != want.analysis)
     throw CheckpointError(fmt::format("{}: does not match the run that {} builds", path, scene.file));
   state_items(ar, state);

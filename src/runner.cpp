@@ -174,8 +174,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     summary.stages_completed = pos.stages_completed;
     std::error_code ec;
     if (!fs::exists(probes_path, ec) || fs::file_size(probes_path, ec) < pos.probes_bytes) {
-      throw CheckpointError(fmt::format("{}: missing or shorter than when the checkpoint was written",
-                                        probes_path.string()));
+      throw CheckpointError(
+          fmt::format("{}: missing or shorter than when the checkpoint was written", probes_path.string()));
     }
     fs::resize_file(probes_path, pos.probes_bytes);
     probes.open(probes_path, std::ios::app);
@@ -191,7 +191,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     write_probes();
     write_snapshot();
     pos.next_probe = sim.time + scene.output.probe_interval;
-    pos.next_snapshot = scene.output.snapshot_interval > 0 ? sim.time + scene.output.snapshot_interval : 1e300;
+    pos.next_snapshot =
+        scene.output.snapshot_interval > 0 ? sim.time + scene.output.snapshot_interval : 1e300;
   }
   double& next_probe = pos.next_probe;
   double& next_snapshot = pos.next_snapshot;
@@ -329,7 +330,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
             break;
           }
           if (options.checkpoint_every > 0 &&
-              std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= options.checkpoint_every) {
+              std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >=
+                  options.checkpoint_every) {
             save_checkpoint(k, s + 1);
           }
           progress.update(stage.name, sim.time, t_end, sim.steps);

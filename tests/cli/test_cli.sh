@@ -38,6 +38,30 @@ rows=$(wc -l < "$work/long/probes.csv" 2>/dev/null || echo 0)
 [ $rc -eq 130 ] && grep -q '"status": "interrupted"' "$work/long/run.json" && [ "$rows" -gt 10 ] \
   && ok "interrupt keeps output ($rows probe rows)" || bad "interrupt (rc $rc, rows $rows)"
 
+# ... and it goes on from its checkpoint with --resume: the probe rows written
+# before the interruption stay as they were, new ones follow.
+head -5 "$work/long/probes.csv" > "$work/long.head"
+timeout --preserve-status -s INT 2 "$exe" run "$work/long.toml" --out "$work/long" --resume > /dev/null \
+  2> "$work/resume.err"; rc=$?
+rows2=$(wc -l < "$work/long/probes.csv" 2>/dev/null || echo 0)
+[ $rc -eq 130 ] && grep -q '"resumes": 1' "$work/long/run.json" && [ "$rows2" -gt "$rows" ] \
+  && [ "$(head -5 "$work/long/probes.csv")" = "$(cat "$work/long.head")" ] \
+  && grep -q "^resumed from .*checkpoint.bin at t = " "$work/resume.err" \
+  && grep -q "to go on from here: .* --resume$" "$work/resume.err" \
+  && ok "--resume goes on from the checkpoint ($rows then $rows2 probe rows)" || bad "resume (rc $rc, rows $rows2)"
+"$exe" run "$work/long.toml" --out "$work/long" --resume --force > /dev/null 2>"$work/err"; rc=$?
+[ $rc -ne 0 ] && grep -q "excludes" "$work/err" && ok "--resume and --force exclude each other" || bad "--resume --force ($rc)"
+"$exe" run "$scene" --out "$work/out" --resume > /dev/null 2>"$work/err"; rc=$?
+[ $rc -eq 2 ] && grep -q "cannot resume: .*out/checkpoint.bin: no checkpoint to resume from" "$work/err" \
+  && ok "--resume without a checkpoint: exit 2 with the file" || bad "--resume without checkpoint ($rc)"
+# Killed outright (no chance to write at the end): the checkpoint written
+# every 0.3 s of wall time is there to resume from.
+bash -c 'timeout -s KILL 2 "$0" run "$1" --out "$2" --checkpoint-every 0.3; true' \
+  "$exe" "$work/long.toml" "$work/killed" > /dev/null 2>&1
+timeout --preserve-status -s INT 2 "$exe" run "$work/long.toml" --out "$work/killed" --resume > /dev/null 2>&1; rc=$?
+[ $rc -eq 130 ] && grep -q '"resumes": 1' "$work/killed/run.json" \
+  && ok "a killed run resumes from its periodic checkpoint" || bad "resume after kill (rc $rc)"
+
 # The same when the log's reader goes away (a closed pipe): the run stops
 # as interrupted, its output kept, instead of being killed by SIGPIPE.
 "$exe" run "$work/long.toml" --out "$work/piped" 2>&1 | head -1 > /dev/null

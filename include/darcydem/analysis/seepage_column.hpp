@@ -41,9 +41,9 @@ class SeepageColumnAnalysis {
   /// What it has measured and recorded so far (the spec comes from the scene).
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(base_, top_, area_, solid_volume_, top_initial_, top_settled_, settle_done_, inflow_active_, inflow_done_,
-       t0_, top_at_inflow_, inflow_, next_sample_, kappa_effective_, next_profile_, sample_time_, sample_uplift_,
-       profiles_);
+    ar(base_, top_, area_, solid_volume_, top_initial_, top_settled_, settle_done_, inflow_active_,
+       inflow_done_, t0_, top_at_inflow_, inflow_, next_sample_, kappa_effective_, next_profile_,
+       sample_time_, sample_uplift_, profiles_);
   }
 
  private:

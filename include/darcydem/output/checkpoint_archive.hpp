@@ -126,7 +126,8 @@ class CheckpointArchive {
       item(x.first);
       item(x.second);
     } else {
-      static_assert(sizeof(T) == 0, "no checkpoint rule for this type: give it a checkpoint(Archive&) member");
+      static_assert(sizeof(T) == 0,
+                    "no checkpoint rule for this type: give it a checkpoint(Archive&) member");
     }
   }
 

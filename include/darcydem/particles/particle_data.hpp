@@ -86,8 +86,8 @@ struct ParticleData {
   /// Every array, in the order the checkpoint stores them (checkpoint_archive.hpp).
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(id, radius, inv_mass, inv_inertia, material, fixed, position, velocity, angular_velocity, force, torque,
-       external_force);
+    ar(id, radius, inv_mass, inv_inertia, material, fixed, position, velocity, angular_velocity, force,
+       torque, external_force);
   }
 
   /// Bytes held by the arrays (capacity), for memory reports.

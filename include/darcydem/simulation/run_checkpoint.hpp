@@ -42,8 +42,8 @@ template <int D>
 struct RunState {
   RunPosition& position;
   Simulation<D>& simulation;
-  PoreFluid<D>* fluid;                  ///< null without [fluid]
-  SeepageColumnAnalysis<D>* analysis;   ///< null without the analysis
+  PoreFluid<D>* fluid;                 ///< null without [fluid]
+  SeepageColumnAnalysis<D>* analysis;  ///< null without the analysis
   PvdSeries& particle_series;
   PvdSeries& fluid_series;
 };

@@ -40,8 +40,8 @@ struct RunSummary {
   double simulated_time = 0.0;  ///< s
   double wall_time = 0.0;       ///< s
   bool interrupted = false;
-  bool checkpoint_written = false;     ///< out_dir/checkpoint.bin holds the state at the end
-  std::uint64_t resumed_at_step = 0;   ///< with RunOptions::resume: the step the run went on from
+  bool checkpoint_written = false;    ///< out_dir/checkpoint.bin holds the state at the end
+  std::uint64_t resumed_at_step = 0;  ///< with RunOptions::resume: the step the run went on from
   std::vector<std::string> stages_completed;
   std::optional<SeepageColumnResult> seepage_column;  ///< with [analysis] kind = "seepage_column"
 };
