@@ -89,7 +89,7 @@ void read_checkpoint(const std::string& path, const Scene<D>& scene, const RunSt
   if (!in) {
     throw CheckpointError(
         fmt::format("{}: no checkpoint to resume from (a run writes one when it is interrupted, and every "
-                    "--checkpoint-every seconds)",
+                    "--checkpoint-every seconds; a run that completes removes it)",
                     path));
   }
   CheckpointReader ar(in, path);
