@@ -200,12 +200,32 @@ Packing<D> read_packing_csv(const std::string& path) {
   return out;
 }
 
+template <int D>
+void write_packing_csv(const std::string& path, const ParticleData<D>& p, const std::string& comment) {
+  std::vector<std::size_t> by_id(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) by_id[p.id[i]] = i;
+  std::string text;
+  std::stringstream lines(comment);
+  std::string line;
+  while (std::getline(lines, line)) text += "# " + line + "\n";
+  text += D == 2 ? "x,y,radius\n" : "x,y,z,radius\n";
+  for (std::size_t i : by_id) {
+    for (int k = 0; k < D; ++k) text += fmt::format("{:.17g},", p.position[i][k]);
+    text += fmt::format("{:.17g}\n", p.radius[i]);
+  }
+  std::ofstream out(path);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error(fmt::format("{}: cannot write the particle file", path));
+}
+
 #define DARCYDEM_INSTANTIATE(D)                                                                  \
   template Packing<D> lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);          \
   template Packing<D> column_packing<D>(const Vec<D>&, const Vec<D>&, int, double, double);      \
   template Packing<D> random_packing<D>(const Vec<D>&, const Vec<D>&, std::int64_t,              \
                                         const RadiusDistribution&, std::uint64_t, std::int64_t); \
-  template Packing<D> read_packing_csv<D>(const std::string&);
+  template Packing<D> read_packing_csv<D>(const std::string&);                                   \
+  template void write_packing_csv<D>(const std::string&, const ParticleData<D>&, const std::string&);
 DARCYDEM_INSTANTIATE(2)
 DARCYDEM_INSTANTIATE(3)
 #undef DARCYDEM_INSTANTIATE

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "darcydem/generation/generators.hpp"
 #include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/output/probes.hpp"
 #include "darcydem/output/vtk.hpp"
@@ -374,6 +375,25 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     }
   }
   probes.flush();
+  if (failure.empty()) {
+    // The end state as a packing that a new scene can start from (a bed
+    // settled once, then used by several runs).
+    // The scene check refuses overlaps above initial_overlap_tolerance (a
+    // fraction of the smaller radius): say what this packing needs.
+    const double r_min = *std::min_element(sim.particles.radius.begin(), sim.particles.radius.end());
+    const double overlap = sim.max_overlap();
+    write_packing_csv<D>(
+        (out / "particles_final.csv").string(), sim.particles,
+        fmt::format(
+            "darcydem {}: the particles of {} at t = {:.17g} s (step {}, {})\n"
+            "a scene starts from them with [[particles]] generator = \"csv\"; centres and radii only (no "
+            "velocities, materials or contact histories)\n"
+            "largest overlap {:.4g} m = {:.4g} of the smallest radius: the scene needs [simulation] "
+            "initial_overlap_tolerance >= {:.2g} (walls where they were at the start)",
+            version_string, scene.file, sim.time, sim.steps,
+            summary.interrupted ? "interrupted" : "completed", overlap, overlap / r_min,
+            std::ceil(overlap / r_min * 1.05 * 1000.0) / 1000.0));
+  }
   if (seepage) summary.seepage_column = seepage->finish(scene, out.string(), options.log);
 
   summary.steps = sim.steps;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "darcydem/core/vec.hpp"
+#include "darcydem/particles/particle_data.hpp"
 
 namespace darcydem {
 
@@ -53,5 +54,12 @@ Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
 /// Throws std::runtime_error naming the file and line on a bad row.
 template <int D>
 Packing<D> read_packing_csv(const std::string& path);
+
+/// Writes the particles' centres and radii as read_packing_csv reads them,
+/// in creation order (ParticleData::id), to 17 significant digits (read
+/// back exactly); `comment` goes first as '#' lines. Throws
+/// std::runtime_error if the file cannot be written.
+template <int D>
+void write_packing_csv(const std::string& path, const ParticleData<D>& particles, const std::string& comment);
 
 }  // namespace darcydem

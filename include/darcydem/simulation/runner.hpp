@@ -4,6 +4,7 @@
 //   particles_NNNNN.vtu  snapshots, with particles.pvd as the series
 //   fluid_NNNNN.vti      pore-fluid snapshots (with [fluid]), fluid.pvd the series
 //   run.json             version, scene hash, steps, wall time, how it ended
+//   particles_final.csv  the end state as a packing for the csv generator
 //   seepage files        with [analysis] kind = "seepage_column" (seepage_column.hpp)
 //   checkpoint.bin       when interrupted (and every checkpoint_every s): the
 //                        whole state, for resuming (run_checkpoint.hpp)
