@@ -66,6 +66,10 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
                            summary.interrupted ? "interrupted" : "done", summary.steps,
                            summary.simulated_time, summary.wall_time, out);
   if (summary.interrupted && summary.checkpoint_written) {
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(std::filesystem::path(out) / "checkpoint.bin", ec);
+    std::cerr << fmt::format("checkpoint: {}/checkpoint.bin ({:.3g} MB)\n", out,
+                             ec ? 0.0 : static_cast<double>(bytes) / 1e6);
     std::cerr << fmt::format("to go on from here: darcydem run {} --out {} --resume\n", file, out);
   }
   return summary.interrupted ? 130 : 0;
