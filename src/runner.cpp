@@ -181,6 +181,11 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     fs::resize_file(probes_path, pos.probes_bytes);
     probes.open(probes_path, std::ios::app);
   } else {
+    // A new run in a used directory (--force): an old checkpoint there
+    // belongs to another run and must not be resumed into this one's output.
+    std::error_code ec;
+    fs::remove(checkpoint_path, ec);
+    fs::remove(fs::path(checkpoint_path.string() + ".part"), ec);
     probes.open(probes_path, std::ios::trunc);
   }
   if (!probes) throw std::runtime_error(fmt::format("{}: cannot write probes.csv", out.string()));

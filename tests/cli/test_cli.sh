@@ -97,5 +97,12 @@ sed -e 's/^gravity = \[0.0, -9.80665\]/gravity = [0.0, -1e308]/' "$scene" > "$wo
 [ $rc -eq 1 ] && grep -q "the simulation blew up" "$work/blow.err" && grep -q '"status": "failed"' "$work/blow/run.json" \
   && [ -s "$work/blow/probes.csv" ] && ok "a blown-up run fails cleanly and keeps its output" || bad "blow-up (rc $rc)"
 
+# A new run with --force where an interrupted run left its checkpoint:
+# the old checkpoint goes, even though this run fails before writing one.
+[ -s "$work/long/checkpoint.bin" ] || bad "the interrupted run left no checkpoint"
+"$exe" run "$work/blow.toml" --out "$work/long" --force > /dev/null 2>&1; rc=$?
+[ $rc -eq 1 ] && [ ! -e "$work/long/checkpoint.bin" ] && ! grep -q '"checkpoint"' "$work/long/run.json" \
+  && ok "--force removes an old run's checkpoint" || bad "stale checkpoint after --force (rc $rc)"
+
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]
