@@ -112,6 +112,79 @@ class Progress {
   double last_t_ = 0.0;
 };
 
+/// The end state as a packing that a new scene can start from (a bed
+/// settled once, then used by several runs): OUT/particles_final.csv. The
+/// scene check refuses overlaps above initial_overlap_tolerance (a fraction
+/// of the smaller radius), so the header says what this packing needs.
+template <int D>
+void write_final_particles(const fs::path& out, const Scene<D>& scene, bool interrupted) {
+  const auto& sim = scene.simulation;
+  const double r_min = *std::min_element(sim.particles.radius.begin(), sim.particles.radius.end());
+  const double overlap = sim.max_overlap();
+  write_packing_csv<D>(
+      (out / "particles_final.csv").string(), sim.particles,
+      fmt::format(
+          "darcydem {}: the particles of {} at t = {:.17g} s (step {}, {})\n"
+          "a scene starts from them with [[particles]] generator = \"csv\"; centres and radii only (no "
+          "velocities, materials or contact histories)\n"
+          "largest overlap {:.4g} m = {:.4g} of the smallest radius: the scene needs [simulation] "
+          "initial_overlap_tolerance >= {:.2g} (walls where they were at the start)",
+          version_string, scene.file, sim.time, sim.steps, interrupted ? "interrupted" : "completed", overlap,
+          overlap / r_min, std::ceil(overlap / r_min * 1.05 * 1000.0) / 1000.0));
+}
+
+/// run.json: what ran, how long, how it ended, the fluid's balance and the analysis' verdict.
+template <int D>
+void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummary& summary,
+                    const RunPosition& pos, const std::string& failure) {
+  const auto& sim = scene.simulation;
+  const PoreFluid<D>* fluid = scene.fluid.get();
+  const double dt = sim.time_step;
+  const std::uint64_t fluid_iterations = pos.fluid_iterations;
+  const double fluid_residual = pos.fluid_residual;
+  std::ofstream json(path);
+  std::string stages;
+  for (const auto& s : summary.stages_completed) stages += (stages.empty() ? "" : ", ") + json_string(s);
+  json << "{\n"
+       << fmt::format("  \"version\": {},\n", json_string(version_string))
+       << fmt::format("  \"scene\": {},\n", json_string(scene.file))
+       << fmt::format("  \"scene_hash\": \"fnv1a64:{}\",\n", scene.text_hash)
+       << fmt::format("  \"dimension\": {},\n", D)
+       << fmt::format("  \"particles\": {},\n", sim.particles.size())
+       << fmt::format("  \"time_step\": {:.17g},\n", dt) << fmt::format("  \"steps\": {},\n", summary.steps)
+       << fmt::format("  \"simulated_time\": {:.17g},\n", summary.simulated_time)
+       << fmt::format("  \"wall_time\": {:.6f},\n", summary.wall_time)
+       << fmt::format("  \"threads\": {},\n", omp_get_max_threads())
+       << fmt::format("  \"resumes\": {},\n", pos.resumes);
+  if (summary.checkpoint_written) json << "  \"checkpoint\": \"checkpoint.bin\",\n";
+  if (fluid != nullptr) {
+    const auto& tb = fluid->total_balance();
+    json << fmt::format(
+        "  \"fluid\": {{\"cells\": {}, \"updates\": {}, \"solver\": \"{}\", \"preconditioner\": \"{}\", "
+        "\"iterations\": {}, "
+        "\"max_residual\": {:.6g}, \"inflow\": {:.17g}, \"stored\": {:.17g}, \"pore_change\": {:.17g}, "
+        "\"imbalance\": {:.6g}, \"gross_flow\": {:.6g}, \"grains_outside_grid\": {}}},\n",
+        fluid->grid.size(), fluid->updates(), to_string(fluid->solver().kind()),
+        fluid->solver().kind() == PressureSolverKind::cg
+            ? to_string(fluid->solver().preconditioner_for(static_cast<Eigen::Index>(fluid->grid.size())))
+            : "none",
+        fluid_iterations, fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), tb.gross,
+        fluid->grains_outside(sim.particles));
+  }
+  if (summary.seepage_column) {
+    const auto& r = *summary.seepage_column;
+    json << fmt::format(
+        "  \"seepage_column\": {{\"uplift_rms_error\": {:.6g}, \"pressure_max_error\": {:.6g}, "
+        "\"passed\": {}}},\n",
+        r.uplift_rms_error, r.pressure_max_error, r.passed ? "true" : "false");
+  }
+  json << fmt::format("  \"status\": \"{}\",\n",
+                      !failure.empty() ? "failed" : (summary.interrupted ? "interrupted" : "completed"));
+  if (!failure.empty()) json << fmt::format("  \"failure\": {},\n", json_string(failure));
+  json << fmt::format("  \"stages_completed\": [{}]\n", stages) << "}\n";
+  json.close();
+}
+
 }  // namespace
 
 bool output_dir_is_free(const std::string& dir) {
@@ -380,25 +453,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     }
   }
   probes.flush();
-  if (failure.empty()) {
-    // The end state as a packing that a new scene can start from (a bed
-    // settled once, then used by several runs).
-    // The scene check refuses overlaps above initial_overlap_tolerance (a
-    // fraction of the smaller radius): say what this packing needs.
-    const double r_min = *std::min_element(sim.particles.radius.begin(), sim.particles.radius.end());
-    const double overlap = sim.max_overlap();
-    write_packing_csv<D>(
-        (out / "particles_final.csv").string(), sim.particles,
-        fmt::format(
-            "darcydem {}: the particles of {} at t = {:.17g} s (step {}, {})\n"
-            "a scene starts from them with [[particles]] generator = \"csv\"; centres and radii only (no "
-            "velocities, materials or contact histories)\n"
-            "largest overlap {:.4g} m = {:.4g} of the smallest radius: the scene needs [simulation] "
-            "initial_overlap_tolerance >= {:.2g} (walls where they were at the start)",
-            version_string, scene.file, sim.time, sim.steps,
-            summary.interrupted ? "interrupted" : "completed", overlap, overlap / r_min,
-            std::ceil(overlap / r_min * 1.05 * 1000.0) / 1000.0));
-  }
+  if (failure.empty()) write_final_particles(out, scene, summary.interrupted);
   if (seepage) summary.seepage_column = seepage->finish(scene, out.string(), options.log);
 
   summary.steps = sim.steps;
@@ -410,47 +465,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     if (failure.empty() && !summary.interrupted) fs::remove(checkpoint_path, ec);
     summary.checkpoint_written = fs::exists(checkpoint_path, ec);
   }
-  std::ofstream json(out / "run.json");
-  std::string stages;
-  for (const auto& s : summary.stages_completed) stages += (stages.empty() ? "" : ", ") + json_string(s);
-  json << "{\n"
-       << fmt::format("  \"version\": {},\n", json_string(version_string))
-       << fmt::format("  \"scene\": {},\n", json_string(scene.file))
-       << fmt::format("  \"scene_hash\": \"fnv1a64:{}\",\n", scene.text_hash)
-       << fmt::format("  \"dimension\": {},\n", D)
-       << fmt::format("  \"particles\": {},\n", sim.particles.size())
-       << fmt::format("  \"time_step\": {:.17g},\n", dt) << fmt::format("  \"steps\": {},\n", summary.steps)
-       << fmt::format("  \"simulated_time\": {:.17g},\n", summary.simulated_time)
-       << fmt::format("  \"wall_time\": {:.6f},\n", summary.wall_time)
-       << fmt::format("  \"threads\": {},\n", omp_get_max_threads())
-       << fmt::format("  \"resumes\": {},\n", pos.resumes);
-  if (summary.checkpoint_written) json << "  \"checkpoint\": \"checkpoint.bin\",\n";
-  if (fluid != nullptr) {
-    const auto& tb = fluid->total_balance();
-    json << fmt::format(
-        "  \"fluid\": {{\"cells\": {}, \"updates\": {}, \"solver\": \"{}\", \"preconditioner\": \"{}\", "
-        "\"iterations\": {}, "
-        "\"max_residual\": {:.6g}, \"inflow\": {:.17g}, \"stored\": {:.17g}, \"pore_change\": {:.17g}, "
-        "\"imbalance\": {:.6g}, \"gross_flow\": {:.6g}, \"grains_outside_grid\": {}}},\n",
-        fluid->grid.size(), fluid->updates(), to_string(fluid->solver().kind()),
-        fluid->solver().kind() == PressureSolverKind::cg
-            ? to_string(fluid->solver().preconditioner_for(static_cast<Eigen::Index>(fluid->grid.size())))
-            : "none",
-        fluid_iterations, fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), tb.gross,
-        fluid->grains_outside(sim.particles));
-  }
-  if (summary.seepage_column) {
-    const auto& r = *summary.seepage_column;
-    json << fmt::format(
-        "  \"seepage_column\": {{\"uplift_rms_error\": {:.6g}, \"pressure_max_error\": {:.6g}, "
-        "\"passed\": {}}},\n",
-        r.uplift_rms_error, r.pressure_max_error, r.passed ? "true" : "false");
-  }
-  json << fmt::format("  \"status\": \"{}\",\n",
-                      !failure.empty() ? "failed" : (summary.interrupted ? "interrupted" : "completed"));
-  if (!failure.empty()) json << fmt::format("  \"failure\": {},\n", json_string(failure));
-  json << fmt::format("  \"stages_completed\": [{}]\n", stages) << "}\n";
-  json.close();
+  write_run_json(out / "run.json", scene, summary, pos, failure);
   if (!failure.empty())
     throw std::runtime_error(failure + " (the output written so far is kept in " + out.string() + ")");
   return summary;
