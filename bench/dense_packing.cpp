@@ -6,15 +6,21 @@
 // gravity with local damping before timing.
 //
 // Counters: particle_steps_per_second, bytes_per_particle (arrays held by
-// the simulation), peak_rss_bytes. Write JSON with
+// the simulation), peak_rss_bytes. Also the time to write and read a
+// checkpoint of the stack (BM_Checkpoint). Write JSON with
 //   bench_dense_packing --benchmark_out=bench/results/dense_packing.json
 #include <benchmark/benchmark.h>
 #include <omp.h>
 #include <sys/resource.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 
+#include "darcydem/output/checkpoint_archive.hpp"
 #include "packing.hpp"
 
 namespace {
@@ -77,6 +83,46 @@ void BM_DroppedPacking(benchmark::State& state) {
   state.counters["kinetic_energy_per_particle"] =
       sim.kinetic_energy() / static_cast<double>(sim.particles.size());
 }
+
+// A checkpoint of the FCC stack (what `run --resume` reads and an
+// interrupted run writes): the simulation's whole state, particles, lists
+// with contact histories and walls, written to a file (range(1) = 0) or
+// read back from it (1). Counters: the file's bytes per particle and MB/s.
+void BM_Checkpoint(benchmark::State& state) {
+  const bool reading = state.range(1) == 1;
+  omp_set_num_threads(2);
+  auto sim = make_packing(state.range(0));
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("darcydem_bench_checkpoint_" + std::to_string(getpid()) + ".bin"))
+                               .string();
+  auto write = [&] {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    darcydem::CheckpointWriter ar(out, path);
+    ar(sim);
+  };
+  write();
+  const auto bytes = static_cast<double>(std::filesystem::file_size(path));
+  for (auto _ : state) {
+    if (reading) {
+      std::ifstream in(path, std::ios::binary);
+      darcydem::CheckpointReader ar(in, path);
+      ar(sim);
+    } else {
+      write();
+    }
+  }
+  std::filesystem::remove(path);
+  state.counters["bytes_per_particle"] = bytes / static_cast<double>(sim.particles.size());
+  state.counters["megabytes"] = bytes / 1e6;
+  state.counters["megabytes_per_second"] =
+      benchmark::Counter(bytes / 1e6 * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+BENCHMARK(BM_Checkpoint)
+    ->ArgsProduct({{100'000}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
 
 BENCHMARK(BM_DroppedPacking)
     ->ArgsProduct({{10'000, 100'000}, {1, 2}})
