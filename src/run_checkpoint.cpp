@@ -1,6 +1,5 @@
 #include "darcydem/simulation/run_checkpoint.hpp"
 
-#include <bit>
 #include <filesystem>
 #include <fstream>
 
@@ -110,9 +109,8 @@ void read_checkpoint(const std::string& path, const Scene<D>& scene, const RunSt
         fmt::format("{}: a {}D run; the scene {} is {}D", path, h.dimension, scene.file, D));
   if (h.scene_hash != want.scene_hash)
     throw CheckpointError(
-        fmt::format("{}: written for a scene with hash fnv1a64:{}, but {} has fnv1a64:{}; resume needs the "
-                    "scene file the "
-                    "run started with, unchanged",
+        fmt::format("{}: written for a scene with hash fnv1a64:{}, but {} has fnv1a64:{}; resume needs "
+                    "the scene file the run started with, unchanged",
                     path, h.scene_hash, scene.file, want.scene_hash));
   if (h.particles != want.particles || h.fluid != want.fluid || h.analysis != want.analysis)
     throw CheckpointError(fmt::format("{}: does not match the run that {} builds", path, scene.file));

@@ -1,5 +1,7 @@
 #pragma once
 // Loads scene files from the source tree, as a user would run them.
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "darcydem/scene/scene.hpp"
@@ -7,12 +9,26 @@
 
 namespace darcydem::testing {
 
+/// Loads the scene file at `path` (any folder), as `darcydem run` does.
 template <int D>
-Scene<D> load_scene(const std::string& relative) {
-  const std::string path = std::string(DARCYDEM_SOURCE_DIR) + "/" + relative;
+Scene<D> load_scene_file(const std::string& path) {
   std::string text;
   const toml::table root = parse_toml_file(path, text);
   return build_scene<D>(root, path, text);
+}
+
+/// Loads a scene file from the source tree (path relative to it).
+template <int D>
+Scene<D> load_scene(const std::string& relative) {
+  return load_scene_file<D>(std::string(DARCYDEM_SOURCE_DIR) + "/" + relative);
+}
+
+/// A file's bytes (empty if it cannot be read).
+inline std::string file_contents(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 /// Runs every stage without writing output (stop conditions honoured).

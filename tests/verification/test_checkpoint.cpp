@@ -12,13 +12,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 
 #include "darcydem/output/checkpoint_archive.hpp"
-#include "darcydem/scene/scene.hpp"
-#include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/runner.hpp"
+#include "scene_loading.hpp"
 
 using namespace darcydem;
 namespace fs = std::filesystem;
@@ -31,18 +29,11 @@ fs::path fresh_dir(const std::string& name) {
   return dir;
 }
 
-template <int D>
-Scene<D> load(const std::string& path) {
-  std::string text;
-  const toml::table root = parse_toml_file(path, text);
-  return build_scene<D>(root, path, text);
-}
-
 /// Runs the scene at `path` into `out`; sort_threshold 0 makes every list
 /// build reorder the grains (as in a large run).
 template <int D>
 RunSummary run(const std::string& path, const fs::path& out, std::uint64_t stop_at_step, bool resume) {
-  Scene<D> scene = load<D>(path);
+  Scene<D> scene = darcydem::testing::load_scene_file<D>(path);
   scene.simulation.sort_threshold = 0;
   RunOptions options;
   options.out_dir = out.string();
@@ -51,12 +42,7 @@ RunSummary run(const std::string& path, const fs::path& out, std::uint64_t stop_
   return run_scene<D>(scene, options);
 }
 
-std::string contents(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string contents(const fs::path& file) { return darcydem::testing::file_contents(file.string()); }
 
 /// Every file of a run's output but run.json (which holds wall times).
 std::map<std::string, std::string> output_files(const fs::path& dir) {

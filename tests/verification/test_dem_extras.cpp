@@ -7,14 +7,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "darcydem/generation/generators.hpp"
-#include "darcydem/scene/scene.hpp"
-#include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/runner.hpp"
 #include "dem_setup.hpp"
+#include "scene_loading.hpp"
 
 namespace darcydem {
 namespace {
@@ -181,20 +179,12 @@ TEST(Generators, CsvWrittenInCreationOrder) {
   std::filesystem::remove(path);
 }
 
-std::string contents_of(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 TEST(Generators, FinalParticlesStartANewSceneSettled) {
   const std::string scene = std::string(DARCYDEM_SOURCE_DIR) + "/examples/column_settling/column.toml";
   const auto dir = std::filesystem::temp_directory_path() / ("darcydem_final_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
-  std::string text;
-  const toml::table root = parse_toml_file(scene, text);
-  Scene<2> first = build_scene<2>(root, scene, text);
+  const std::string text = testing::file_contents(scene);
+  Scene<2> first = testing::load_scene_file<2>(scene);
   RunOptions options;
   options.out_dir = (dir / "settle").string();
   ASSERT_FALSE(run_scene<2>(first, options).interrupted);
@@ -213,7 +203,7 @@ TEST(Generators, FinalParticlesStartANewSceneSettled) {
   const auto to = text.find("[output]");
   ASSERT_TRUE(from != std::string::npos && to != std::string::npos && from < to);
   // The tolerance the file's header asks for.
-  const std::string header = contents_of(csv);
+  const std::string header = testing::file_contents(csv);
   const auto tol_at = header.find("initial_overlap_tolerance >= ");
   ASSERT_NE(tol_at, std::string::npos) << header.substr(0, 400);
   const double tolerance = std::stod(header.substr(tol_at + 29));
@@ -226,9 +216,7 @@ TEST(Generators, FinalParticlesStartANewSceneSettled) {
   reloaded_text.insert(sim_at + 13, fmt::format("initial_overlap_tolerance = {}\n", tolerance));
   const std::string reloaded_file = (dir / "reloaded.toml").string();
   std::ofstream(reloaded_file) << reloaded_text;
-  std::string text2;
-  const toml::table root2 = parse_toml_file(reloaded_file, text2);
-  Scene<2> second = build_scene<2>(root2, reloaded_file, text2);
+  Scene<2> second = testing::load_scene_file<2>(reloaded_file);
   auto& sim = second.simulation;
   sim.gravity = Vec<2>(0.0, -9.80665);
   sim.prepare();

@@ -7,7 +7,7 @@
 //   template <class Archive> void checkpoint(Archive& ar) { ar(a_, b_, ...); }
 // which both directions walk: the writer stores the members, the reader loads
 // them in the same order. Numbers are stored as the machine holds them; the
-// file's header (checkpoint.hpp) says which machine conventions it assumes.
+// file's header (simulation/run_checkpoint.hpp) says which machine conventions it assumes.
 #include <array>
 #include <cstdint>
 #include <istream>
