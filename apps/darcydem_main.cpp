@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -108,7 +109,15 @@ int main(int argc, char** argv) {
   run_cmd
       ->add_option("--checkpoint-every", checkpoint_every,
                    "seconds of wall time between checkpoints (default 0: only when interrupted)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Validator(
+          [](const std::string& value) {
+            double s = -1.0;
+            return CLI::detail::lexical_cast(value, s) && s >= 0.0 && std::isfinite(s)
+                       ? std::string()
+                       : "'" + value +
+                             "' is not allowed: a number of seconds >= 0 (0: only when interrupted)";
+          },
+          "SECONDS >= 0"));
   run_cmd->add_option("--threads,-j", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
 

@@ -54,6 +54,9 @@ rows2=$(wc -l < "$work/long/probes.csv" 2>/dev/null || echo 0)
 "$exe" run "$scene" --out "$work/out" --resume > /dev/null 2>"$work/err"; rc=$?
 [ $rc -eq 2 ] && grep -q "cannot resume: .*out/checkpoint.bin: no checkpoint to resume from" "$work/err" \
   && ok "--resume without a checkpoint: exit 2 with the file" || bad "--resume without checkpoint ($rc)"
+"$exe" run "$scene" --out "$work/bad_every" --checkpoint-every -1 > /dev/null 2>"$work/err"; rc=$?
+[ $rc -ne 0 ] && grep -q "^--checkpoint-every: '-1' is not allowed: a number of seconds >= 0" "$work/err" \
+  && ok "a bad --checkpoint-every is refused with what is allowed" || bad "--checkpoint-every -1 ($rc)"
 # Killed outright (no chance to write at the end): the checkpoint written
 # every 0.3 s of wall time is there to resume from.
 bash -c 'timeout -s KILL 2 "$0" run "$1" --out "$2" --checkpoint-every 0.3; true' \
