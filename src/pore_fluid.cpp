@@ -268,14 +268,15 @@ void PoreFluid<D>::build_pattern() {
         triplets.emplace_back(static_cast<int>(b), static_cast<int>(c), 1.0);
       }
       if (cc[k] == 0)
-        boundary_faces_.push_back({static_cast<std::uint32_t>(c), 2 * k, grid.face_index(k, cc)});
+        boundary_faces_.push_back({static_cast<std::uint32_t>(c), 2 * k, grid.face_index(k, cc), -1});
       if (cc[k] + 1 == grid.cells[k]) {
         auto up = cc;
         ++up[k];
-        boundary_faces_.push_back({static_cast<std::uint32_t>(c), 2 * k + 1, grid.face_index(k, up)});
+        boundary_faces_.push_back({static_cast<std::uint32_t>(c), 2 * k + 1, grid.face_index(k, up), -1});
       }
     }
   }
+  assign_patches();
   matrix_.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   matrix_.setFromTriplets(triplets.begin(), triplets.end());
   matrix_.makeCompressed();
@@ -298,6 +299,29 @@ void PoreFluid<D>::build_pattern() {
     stride *= static_cast<std::size_t>(grid.cells[k]);
   }
   operator_.resize(n, strides);
+}
+
+template <int D>
+void PoreFluid<D>::assign_patches() {
+  patch_faces_.assign(patches.size(), 0);
+  patch_inflow_.assign(patches.size(), 0.0);
+  for (auto& bf : boundary_faces_) {
+    const int axis = bf.side / 2;
+    const auto cc = grid.coords(bf.cell);
+    std::array<double, D> centre{};
+    for (int k = 0; k < D; ++k) {
+      centre[k] = k == axis ? grid.origin[k] + grid.spacing[k] * (cc[k] + ((bf.side & 1) != 0 ? 1.0 : 0.0))
+                            : grid.origin[k] + grid.spacing[k] * (cc[k] + 0.5);
+    }
+    bf.patch = -1;
+    for (std::size_t p = 0; p < patches.size(); ++p) {
+      if (patches[p].side == bf.side && patches[p].holds(centre)) {
+        bf.patch = static_cast<int>(p);
+        ++patch_faces_[p];
+        break;
+      }
+    }
+  }
 }
 
 template <int D>
@@ -401,7 +425,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   }
   // Boundaries.
   for (const auto& bf : boundary_faces_) {
-    const FluidBoundary& side = sides[bf.side];
+    const FluidBoundary& side = condition_of(bf);
     const int axis = bf.side / 2;
     const double area = grid.face_area(axis);
     if (side.type == FluidBoundaryType::drained) {
@@ -477,8 +501,9 @@ void PoreFluid<D>::compute_face_fields(double time) {
     });
   }
   side_inflow_.fill(0.0);
+  std::fill(patch_inflow_.begin(), patch_inflow_.end(), 0.0);
   for (const auto& bf : boundary_faces_) {
-    const FluidBoundary& side = sides[bf.side];
+    const FluidBoundary& side = condition_of(bf);
     const int axis = bf.side / 2;
     const bool upper = (bf.side & 1) != 0;
     const double lambda = side_lambda(axis, bf.cell);
@@ -497,6 +522,7 @@ void PoreFluid<D>::compute_face_fields(double time) {
     }
     face_gq_[axis][bf.index] = {g, -lambda * g};
     side_inflow_[bf.side] += inflow * grid.face_area(axis);
+    if (bf.patch >= 0) patch_inflow_[static_cast<std::size_t>(bf.patch)] += inflow * grid.face_area(axis);
   }
 }
 

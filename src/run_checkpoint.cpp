@@ -12,7 +12,7 @@ namespace darcydem {
 namespace {
 
 constexpr const char* checkpoint_magic = "darcydem checkpoint";
-constexpr std::uint32_t format = 1;
+constexpr std::uint32_t format = 2;  // 2: the pore fluid's patches
 constexpr const char* end_mark = "end of checkpoint";
 
 /// The header: what a reader must share with the writer.

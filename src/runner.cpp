@@ -50,6 +50,11 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
       fluid->sides[side] = b;
       fluid->sides[side].value.start = sim.time;
     }
+    for (const auto& [patch, b] : stage.fluid_patches) {
+      auto& condition = fluid->patches[static_cast<std::size_t>(patch)].condition;
+      condition = b;
+      condition.value.start = sim.time;
+    }
   }
   if (stage.gravity) sim.gravity = *stage.gravity;
   if (stage.local_damping) sim.damping.local = *stage.local_damping;
@@ -292,6 +297,14 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
           fluid->solver().describe(static_cast<Eigen::Index>(fluid->grid.size())), fluid->steps_per_update,
           fluid->hold_forces && fluid->steps_per_update > 1 ? " (grain forces held between them)" : "",
           sides);
+      for (std::size_t k = 0; k < fluid->patches.size(); ++k) {
+        const auto& patch = fluid->patches[k];
+        const int axis = patch.side / 2;
+        *options.log << fmt::format("patch {} on {}: {} faces, {:.6g} m^2, {}\n", patch.name,
+                                    side_names[patch.side], fluid->patch_faces(k),
+                                    static_cast<double>(fluid->patch_faces(k)) * fluid->grid.face_area(axis),
+                                    to_string(patch.condition.type));
+      }
     }
   }
   if (options.resume && options.log != nullptr) {

@@ -449,7 +449,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       p.position = r.numbers("position", D);
     } else if (q == "fluid_inflow") {
       p.quantity = ProbeQuantity::fluid_inflow;
-      const auto names = std::vector<std::string>(side_names, side_names + 2 * D);
+      // A side, or a patch of one (index 2 D + its index in the patches).
+      auto names = std::vector<std::string>(side_names, side_names + 2 * D);
+      for (const auto& patch : scene.fluid->patches) names.push_back(patch.name);
       const std::string side = r.choice("side", names);
       p.side = static_cast<int>(std::find(names.begin(), names.end(), side) - names.begin());
     } else if (q == "fluid_balance" || q == "fluid_iterations") {
@@ -551,7 +553,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       if (!scene.fluid) r.fail("fluid", "changes the pore fluid, but the scene has no [fluid] table");
       TableReader fr(*ft, r.where() + " fluid", file);
       if (const toml::table* bt = fr.optional_table("boundary")) {
-        s.fluid_sides = read_fluid_sides<D>(*bt, r.where() + " fluid.boundary", file);
+        auto changes =
+            read_fluid_boundary_changes<D>(*bt, r.where() + " fluid.boundary", file, scene.fluid.get());
+        s.fluid_sides = std::move(changes.sides);
+        s.fluid_patches = std::move(changes.patches);
       }
       if (fr.has("freeze_permeability")) s.freeze_permeability = fr.boolean_or("freeze_permeability", false);
       if (fr.has("steps_per_update")) s.fluid_steps_per_update = read_steps_per_update(fr);
@@ -567,6 +572,12 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     TableReader r(*t, "[analysis]", file);
     r.choice("kind", {"seepage_column"});
     if (!scene.fluid) r.fail("kind", "\"seepage_column\" needs a pore fluid: the scene has no [fluid] table");
+    if (!scene.fluid->patches.empty()) {
+      r.fail("kind",
+             fmt::format("\"seepage_column\" compares with a one-dimensional solution and takes whole "
+                         "sides; the scene's [fluid.boundary] has patches (\"{}\")",
+                         scene.fluid->patches.front().name));
+    }
     SeepageColumnSpec a;
     std::vector<std::string> stage_names;
     for (const auto& st : scene.stages) stage_names.push_back(st.name);

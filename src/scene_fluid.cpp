@@ -43,39 +43,178 @@ TimeSeries read_series(TableReader& r, std::string_view key, const std::string& 
 
 }  // namespace
 
+namespace {
+
+/// type = "drained" | "flux" | "no_flow" with its value; `what` is "side"
+/// or "patch", for the messages.
+FluidBoundary read_condition(TableReader& r, const char* what) {
+  FluidBoundary b;
+  const std::string type = r.choice("type", {"drained", "flux", "no_flow"});
+  r.allow({"pressure", "inflow"});
+  if (type == "drained") {
+    if (r.has("inflow"))
+      r.fail("inflow", fmt::format("does not apply to a drained {} (give 'pressure')", what));
+    b.type = FluidBoundaryType::drained;
+    b.value = read_series(r, "pressure", "excess pore pressure, Pa");
+  } else if (type == "flux") {
+    if (r.has("pressure"))
+      r.fail("pressure", fmt::format("does not apply to a flux {} (give 'inflow')", what));
+    b.type = FluidBoundaryType::flux;
+    b.value = read_series(r, "inflow", "Darcy velocity into the grid, m/s");
+  } else {
+    for (auto k : {"pressure", "inflow"}) {
+      if (r.has(k)) r.fail(k, fmt::format("does not apply to a no_flow {}", what));
+    }
+    b.type = FluidBoundaryType::no_flow;
+  }
+  return b;
+}
+
+/// The names a [fluid.boundary] table may hold besides the patches'.
 template <int D>
-std::vector<std::pair<int, FluidBoundary>> read_fluid_sides(const toml::table& table,
-                                                            const std::string& where,
-                                                            const std::string& file) {
-  std::vector<std::pair<int, FluidBoundary>> out;
+std::string side_choices() {
+  std::string list;
+  for (const auto& n : side_list<D>()) list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+
+/// A patch's place: 'side', and 'from' and 'to' along the side's other
+/// axes. Checked against the grid: inside the side, from < to, holding at
+/// least one face centre and none of an earlier patch's faces.
+template <int D>
+FluidPatch<D> read_patch_place(TableReader& r, const std::string& name, const FluidGrid<D>& grid,
+                               const std::vector<FluidPatch<D>>& earlier) {
   const auto names = side_list<D>();
+  FluidPatch<D> patch;
+  patch.name = name;
+  const std::string side = r.choice("side", names);
+  patch.side = static_cast<int>(std::find(names.begin(), names.end(), side) - names.begin());
+  const int axis = patch.side / 2;
+  std::string along;  // the side's other axes, e.g. "x, y"
+  for (int k = 0; k < D; ++k) {
+    if (k != axis) along += std::string(along.empty() ? "" : ", ") + "xyz"[k];
+  }
+  const auto from = r.numbers("from", D - 1);
+  const auto to = r.numbers("to", D - 1);
+  int j = 0;
+  for (int k = 0; k < D; ++k) {
+    if (k == axis) continue;
+    const double lo = grid.origin[k];
+    const double hi = grid.origin[k] + grid.spacing[k] * grid.cells[k];
+    if (!(to[j] > from[j]))
+      r.fail("to", fmt::format("must be greater than 'from' along {} (the patch's extent along {}, m)",
+                               "xyz"[k], along));
+    if (!(from[j] >= lo && to[j] <= hi)) {
+      r.fail(from[j] >= lo ? "to" : "from",
+             fmt::format("the patch must lie on side {}: along {} the grid spans [{}, {}] m", side, "xyz"[k],
+                         TableReader::format_number(lo), TableReader::format_number(hi)));
+    }
+    patch.lo[k] = from[j];
+    patch.hi[k] = to[j];
+    ++j;
+  }
+  // The side's faces, by their centres.
+  std::array<int, D> c{};
+  std::size_t faces = 0;
+  std::size_t total = 1;
+  for (int k = 0; k < D; ++k) total *= k == axis ? 1U : static_cast<std::size_t>(grid.cells[k]);
+  for (std::size_t f = 0; f < total; ++f) {
+    std::size_t rest = f;
+    std::array<double, D> centre{};
+    for (int k = 0; k < D; ++k) {
+      if (k == axis) continue;
+      c[k] = static_cast<int>(rest % static_cast<std::size_t>(grid.cells[k]));
+      rest /= static_cast<std::size_t>(grid.cells[k]);
+      centre[k] = grid.origin[k] + grid.spacing[k] * (c[k] + 0.5);
+    }
+    if (!patch.holds(centre)) continue;
+    ++faces;
+    for (const auto& e : earlier) {
+      if (e.side == patch.side && e.holds(centre)) {
+        r.fail("from", fmt::format("patch \"{}\" shares faces of side {} with patch \"{}\": a face can be in "
+                                   "one patch only",
+                                   name, side, e.name));
+      }
+    }
+  }
+  if (faces == 0) {
+    std::string width;  // e.g. "0.001 x 0.002"
+    for (int k = 0; k < D; ++k) {
+      if (k != axis)
+        width += std::string(width.empty() ? "" : " x ") + TableReader::format_number(grid.spacing[k]);
+    }
+    r.fail("from",
+           fmt::format("the patch holds no face of side {}: a face is in it when its centre is, and the "
+                       "faces are {} m wide along {}",
+                       side, width, along));
+  }
+  return patch;
+}
+
+}  // namespace
+
+template <int D>
+FluidBoundaryChanges read_fluid_boundary_changes(const toml::table& table, const std::string& where,
+                                                 const std::string& file, const PoreFluid<D>* defined,
+                                                 std::vector<FluidPatch<D>>* define) {
+  FluidBoundaryChanges out;
+  const auto names = side_list<D>();
+  std::vector<std::string> patch_names;
+  if (defined != nullptr) {
+    for (const auto& p : defined->patches) patch_names.push_back(p.name);
+  }
   TableReader r(table, where, file);
-  for (int s = 0; s < 2 * D; ++s) {
-    const toml::table* t = r.optional_table(names[s]);
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const auto side_at = std::find(names.begin(), names.end(), name);
+    const bool is_side = side_at != names.end();
+    r.allow({name});
+    const toml::table* t = node.as_table();
     if (t == nullptr) {
-      if (r.has(names[s])) r.fail(names[s], "must be a table, e.g. { type = \"drained\", pressure = 0.0 }");
+      r.fail(name, is_side
+                       ? "must be a table, e.g. { type = \"drained\", pressure = 0.0 }"
+                       : "must be a table: a side's condition, or a patch { side = ..., from = [...], to = "
+                         "[...], type = ... }");
+    }
+    TableReader sr(*t, fmt::format("{}.{}", where, name), file);
+    if (is_side) {
+      const FluidBoundary b = read_condition(sr, "side");
+      sr.finish();
+      out.sides.emplace_back(static_cast<int>(side_at - names.begin()), b);
       continue;
     }
-    TableReader sr(*t, fmt::format("{}.{}", where, names[s]), file);
-    FluidBoundary b;
-    const std::string type = sr.choice("type", {"drained", "flux", "no_flow"});
-    sr.allow({"pressure", "inflow"});
-    if (type == "drained") {
-      if (sr.has("inflow")) sr.fail("inflow", "does not apply to a drained side (give 'pressure')");
-      b.type = FluidBoundaryType::drained;
-      b.value = read_series(sr, "pressure", "excess pore pressure, Pa");
-    } else if (type == "flux") {
-      if (sr.has("pressure")) sr.fail("pressure", "does not apply to a flux side (give 'inflow')");
-      b.type = FluidBoundaryType::flux;
-      b.value = read_series(sr, "inflow", "Darcy velocity into the grid, m/s");
-    } else {
-      for (auto k : {"pressure", "inflow"}) {
-        if (sr.has(k)) sr.fail(k, "does not apply to a no_flow side");
+    if (define != nullptr) {
+      // [fluid.boundary]: any other name is a patch, which says where it is.
+      if (!sr.has("side")) {
+        std::string hint;
+        if (auto h = did_you_mean(name, names); !h.empty()) hint = fmt::format(" (did you mean \"{}\"?)", h);
+        r.fail(name, fmt::format("is not a side ({}){}; a patch of a side needs 'side', 'from' and 'to'",
+                                 side_choices<D>(), hint));
       }
-      b.type = FluidBoundaryType::no_flow;
+      FluidPatch<D> patch = read_patch_place<D>(sr, name, defined->grid, *define);
+      patch.condition = read_condition(sr, "patch");
+      sr.finish();
+      out.patches.emplace_back(static_cast<int>(define->size()), patch.condition);
+      define->push_back(patch);
+      continue;
     }
+    // A stage: the patches of [fluid.boundary], by name.
+    const auto at = std::find(patch_names.begin(), patch_names.end(), name);
+    if (at == patch_names.end()) {
+      std::vector<std::string> all = names;
+      all.insert(all.end(), patch_names.begin(), patch_names.end());
+      std::string hint;
+      if (auto h = did_you_mean(name, all); !h.empty()) hint = fmt::format(" (did you mean \"{}\"?)", h);
+      r.fail(name, fmt::format("is neither a side ({}) nor a patch of [fluid.boundary]{}", side_choices<D>(),
+                               hint));
+    }
+    for (auto k : {"side", "from", "to"}) {
+      if (sr.has(k))
+        sr.fail(k, "a stage changes a patch's condition only; where it lies is set in [fluid.boundary]");
+    }
+    const FluidBoundary b = read_condition(sr, "patch");
     sr.finish();
-    out.emplace_back(s, b);
+    out.patches.emplace_back(static_cast<int>(at - patch_names.begin()), b);
   }
   r.finish();
   return out;
@@ -196,21 +335,25 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
     p.finish();
   }
 
-  // [fluid.boundary]: sides not given are no-flow.
+  // [fluid.boundary]: sides not given are no-flow; patches.
   if (const toml::table* t = r.optional_table("boundary")) {
-    for (auto& [side, b] : read_fluid_sides<D>(*t, "[fluid.boundary]", file)) fluid->sides[side] = b;
+    std::vector<FluidPatch<D>> patches;
+    for (auto& [side, b] :
+         read_fluid_boundary_changes<D>(*t, "[fluid.boundary]", file, fluid.get(), &patches).sides)
+      fluid->sides[side] = b;
+    fluid->patches = patches;
   }
   r.finish();
   fluid->initialize(particles);
   return fluid;
 }
 
-template std::vector<std::pair<int, FluidBoundary>> read_fluid_sides<2>(const toml::table&,
-                                                                        const std::string&,
-                                                                        const std::string&);
-template std::vector<std::pair<int, FluidBoundary>> read_fluid_sides<3>(const toml::table&,
-                                                                        const std::string&,
-                                                                        const std::string&);
+template FluidBoundaryChanges read_fluid_boundary_changes<2>(const toml::table&, const std::string&,
+                                                             const std::string&, const PoreFluid<2>*,
+                                                             std::vector<FluidPatch<2>>*);
+template FluidBoundaryChanges read_fluid_boundary_changes<3>(const toml::table&, const std::string&,
+                                                             const std::string&, const PoreFluid<3>*,
+                                                             std::vector<FluidPatch<3>>*);
 template std::unique_ptr<PoreFluid<2>> read_fluid<2>(const toml::table&, const std::string&,
                                                      const ParticleData<2>&);
 template std::unique_ptr<PoreFluid<3>> read_fluid<3>(const toml::table&, const std::string&,

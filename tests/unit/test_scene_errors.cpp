@@ -205,11 +205,73 @@ TEST(SceneErrors, FluidBoundaryTypeAndValueAreChecked) {
   msg = load_error(replace(with_fluid(), "pressure = 0.0 }", "inflow = 0.001 }"));
   EXPECT_NE(msg.find("key 'inflow': does not apply to a drained side (give 'pressure')"), std::string::npos)
       << msg;
-  msg = load_error(replace(with_fluid(), "y_max = {", "y_top = {"));
-  EXPECT_NE(msg.find("unknown key 'y_top'"), std::string::npos) << msg;
+  msg = load_error(replace(with_fluid(), "y_max = {", "y_mx = {"));
+  EXPECT_NE(msg.find("key 'y_mx': is not a side (x_min, x_max, y_min, y_max) (did you mean \"y_max\"?); a "
+                     "patch of a side needs 'side', 'from' and 'to'"),
+            std::string::npos)
+      << msg;
   msg = load_error(
       replace(with_fluid(), "pressure = 0.0 }", "pressure = { times = [0.0, 0.0], values = [1.0, 2.0] } }"));
   EXPECT_NE(msg.find("key 'times': must increase strictly"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, FluidPatchesAreChecked) {
+  // The grid is 1 x 2 cells of 1 x 2 mm from x = -0.5 mm: side y_min spans
+  // x in [-0.5, 0.5] mm with one face, centred at x = 0.
+  const std::string side = "y_max = { type = \"drained\", pressure = 0.0 }\n";
+  auto with_patch = [&](const std::string& patch, const std::string& extra = "") {
+    return replace(with_fluid(extra), side, side + patch);
+  };
+  const std::string inlet =
+      "inlet = { side = \"y_min\", from = [-0.0005], to = [0.0005], type = \"flux\", inflow = 1e-3 }\n";
+  EXPECT_EQ(load_error(with_patch(inlet)), "");
+  auto msg = load_error(with_patch(replace(inlet, "to = [0.0005]", "to = [-0.0005]")));
+  EXPECT_NE(msg.find("[fluid.boundary].inlet key 'to': must be greater than 'from' along x"),
+            std::string::npos)
+      << msg;
+  msg = load_error(with_patch(replace(inlet, "to = [0.0005]", "to = [0.002]")));
+  EXPECT_NE(
+      msg.find("key 'to': the patch must lie on side y_min: along x the grid spans [-0.0005, 0.0005] m"),
+      std::string::npos)
+      << msg;
+  msg = load_error(with_patch(replace(inlet, "from = [-0.0005]", "from = [0.0001]")));
+  EXPECT_NE(msg.find("key 'from': the patch holds no face of side y_min: a face is in it when its centre is, "
+                     "and the faces are 0.001 m wide along x"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(with_patch(inlet + replace(inlet, "inlet =", "second =")));
+  EXPECT_NE(msg.find("patch \"second\" shares faces of side y_min with patch \"inlet\""), std::string::npos)
+      << msg;
+  msg = load_error(with_patch(replace(inlet, "side = \"y_min\"", "side = \"y_mn\"")));
+  EXPECT_NE(msg.find("did you mean \"y_min\"?"), std::string::npos) << msg;
+  msg = load_error(with_patch(replace(inlet, "type = \"flux\"", "type = \"drained\"")));
+  EXPECT_NE(msg.find("key 'inflow': does not apply to a drained patch (give 'pressure')"), std::string::npos)
+      << msg;
+  // A stage changes a patch by its name, and only its condition.
+  const std::string stage = "gravity = [0.0, -9.81]\n";
+  auto in_stage = [&](const std::string& change) {
+    return replace(with_patch(inlet), stage, stage + "[stage.fluid.boundary]\n" + change);
+  };
+  EXPECT_EQ(load_error(in_stage("inlet = { type = \"no_flow\" }\n")), "");
+  msg = load_error(in_stage("inlt = { type = \"no_flow\" }\n"));
+  EXPECT_NE(
+      msg.find("key 'inlt': is neither a side (x_min, x_max, y_min, y_max) nor a patch of [fluid.boundary] "
+               "(did you mean \"inlet\"?)"),
+      std::string::npos)
+      << msg;
+  msg = load_error(in_stage("inlet = { type = \"no_flow\", from = [0.0] }\n"));
+  EXPECT_NE(msg.find("key 'from': a stage changes a patch's condition only"), std::string::npos) << msg;
+  // A probe reads a patch's inflow by its name.
+  const std::string probe = "\n[[probe]]\nname = \"q\"\nquantity = \"fluid_inflow\"\nside = \"inlet\"\n";
+  EXPECT_EQ(load_error(with_patch(inlet, probe)), "");
+  msg = load_error(with_patch(inlet, replace(probe, "side = \"inlet\"", "side = \"inlte\"")));
+  EXPECT_NE(msg.find("did you mean \"inlet\"?"), std::string::npos) << msg;
+  // The seepage column's analysis compares with a 1D solution: whole sides only.
+  msg = load_error(with_patch(inlet, "\n[analysis]\nkind = \"seepage_column\"\n"));
+  EXPECT_NE(msg.find("takes whole sides; the scene's [fluid.boundary] has patches (\"inlet\")"),
+            std::string::npos)
+      << msg;
 }
 
 TEST(SceneErrors, FluidPreconditionerIsChecked) {

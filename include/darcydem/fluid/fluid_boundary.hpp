@@ -1,5 +1,8 @@
 #pragma once
-// Boundary conditions of the pore fluid on the sides of the grid's box.
+// Boundary conditions of the pore fluid on the sides of the grid's box,
+// and on patches: parts of a side with a condition of their own (an
+// orifice in a floor, a drained strip of a surface).
+#include <array>
 #include <string>
 #include <vector>
 
@@ -43,6 +46,34 @@ struct FluidBoundary {
   template <class Archive>
   void checkpoint(Archive& ar) {
     ar(type, value);
+  }
+};
+
+/// A part of one side of the grid with its own condition: the side's
+/// boundary faces whose centres lie in the box [lo, hi] (the coordinate
+/// along the side's own axis is not used). Elsewhere the side keeps its
+/// condition.
+template <int D>
+struct FluidPatch {
+  std::string name;
+  int side = 0;  ///< as PoreFluid::sides: x_min, x_max, y_min, ...
+  std::array<double, D> lo{};
+  std::array<double, D> hi{};
+  FluidBoundary condition;
+
+  /// Whether the face centred at `centre` on this patch's side is in it.
+  [[nodiscard]] bool holds(const std::array<double, D>& centre) const {
+    bool in = true;
+    for (int k = 0; k < D; ++k) {
+      if (k != side / 2) in = in && centre[k] >= lo[k] && centre[k] <= hi[k];
+    }
+    return in;
+  }
+  /// Only the condition changes in a run (stages); where the patch lies
+  /// comes from the scene.
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    condition.checkpoint(ar);
   }
 };
 

@@ -68,6 +68,10 @@ class PoreFluid final : public ParticleForceField<D> {
   /// and velocity. The same when steps_per_update is 1.
   bool hold_forces = false;
   std::array<FluidBoundary, 2 * D> sides{};  ///< x_min, x_max, y_min, ...
+  /// Parts of sides with their own condition, each boundary face in at
+  /// most one (the scene reader checks it; the first that holds a face
+  /// takes it). Set before initialize(), which finds their faces.
+  std::vector<FluidPatch<D>> patches;
   /// Count the pore fluid carried across faces by the moving skeleton, so
   /// that Darcy's flux is relative to the grains (false: the paper's scheme).
   bool carry_with_solid = true;
@@ -113,6 +117,14 @@ class PoreFluid final : public ParticleForceField<D> {
        porosity_, solid_, solid_old_, porosity_used_, solid_flux_, solid_velocity_, kappa_, cell_drag_,
        blend_atan_, n_power_, face_lambda_, carried_, face_gq_, solid_face_flux_, side_inflow_, last_solve_,
        last_, total_, updates_, time_, initialized_);
+    std::size_t patch_count = patches.size();
+    ar(patch_count);
+    if constexpr (Archive::loading) {
+      if (patch_count != patches.size())
+        throw std::runtime_error("checkpoint: the pore fluid has another number of boundary patches");
+    }
+    for (auto& patch : patches) ar(patch);
+    ar(patch_inflow_);
     bool held = held_.force != nullptr;
     if constexpr (!Archive::loading) {
       if (held && held_.force != held_output)
@@ -143,6 +155,11 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] std::size_t grains_outside(const ParticleData<D>& particles) const;
   /// Flow into the grid through one side in the last step, m^3/s.
   [[nodiscard]] double side_inflow(int side) const { return side_inflow_[side]; }
+  /// Flow into the grid through one patch (index in `patches`) in the last
+  /// step, m^3/s; part of its side's side_inflow.
+  [[nodiscard]] double patch_inflow(std::size_t patch) const { return patch_inflow_.at(patch); }
+  /// Boundary faces of a patch (as found by initialize()).
+  [[nodiscard]] std::size_t patch_faces(std::size_t patch) const { return patch_faces_.at(patch); }
 
   [[nodiscard]] const FluidBalance& last_balance() const { return last_; }
   [[nodiscard]] const FluidBalance& total_balance() const { return total_; }
@@ -176,6 +193,9 @@ class PoreFluid final : public ParticleForceField<D> {
   void compute_solid(const ParticleData<D>& particles);
   void compute_cell_properties();
   void build_pattern();
+  /// Each boundary face's patch (BoundaryFace::patch), and the patches'
+  /// face counts.
+  void assign_patches();
   void compute_face_fields(double time);
   [[nodiscard]] double side_lambda(int axis, std::size_t cell) const;
   /// grad u and the Darcy flux at x together (the per-grain hot path):
@@ -293,7 +313,11 @@ class PoreFluid final : public ParticleForceField<D> {
     std::uint32_t cell;
     int side;
     std::size_t index;  ///< in the face arrays of the side's axis
+    int patch = -1;     ///< in `patches`; -1: the side's own condition
   };
+  [[nodiscard]] const FluidBoundary& condition_of(const BoundaryFace& bf) const {
+    return bf.patch >= 0 ? patches[static_cast<std::size_t>(bf.patch)].condition : sides[bf.side];
+  }
 
   /// Sums over one block of grains (compute_solid): per cell, the solid
   /// volume and the solid volume flux side by side (one vector add per
@@ -344,8 +368,10 @@ class PoreFluid final : public ParticleForceField<D> {
   std::array<std::array<std::size_t, D>, D> face_stride_{};  ///< [axis][j]: index step along j
   std::array<std::array<std::size_t, D>, D> corner_step_{};  ///< [component][j]: between stencil corners
   std::array<double, 2 * D> side_inflow_{};
-  PressureSolver::Matrix matrix_;  ///< the stored matrix, for the Cholesky solver
-  GridOperator operator_;          ///< the same as a stencil
+  std::vector<double> patch_inflow_;      ///< m^3/s, per patch
+  std::vector<std::size_t> patch_faces_;  ///< boundary faces per patch
+  PressureSolver::Matrix matrix_;         ///< the stored matrix, for the Cholesky solver
+  GridOperator operator_;                 ///< the same as a stencil
   Eigen::VectorXd rhs_, solution_;
   PressureSolver solver_;
   SolveStats last_solve_;

@@ -72,10 +72,11 @@ struct Stage {
   std::optional<double> unbalanced_force_below;  ///< -: stop once below
   std::int64_t check_interval = 100;             ///< steps between stop checks
   std::vector<WallChange<D>> walls;
-  std::vector<std::pair<int, FluidBoundary>> fluid_sides;  ///< changes of the fluid's boundaries
-  std::optional<bool> freeze_permeability;                 ///< hold (true) or resume updating k
-  std::optional<int> fluid_steps_per_update;               ///< a new coupling interval M
-  std::optional<bool> fluid_hold_forces;                   ///< hold the grains' fluid forces, or not
+  std::vector<std::pair<int, FluidBoundary>> fluid_sides;    ///< changes of the fluid's sides
+  std::vector<std::pair<int, FluidBoundary>> fluid_patches;  ///< and of its patches (index in patches)
+  std::optional<bool> freeze_permeability;                   ///< hold (true) or resume updating k
+  std::optional<int> fluid_steps_per_update;                 ///< a new coupling interval M
+  std::optional<bool> fluid_hold_forces;                     ///< hold the grains' fluid forces, or not
 };
 
 /// [analysis] kind = "seepage_column": the paper's 1D upward seepage check.

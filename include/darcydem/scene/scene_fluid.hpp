@@ -1,6 +1,7 @@
 #pragma once
 // Reading the pore fluid from a scene: [fluid], [fluid.grid],
-// [fluid.permeability], [fluid.boundary] and a stage's [stage.fluid.boundary].
+// [fluid.permeability], [fluid.boundary] (sides and patches) and a stage's
+// [stage.fluid.boundary].
 // Documented in docs/SCENE.md.
 #include <memory>
 #include <utility>
@@ -13,12 +14,22 @@
 
 namespace darcydem {
 
-/// Boundary changes of one table of sides (x_min = {...}, ...), as
-/// (side index, condition) pairs.
+/// New conditions of sides and patches.
+struct FluidBoundaryChanges {
+  std::vector<std::pair<int, FluidBoundary>> sides;    ///< (side index, condition)
+  std::vector<std::pair<int, FluidBoundary>> patches;  ///< (index in PoreFluid::patches, condition)
+};
+
+/// A table of conditions: sides by their names (x_min = {...}, ...), and
+/// patches by theirs. With `define` ([fluid.boundary]) any other name is a
+/// new patch, which gives its 'side', 'from' and 'to' and is checked
+/// against `fluid`'s grid and appended to `define`; without it (a stage's
+/// fluid.boundary) it must name one of `fluid`'s patches, whose condition
+/// changes. Refused with the file, line and key otherwise.
 template <int D>
-std::vector<std::pair<int, FluidBoundary>> read_fluid_sides(const toml::table& table,
-                                                            const std::string& where,
-                                                            const std::string& file);
+FluidBoundaryChanges read_fluid_boundary_changes(const toml::table& table, const std::string& where,
+                                                 const std::string& file, const PoreFluid<D>* fluid,
+                                                 std::vector<FluidPatch<D>>* define = nullptr);
 
 /// `steps_per_update` of a [fluid] or [stage.fluid] table: DEM steps per
 /// fluid step, 1 to 2^31 - 1 (refused otherwise, with the key).
