@@ -104,7 +104,9 @@ FluidPatch<D> read_patch_place(TableReader& r, const std::string& name, const Fl
     if (!(to[j] > from[j]))
       r.fail("to", fmt::format("must be greater than 'from' along {} (the patch's extent along {}, m)",
                                "xyz"[k], along));
-    if (!(from[j] >= lo && to[j] <= hi)) {
+    // (A patch's edge on the grid's edge may differ from it by round-off.)
+    const double slack = 1e-9 * grid.spacing[k];
+    if (!(from[j] >= lo - slack && to[j] <= hi + slack)) {
       r.fail(from[j] >= lo ? "to" : "from",
              fmt::format("the patch must lie on side {}: along {} the grid spans [{}, {}] m", side, "xyz"[k],
                          TableReader::format_number(lo), TableReader::format_number(hi)));

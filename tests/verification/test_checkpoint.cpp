@@ -109,7 +109,8 @@ TEST(Checkpoint, ResumedSeepageColumnWritesTheSameFilesBitForBit) {
 /// and rolling-resistance histories with walls, a servo-controlled lid, a
 /// stage that changes the coupling interval with forces held, permeability
 /// from the porosity, an inflow ramp that counts from its stage's start,
-/// and a stop condition checked on the unbalanced force.
+/// a boundary patch (a vent in a side) that a stage opens with a ramp of
+/// its own, and a stop condition checked on the unbalanced force.
 constexpr const char* bed_scene = R"(
 [simulation]
 dimension = 3
@@ -193,6 +194,7 @@ model = "kozeny_carman"
 
 [fluid.boundary]
 z_max = { type = "drained", pressure = 0.0 }
+vent = { side = "x_max", from = [0.0, 0.006], to = [0.006, 0.012], type = "no_flow" }
 
 [output]
 probe_interval = 0.001
@@ -217,6 +219,11 @@ quantity = "unbalanced_force"
 name = "balance"
 quantity = "fluid_balance"
 
+[[probe]]
+name = "vent"
+quantity = "fluid_inflow"
+side = "vent"
+
 [[stage]]
 name = "settle"
 duration = 0.02
@@ -232,6 +239,7 @@ fluid.steps_per_update = 1
 fluid.hold_forces = false
 [stage.fluid.boundary]
 z_min = { type = "flux", inflow = { times = [0.0, 0.01], values = [0.0, 0.005] } }
+vent = { type = "drained", pressure = { times = [0.0, 0.015], values = [0.0, -2.0] } }
 )";
 
 TEST(Checkpoint, ResumedBedWithServoLidAndHeldForcesWritesTheSameFiles) {
@@ -243,6 +251,10 @@ TEST(Checkpoint, ResumedBedWithServoLidAndHeldForcesWritesTheSameFiles) {
   const fs::path parts = dir / "parts";
   const RunSummary a = run<3>(scene, whole, 0, false);
   ASSERT_EQ(a.stages_completed.size(), 2U);
+  // The vent opened in stage 2 (its probe is the last column).
+  const std::string probes = contents(whole / "probes.csv");
+  const auto last_line = probes.substr(probes.rfind('\n', probes.size() - 2) + 1);
+  EXPECT_NE(std::stod(last_line.substr(last_line.rfind(',') + 1)), 0.0) << last_line;
   // Stopped inside a fluid interval of stage 1 (at step 512, two steps into
   // an interval of 3, with the forces held)
   // and again in stage 2.
