@@ -10,6 +10,8 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
+#include <string>
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
@@ -52,6 +54,8 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
           f.hold_forces ? " (forces held)" : "",
           f.critical_time_step(scene.simulation.particles, scene.simulation.critical_time_step()),
           scene.simulation.critical_time_step());
+      std::istringstream patches(darcydem::describe_patches(f));
+      for (std::string line; std::getline(patches, line);) std::cout << "  " << line << '\n';
     }
     return 0;
   }

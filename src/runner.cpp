@@ -297,14 +297,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
           fluid->solver().describe(static_cast<Eigen::Index>(fluid->grid.size())), fluid->steps_per_update,
           fluid->hold_forces && fluid->steps_per_update > 1 ? " (grain forces held between them)" : "",
           sides);
-      for (std::size_t k = 0; k < fluid->patches.size(); ++k) {
-        const auto& patch = fluid->patches[k];
-        const int axis = patch.side / 2;
-        *options.log << fmt::format("patch {} on {}: {} faces, {:.6g} m^2, {}\n", patch.name,
-                                    side_names[patch.side], fluid->patch_faces(k),
-                                    static_cast<double>(fluid->patch_faces(k)) * fluid->grid.face_area(axis),
-                                    to_string(patch.condition.type));
-      }
+      *options.log << describe_patches(*fluid);
     }
   }
   if (options.resume && options.log != nullptr) {
@@ -484,6 +477,20 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   return summary;
 }
 
+template <int D>
+std::string describe_patches(const PoreFluid<D>& fluid) {
+  std::string out;
+  for (std::size_t k = 0; k < fluid.patches.size(); ++k) {
+    const auto& patch = fluid.patches[k];
+    const double area = static_cast<double>(fluid.patch_faces(k)) * fluid.grid.face_area(patch.side / 2);
+    out += fmt::format("patch {} on {}: {} faces, {:.6g} m^2, {}\n", patch.name, side_names[patch.side],
+                       fluid.patch_faces(k), area, to_string(patch.condition.type));
+  }
+  return out;
+}
+
+template std::string describe_patches<2>(const PoreFluid<2>&);
+template std::string describe_patches<3>(const PoreFluid<3>&);
 template RunSummary run_scene<2>(Scene<2>&, const RunOptions&);
 template RunSummary run_scene<3>(Scene<3>&, const RunOptions&);
 

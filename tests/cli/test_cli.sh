@@ -17,6 +17,9 @@ bad() { echo "FAILED: $1"; failed=$((failed + 1)); }
 scene="$src/examples/column_settling/column.toml"
 "$exe" check "$scene" | grep -q "OK (2D, 50 particles" && ok "check accepts the example" || bad "check"
 
+"$exe" check "$src/examples/fluid_cases/bed_with_inlet.toml" | grep -q "^  patch inlet on z_min: 9 faces, 3.6e-05 m^2, no_flow$" \
+  && ok "check prints a boundary patch's faces and area" || bad "check: patch"
+
 sed 's/^density = 2650.0/densty = 2650.0/' "$scene" > "$work/bad.toml"
 msg="$("$exe" check "$work/bad.toml" 2>&1)"; rc=$?
 [ $rc -eq 2 ] && echo "$msg" | grep -q "bad.toml:[0-9]*:[0-9]*: error: .*'densty'.*Did you mean 'density'" \
