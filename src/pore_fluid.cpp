@@ -608,7 +608,10 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
   // loaded; then the slip, Wen-Yu's Re^0.687 for the whole chunk at once
   // (core/vector_math.hpp) and the force, again over the chunk.
   const auto started = std::chrono::steady_clock::now();
-  constexpr std::int64_t chunk = 256;
+  // The chunk's arrays take about 270 bytes per grain: 17 kB for 64 grains,
+  // within a 32 kB L1 data cache (with 256 grains, 70 kB, the force pass
+  // took 10-20 % longer on a 2.6 GHz EPYC; docs/PERFORMANCE.md).
+  constexpr std::int64_t chunk = 64;
   const auto count = static_cast<std::int64_t>(p.size());
   // Ergun/Wen-Yu or the Darcy law: each compiled on its own, so that a
   // grain does only its law's work.
