@@ -54,7 +54,7 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
           f.hold_forces ? " (forces held)" : "",
           f.critical_time_step(scene.simulation.particles, scene.simulation.critical_time_step()),
           scene.simulation.critical_time_step());
-      std::istringstream patches(darcydem::describe_patches(f));
+      std::istringstream patches(darcydem::describe_patches_and_barriers(f));
       for (std::string line; std::getline(patches, line);) std::cout << "  " << line << '\n';
     }
     return 0;

@@ -247,6 +247,7 @@ void PoreFluid<D>::compute_cell_properties() {
       }
     });
   }
+  close_barrier_faces(face_lambda_);
 }
 
 template <int D>
@@ -277,6 +278,7 @@ void PoreFluid<D>::build_pattern() {
     }
   }
   assign_patches();
+  assign_barriers();
   matrix_.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   matrix_.setFromTriplets(triplets.begin(), triplets.end());
   matrix_.makeCompressed();
@@ -322,6 +324,40 @@ void PoreFluid<D>::assign_patches() {
       }
     }
   }
+}
+
+template <int D>
+void PoreFluid<D>::assign_barriers() {
+  blocked_.clear();
+  barrier_faces_.assign(barriers.size(), 0);
+  for (std::size_t b = 0; b < barriers.size(); ++b) {
+    const auto& barrier = barriers[b];
+    const int k = barrier.axis;
+    // The plane of faces nearest `at` (the scene reader checks that it is
+    // one), between cell layers plane - 1 and plane along k.
+    const long plane = std::lround((barrier.at - grid.origin[k]) / grid.spacing[k]);
+    if (plane < 1 || plane >= grid.cells[k]) continue;
+    for (std::size_t c = 0; c < grid.size(); ++c) {
+      auto cc = grid.coords(c);
+      if (cc[k] != plane - 1) continue;
+      std::array<double, D> centre{};
+      for (int a = 0; a < D; ++a) centre[a] = grid.origin[a] + grid.spacing[a] * (cc[a] + 0.5);
+      if (!barrier.holds(centre)) continue;
+      ++cc[k];
+      blocked_.push_back({k, c, grid.face_index(k, cc)});
+      ++barrier_faces_[b];
+    }
+  }
+}
+
+template <int D>
+void PoreFluid<D>::close_barrier_faces(std::array<std::vector<double>, D>& per_cell_below) {
+  for (const auto& f : blocked_) per_cell_below[f.axis][f.cell_below] = 0.0;
+}
+
+template <int D>
+void PoreFluid<D>::close_barrier_fields() {
+  for (const auto& f : blocked_) face_gq_[f.axis][f.face] = {0.0, 0.0};
 }
 
 template <int D>
@@ -377,6 +413,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
       }
     });
   }
+  if (carry_with_solid) close_barrier_faces(carried_);
   // Per cell, into the grid's stencil (GridOperator): the storage and the
   // conductances of its faces on the diagonal; the stored pressure, the
   // Biot source and what its faces carry in on the right-hand side. A
@@ -468,9 +505,16 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     b.stored += storage_of(c) * (pressure_[c] - pressure_old_[c]);
   }
   b.pore_change = -solid_change;
+  // Each side's and each patch's flow counts in the gross on its own: on
+  // one side a patch's inflow and the rest's outflow can cancel.
+  std::array<double, 2 * D> rest = side_inflow_;
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    rest[patches[p].side] -= patch_inflow_[p];
+    b.gross += std::abs(patch_inflow_[p] * dt);
+  }
   for (int s = 0; s < 2 * D; ++s) {
     b.inflow += side_inflow_[s] * dt;
-    b.gross += std::abs(side_inflow_[s] * dt);
+    b.gross += std::abs(rest[s] * dt);
   }
   b.gross += solid_moved;
   b.gross += std::abs(b.stored);
@@ -500,6 +544,7 @@ void PoreFluid<D>::compute_face_fields(double time) {
       }
     });
   }
+  close_barrier_fields();
   side_inflow_.fill(0.0);
   std::fill(patch_inflow_.begin(), patch_inflow_.end(), 0.0);
   for (const auto& bf : boundary_faces_) {

@@ -297,7 +297,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
           fluid->solver().describe(static_cast<Eigen::Index>(fluid->grid.size())), fluid->steps_per_update,
           fluid->hold_forces && fluid->steps_per_update > 1 ? " (grain forces held between them)" : "",
           sides);
-      *options.log << describe_patches(*fluid);
+      *options.log << describe_patches_and_barriers(*fluid);
     }
   }
   if (options.resume && options.log != nullptr) {
@@ -478,7 +478,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
 }
 
 template <int D>
-std::string describe_patches(const PoreFluid<D>& fluid) {
+std::string describe_patches_and_barriers(const PoreFluid<D>& fluid) {
   std::string out;
   for (std::size_t k = 0; k < fluid.patches.size(); ++k) {
     const auto& patch = fluid.patches[k];
@@ -486,11 +486,16 @@ std::string describe_patches(const PoreFluid<D>& fluid) {
     out += fmt::format("patch {} on {}: {} faces, {:.6g} m^2, {}\n", patch.name, side_names[patch.side],
                        fluid.patch_faces(k), area, to_string(patch.condition.type));
   }
+  for (std::size_t k = 0; k < fluid.barriers.size(); ++k) {
+    const auto& b = fluid.barriers[k];
+    out += fmt::format("barrier {}: {} faces normal to {} at {} = {:.6g} m\n", b.name, fluid.barrier_faces(k),
+                       "xyz"[b.axis], "xyz"[b.axis], b.at);
+  }
   return out;
 }
 
-template std::string describe_patches<2>(const PoreFluid<2>&);
-template std::string describe_patches<3>(const PoreFluid<3>&);
+template std::string describe_patches_and_barriers<2>(const PoreFluid<2>&);
+template std::string describe_patches_and_barriers<3>(const PoreFluid<3>&);
 template RunSummary run_scene<2>(Scene<2>&, const RunOptions&);
 template RunSummary run_scene<3>(Scene<3>&, const RunOptions&);
 

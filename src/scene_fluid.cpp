@@ -153,6 +153,60 @@ FluidPatch<D> read_patch_place(TableReader& r, const std::string& name, const Fl
   return patch;
 }
 
+/// One [[fluid.barrier]]: 'axis' (its normal), 'at' (a plane of faces
+/// between cells), 'from' and 'to' along the other axes; checked against
+/// the grid.
+template <int D>
+FluidBarrier<D> read_barrier(const toml::table& table, const std::string& where, const std::string& file,
+                             const FluidGrid<D>& grid) {
+  TableReader r(table, where, file);
+  FluidBarrier<D> barrier;
+  barrier.name = r.optional_string("name").value_or(where);
+  const std::vector<std::string> axes =
+      D == 2 ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};
+  const std::string axis = r.choice("axis", axes);
+  const int k = static_cast<int>(std::find(axes.begin(), axes.end(), axis) - axes.begin());
+  barrier.axis = k;
+  barrier.at = r.number("at");
+  const double plane = (barrier.at - grid.origin[k]) / grid.spacing[k];
+  const double nearest = std::round(plane);
+  if (!(std::abs(plane - nearest) <= 1e-6 && nearest >= 1.0 && nearest <= grid.cells[k] - 1.0)) {
+    const double below =
+        grid.origin[k] + grid.spacing[k] * std::clamp(std::floor(plane), 1.0, grid.cells[k] - 1.0);
+    r.fail("at",
+           fmt::format("must be on a plane of faces between two cells inside the grid: along {} they are at "
+                       "{} + n x {} m, n = 1 .. {} (the nearest: {} m)",
+                       axis, TableReader::format_number(grid.origin[k]),
+                       TableReader::format_number(grid.spacing[k]), grid.cells[k] - 1,
+                       TableReader::format_number(below)));
+  }
+  const auto from = r.numbers("from", D - 1);
+  const auto to = r.numbers("to", D - 1);
+  int j = 0;
+  std::size_t faces = 1;
+  for (int a = 0; a < D; ++a) {
+    if (a == k) continue;
+    if (!(to[j] > from[j])) r.fail("to", fmt::format("must be greater than 'from' along {}", "xyz"[a]));
+    barrier.lo[a] = from[j];
+    barrier.hi[a] = to[j];
+    // Cell centres along a inside [from, to].
+    std::size_t in = 0;
+    for (int c = 0; c < grid.cells[a]; ++c) {
+      const double x = grid.origin[a] + grid.spacing[a] * (c + 0.5);
+      in += x >= from[j] && x <= to[j] ? 1U : 0U;
+    }
+    faces *= in;
+    ++j;
+  }
+  if (faces == 0) {
+    r.fail("from",
+           "the barrier holds no face: a face is in it when its centre is (between 'from' and 'to' along "
+           "the other axes)");
+  }
+  r.finish();
+  return barrier;
+}
+
 }  // namespace
 
 template <int D>
@@ -344,6 +398,17 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
          read_fluid_boundary_changes<D>(*t, "[fluid.boundary]", file, fluid.get(), &patches).sides)
       fluid->sides[side] = b;
     fluid->patches = patches;
+  }
+  // [[fluid.barrier]]: impermeable walls inside the grid.
+  if (const toml::array* a = r.optional_array("barrier")) {
+    int index = 0;
+    for (const toml::node& node : *a) {
+      ++index;
+      const toml::table* t = node.as_table();
+      if (t == nullptr) r.fail("barrier", "must be an array of tables: [[fluid.barrier]]");
+      fluid->barriers.push_back(
+          read_barrier<D>(*t, fmt::format("[[fluid.barrier]] #{}", index), file, fluid->grid));
+    }
   }
   r.finish();
   fluid->initialize(particles);

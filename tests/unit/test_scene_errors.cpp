@@ -274,6 +274,31 @@ TEST(SceneErrors, FluidPatchesAreChecked) {
       << msg;
 }
 
+TEST(SceneErrors, FluidBarriersAreChecked) {
+  // The grid is 1 x 2 cells of 1 x 2 mm from y = 0: the one plane of faces
+  // between cells along y is at y = 2 mm, and its face is centred at x = 0.
+  const std::string good =
+      "\n[[fluid.barrier]]\nname = \"pile\"\naxis = \"y\"\nat = 0.002\nfrom = [-0.0005]\nto = [0.0005]\n";
+  EXPECT_EQ(load_error(with_fluid(good)), "");
+  auto msg = load_error(with_fluid(replace(good, "at = 0.002", "at = 0.0015")));
+  EXPECT_NE(
+      msg.find("[[fluid.barrier]] #1 key 'at': must be on a plane of faces between two cells inside the "
+               "grid: along y they are at 0 + n x 0.002 m, n = 1 .. 1 (the nearest: 0.002 m)"),
+      std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;                  // file:line:column
+  msg = load_error(with_fluid(replace(good, "at = 0.002", "at = 0.004")));  // the grid's top side
+  EXPECT_NE(msg.find("key 'at': must be on a plane of faces between two cells inside the grid"),
+            std::string::npos)
+      << msg;
+  msg = load_error(with_fluid(replace(good, "from = [-0.0005]", "from = [0.0001]")));
+  EXPECT_NE(msg.find("key 'from': the barrier holds no face"), std::string::npos) << msg;
+  msg = load_error(with_fluid(replace(good, "axis = \"y\"", "axis = \"z\"")));
+  EXPECT_NE(msg.find("key 'axis'"), std::string::npos) << msg;
+  msg = load_error(with_fluid(replace(good, "to = [0.0005]", "to = [0.0005]\nthickness = 0.001")));
+  EXPECT_NE(msg.find("unknown key 'thickness'"), std::string::npos) << msg;
+}
+
 TEST(SceneErrors, FluidPreconditionerIsChecked) {
   const std::string base = "drag = \"darcy\"\n";
   EXPECT_EQ(load_error(replace(with_fluid(), base, base + "preconditioner = \"multigrid\"\n")), "");

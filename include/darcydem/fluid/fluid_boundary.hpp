@@ -49,6 +49,17 @@ struct FluidBoundary {
   }
 };
 
+/// Whether `centre` lies in [lo, hi] along every axis but `skip`.
+template <int D>
+[[nodiscard]] bool in_box_across(int skip, const std::array<double, D>& centre,
+                                 const std::array<double, D>& lo, const std::array<double, D>& hi) {
+  bool in = true;
+  for (int k = 0; k < D; ++k) {
+    if (k != skip) in = in && centre[k] >= lo[k] && centre[k] <= hi[k];
+  }
+  return in;
+}
+
 /// A part of one side of the grid with its own condition: the side's
 /// boundary faces whose centres lie in the box [lo, hi] (the coordinate
 /// along the side's own axis is not used). Elsewhere the side keeps its
@@ -63,17 +74,31 @@ struct FluidPatch {
 
   /// Whether the face centred at `centre` on this patch's side is in it.
   [[nodiscard]] bool holds(const std::array<double, D>& centre) const {
-    bool in = true;
-    for (int k = 0; k < D; ++k) {
-      if (k != side / 2) in = in && centre[k] >= lo[k] && centre[k] <= hi[k];
-    }
-    return in;
+    return in_box_across<D>(side / 2, centre, lo, hi);
   }
   /// Only the condition changes in a run (stages); where the patch lies
   /// comes from the scene.
   template <class Archive>
   void checkpoint(Archive& ar) {
     condition.checkpoint(ar);
+  }
+};
+
+/// An impermeable wall inside the grid (a sheet pile, a cut-off): the
+/// interior faces normal to `axis` on the plane at `at` whose centres lie
+/// in [lo, hi] along the other axes carry no Darcy flow, no fluid moved by
+/// the skeleton and no pressure gradient (as a no-flow side: the pressure
+/// jump across it acts on the wall, not on the grains). It does not stop
+/// grains: give a DEM wall where they must not pass.
+template <int D>
+struct FluidBarrier {
+  std::string name;
+  int axis = 0;
+  double at = 0.0;  ///< m, on a face between two cells
+  std::array<double, D> lo{};
+  std::array<double, D> hi{};
+  [[nodiscard]] bool holds(const std::array<double, D>& centre) const {
+    return in_box_across<D>(axis, centre, lo, hi);
   }
 };
 

@@ -72,6 +72,9 @@ class PoreFluid final : public ParticleForceField<D> {
   /// most one (the scene reader checks it; the first that holds a face
   /// takes it). Set before initialize(), which finds their faces.
   std::vector<FluidPatch<D>> patches;
+  /// Impermeable walls inside the grid. Set before initialize(), which
+  /// finds their faces.
+  std::vector<FluidBarrier<D>> barriers;
   /// Count the pore fluid carried across faces by the moving skeleton, so
   /// that Darcy's flux is relative to the grains (false: the paper's scheme).
   bool carry_with_solid = true;
@@ -160,6 +163,8 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] double patch_inflow(std::size_t patch) const { return patch_inflow_.at(patch); }
   /// Boundary faces of a patch (as found by initialize()).
   [[nodiscard]] std::size_t patch_faces(std::size_t patch) const { return patch_faces_.at(patch); }
+  /// Interior faces a barrier closes (as found by initialize()).
+  [[nodiscard]] std::size_t barrier_faces(std::size_t barrier) const { return barrier_faces_.at(barrier); }
 
   [[nodiscard]] const FluidBalance& last_balance() const { return last_; }
   [[nodiscard]] const FluidBalance& total_balance() const { return total_; }
@@ -196,6 +201,12 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Each boundary face's patch (BoundaryFace::patch), and the patches'
   /// face counts.
   void assign_patches();
+  /// The interior faces the barriers close (blocked_), and their counts.
+  void assign_barriers();
+  /// Zero on the blocked faces: conductances, carried fluid, or the face
+  /// fields.
+  void close_barrier_faces(std::array<std::vector<double>, D>& per_cell_below);
+  void close_barrier_fields();
   void compute_face_fields(double time);
   [[nodiscard]] double side_lambda(int axis, std::size_t cell) const;
   /// grad u and the Darcy flux at x together (the per-grain hot path):
@@ -370,8 +381,17 @@ class PoreFluid final : public ParticleForceField<D> {
   std::array<double, 2 * D> side_inflow_{};
   std::vector<double> patch_inflow_;      ///< m^3/s, per patch
   std::vector<std::size_t> patch_faces_;  ///< boundary faces per patch
-  PressureSolver::Matrix matrix_;         ///< the stored matrix, for the Cholesky solver
-  GridOperator operator_;                 ///< the same as a stencil
+  /// An interior face a barrier closes: the cell below it along `axis`
+  /// (index into face_lambda_ and carried_) and its index in face_gq_.
+  struct BlockedFace {
+    int axis;
+    std::size_t cell_below;
+    std::size_t face;
+  };
+  std::vector<BlockedFace> blocked_;
+  std::vector<std::size_t> barrier_faces_;  ///< faces per barrier
+  PressureSolver::Matrix matrix_;           ///< the stored matrix, for the Cholesky solver
+  GridOperator operator_;                   ///< the same as a stencil
   Eigen::VectorXd rhs_, solution_;
   PressureSolver solver_;
   SolveStats last_solve_;

@@ -51,10 +51,11 @@ struct RunSummary {
 template <int D>
 RunSummary run_scene(Scene<D>& scene, const RunOptions& options);
 
-/// One line per boundary patch of the pore fluid: its name, side, faces,
-/// area and condition (the run log and `darcydem check` print them).
+/// One line per boundary patch of the pore fluid (its name, side, faces,
+/// area and condition) and per barrier (its name, plane and faces); the
+/// run log and `darcydem check` print them.
 template <int D>
-std::string describe_patches(const PoreFluid<D>& fluid);
+std::string describe_patches_and_barriers(const PoreFluid<D>& fluid);
 
 /// True when dir does not exist or is an empty directory.
 bool output_dir_is_free(const std::string& dir);
