@@ -167,12 +167,16 @@ FluidBarrier<D> read_barrier(const toml::table& table, const std::string& where,
   const std::string axis = r.choice("axis", axes);
   const int k = static_cast<int>(std::find(axes.begin(), axes.end(), axis) - axes.begin());
   barrier.axis = k;
+  if (grid.cells[k] < 2) {
+    r.fail("axis",
+           fmt::format("the grid has one cell along {}: there is no face between cells to close", axis));
+  }
   barrier.at = r.number("at");
   const double plane = (barrier.at - grid.origin[k]) / grid.spacing[k];
   const double nearest = std::round(plane);
   if (!(std::abs(plane - nearest) <= 1e-6 && nearest >= 1.0 && nearest <= grid.cells[k] - 1.0)) {
     const double below =
-        grid.origin[k] + grid.spacing[k] * std::clamp(std::floor(plane), 1.0, grid.cells[k] - 1.0);
+        grid.origin[k] + grid.spacing[k] * std::clamp(std::round(plane), 1.0, grid.cells[k] - 1.0);
     r.fail("at",
            fmt::format("must be on a plane of faces between two cells inside the grid: along {} they are at "
                        "{} + n x {} m, n = 1 .. {} (the nearest: {} m)",

@@ -293,6 +293,11 @@ TEST(SceneErrors, FluidBarriersAreChecked) {
       << msg;
   msg = load_error(with_fluid(replace(good, "from = [-0.0005]", "from = [0.0001]")));
   EXPECT_NE(msg.find("key 'from': the barrier holds no face"), std::string::npos) << msg;
+  msg = load_error(
+      with_fluid(replace(replace(good, "axis = \"y\"", "axis = \"x\""), "at = 0.002", "at = 0.0")));
+  EXPECT_NE(msg.find("key 'axis': the grid has one cell along x: there is no face between cells to close"),
+            std::string::npos)
+      << msg;
   msg = load_error(with_fluid(replace(good, "axis = \"y\"", "axis = \"z\"")));
   EXPECT_NE(msg.find("key 'axis'"), std::string::npos) << msg;
   msg = load_error(with_fluid(replace(good, "to = [0.0005]", "to = [0.0005]\nthickness = 0.001")));
