@@ -306,8 +306,10 @@ TEST(FluidScenes, SheetPile) {
   // 20 cells over the layer: the grid study (test_fluid_patches.cpp)
   // measured -2.507 % at this resolution (first order): bound 3 %. The
   // grid and the heads are antisymmetric about the pile, so the pressures
-  // at mirror points add up to the upstream head (to the CG tolerance,
-  // 1e-10 relative: bound 1e-8).
+  // at mirror points add up to the upstream head, to what CG's relative
+  // residual of 1e-10 leaves in the pressures (measured 9.2e-10 of the
+  // head in release, 3.4e-9 in the sanitizer build); bound 1e-6 (a pile
+  // one cell off breaks the symmetry by percents).
   auto scene = darcydem::testing::load_scene<2>("examples/fluid_cases/sheet_pile.toml");
   RunOptions options;
   options.out_dir = temp_dir("sheet_pile");
@@ -324,9 +326,16 @@ TEST(FluidScenes, SheetPile) {
   std::printf("sheet pile scene: Q = %.6e m^2/s, Harr %.6e (%+.3f %%)\n", q, harr, 100.0 * (q - harr) / harr);
   EXPECT_NEAR(q, harr, 0.03 * harr);
   const double head = 1000.0 * 9.80665 * dh;
-  EXPECT_NEAR(probes.at("pressure_at_tip_upstream").back() + probes.at("pressure_at_tip_downstream").back(),
-              head, 1e-8 * head);
-  EXPECT_NEAR(f.total_balance().imbalance(), 0.0, 1e-9 * f.total_balance().gross);
+  const double mirror =
+      probes.at("pressure_at_tip_upstream").back() + probes.at("pressure_at_tip_downstream").back();
+  std::printf("sheet pile scene: mirror pressures add up to the head to %.2e of it\n",
+              (mirror - head) / head);
+  EXPECT_NEAR(mirror, head, 1e-6 * head);
+  // The balance closes to the solver's tolerance: CG stops at a relative
+  // residual of 1e-10, which over 3200 cells can leave up to about
+  // sqrt(3200) x 1e-10 = 6e-9 of the right-hand side unbalanced. Measured
+  // 6.5e-11 of the gross flow (release), 1.4e-9 (sanitizer build); 1e-7.
+  EXPECT_NEAR(f.total_balance().imbalance(), 0.0, 1e-7 * f.total_balance().gross);
 }
 
 TEST(FluidScenes, TerzaghiConsolidation) {
