@@ -308,13 +308,7 @@ void PoreFluid<D>::assign_patches() {
   patch_faces_.assign(patches.size(), 0);
   patch_inflow_.assign(patches.size(), 0.0);
   for (auto& bf : boundary_faces_) {
-    const int axis = bf.side / 2;
-    const auto cc = grid.coords(bf.cell);
-    std::array<double, D> centre{};
-    for (int k = 0; k < D; ++k) {
-      centre[k] = k == axis ? grid.origin[k] + grid.spacing[k] * (cc[k] + ((bf.side & 1) != 0 ? 1.0 : 0.0))
-                            : grid.origin[k] + grid.spacing[k] * (cc[k] + 0.5);
-    }
+    const Vec<D> centre = grid.centre(grid.coords(bf.cell));
     bf.patch = -1;
     for (std::size_t p = 0; p < patches.size(); ++p) {
       if (patches[p].side == bf.side && patches[p].holds(centre)) {
@@ -340,9 +334,7 @@ void PoreFluid<D>::assign_barriers() {
     for (std::size_t c = 0; c < grid.size(); ++c) {
       auto cc = grid.coords(c);
       if (cc[k] != plane - 1) continue;
-      std::array<double, D> centre{};
-      for (int a = 0; a < D; ++a) centre[a] = grid.origin[a] + grid.spacing[a] * (cc[a] + 0.5);
-      if (!barrier.holds(centre)) continue;
+      if (!barrier.holds(grid.centre(cc))) continue;
       ++cc[k];
       blocked_.push_back({k, c, grid.face_index(k, cc)});
       ++barrier_faces_[b];

@@ -122,13 +122,12 @@ FluidPatch<D> read_patch_place(TableReader& r, const std::string& name, const Fl
   for (int k = 0; k < D; ++k) total *= k == axis ? 1U : static_cast<std::size_t>(grid.cells[k]);
   for (std::size_t f = 0; f < total; ++f) {
     std::size_t rest = f;
-    std::array<double, D> centre{};
     for (int k = 0; k < D; ++k) {
       if (k == axis) continue;
       c[k] = static_cast<int>(rest % static_cast<std::size_t>(grid.cells[k]));
       rest /= static_cast<std::size_t>(grid.cells[k]);
-      centre[k] = grid.origin[k] + grid.spacing[k] * (c[k] + 0.5);
     }
+    const Vec<D> centre = grid.centre(c);  // of the cell beside the face
     if (!patch.holds(centre)) continue;
     ++faces;
     for (const auto& e : earlier) {

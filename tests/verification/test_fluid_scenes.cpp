@@ -103,6 +103,32 @@ void seepage_column(const std::string& kf, int steps_per_update = 1, bool hold_f
   }
 }
 
+/// Sum over the grains of (m - rho_f V) g, N.
+double submerged_weight(const Simulation<3>& sim, const PoreFluid<3>& f) {
+  double w = 0.0;
+  for (std::size_t i = 0; i < sim.particles.size(); ++i) {
+    const double v = particle_volume<3>(sim.particles.radius[i]);
+    w += (1.0 / sim.particles.inv_mass[i] - f.fluid.density * v) * 9.80665;
+  }
+  return w;
+}
+
+/// The excess pressure on the grid's floor times the faces' areas, N: each
+/// bottom cell's value plus, on the faces where inflow(i, j) holds, the
+/// half-cell drop that carries the inflow q.
+double floor_thrust(const PoreFluid<3>& f, double q, const std::function<bool(int, int)>& inflow) {
+  double thrust = 0.0;
+  for (int i = 0; i < f.grid.cells[0]; ++i) {
+    for (int j = 0; j < f.grid.cells[1]; ++j) {
+      const std::size_t c = f.grid.index({i, j, 0});
+      const double half_drop =
+          inflow(i, j) ? q * f.fluid.viscosity / f.permeability_field()[c][2] * 0.5 * f.grid.spacing[2] : 0.0;
+      thrust += (f.pressure()[c] + half_drop) * f.grid.face_area(2);
+    }
+  }
+  return thrust;
+}
+
 }  // namespace
 
 TEST(FluidScenes, SeepageColumnKf1e7) { seepage_column<2>("1e7"); }
@@ -154,11 +180,7 @@ TEST(FluidScenes, HydrostaticBed) {
   options.out_dir = temp_dir("hydrostatic");
   run_scene(scene, options);
   const auto& sim = scene.simulation;
-  double submerged = 0.0;
-  for (std::size_t i = 0; i < sim.particles.size(); ++i) {
-    const double v = particle_volume<3>(sim.particles.radius[i]);
-    submerged += (1.0 / sim.particles.inv_mass[i] - scene.fluid->fluid.density * v) * 9.80665;
-  }
+  const double submerged = submerged_weight(sim, *scene.fluid);
   const auto& floor = sim.walls[0];
   ASSERT_EQ(floor.name, "floor");
   // Issue 3: the floor carries the submerged weight within 0.5 %.
@@ -181,20 +203,8 @@ TEST(FluidScenes, UpwardSeepageThroughABed) {
   run_scene(scene, options);
   const auto& sim = scene.simulation;
   const auto& f = *scene.fluid;
-  double submerged = 0.0;
-  for (std::size_t i = 0; i < sim.particles.size(); ++i) {
-    const double v = particle_volume<3>(sim.particles.radius[i]);
-    submerged += (1.0 / sim.particles.inv_mass[i] - f.fluid.density * v) * 9.80665;
-  }
-  const double q = f.sides[4].value.at(sim.time);
-  double thrust = 0.0;
-  for (int i = 0; i < f.grid.cells[0]; ++i) {
-    for (int j = 0; j < f.grid.cells[1]; ++j) {
-      const std::size_t c = f.grid.index({i, j, 0});
-      const double half_drop = q * f.fluid.viscosity / f.permeability_field()[c][2] * 0.5 * f.grid.spacing[2];
-      thrust += (f.pressure()[c] + half_drop) * f.grid.spacing[0] * f.grid.spacing[1];
-    }
-  }
+  const double submerged = submerged_weight(sim, f);
+  const double thrust = floor_thrust(f, f.sides[4].value.at(sim.time), [](int, int) { return true; });
   const double floor = -sim.walls[0].force.z();
   std::printf(
       "upward seepage: floor %.6e N, submerged weight %.6e N - seepage %.6e N = %.6e N (%.3f %% of W')\n",
@@ -248,26 +258,15 @@ TEST(FluidScenes, SeepageFromAnInletUnderABed) {
   ASSERT_EQ(f.patches.size(), 1U);
   ASSERT_EQ(f.patch_faces(0), 9U);
   const double q = f.patches[0].condition.value.at(sim.time);
-  const double area = f.grid.spacing[0] * f.grid.spacing[1];
-  double thrust = 0.0;
-  for (int i = 0; i < f.grid.cells[0]; ++i) {
-    for (int j = 0; j < f.grid.cells[1]; ++j) {
-      const std::size_t c = f.grid.index({i, j, 0});
-      const bool inlet = i >= 1 && i <= 3 && j >= 1 && j <= 3;
-      const double half_drop =
-          inlet ? q * f.fluid.viscosity / f.permeability_field()[c][2] * 0.5 * f.grid.spacing[2] : 0.0;
-      thrust += (f.pressure()[c] + half_drop) * area;
-    }
-  }
+  const double area = f.grid.face_area(2);
+  const double thrust =
+      floor_thrust(f, q, [](int i, int j) { return i >= 1 && i <= 3 && j >= 1 && j <= 3; });  // the inlet
   std::vector<Vec<3>> force(sim.particles.size());
   f.particle_forces(sim.particles, sim.gravity, force);
   double on_grains = 0.0;  // the excess pressure's part: buoyancy taken out
-  double weight = 0.0;
-  for (std::size_t i = 0; i < sim.particles.size(); ++i) {
-    const double buoyancy = f.fluid.density * particle_volume<3>(sim.particles.radius[i]) * 9.80665;
-    on_grains += force[i].z() - buoyancy;
-    weight += 1.0 / sim.particles.inv_mass[i] * 9.80665 - buoyancy;
-  }
+  for (std::size_t i = 0; i < sim.particles.size(); ++i)
+    on_grains += force[i].z() - f.fluid.density * particle_volume<3>(sim.particles.radius[i]) * 9.80665;
+  const double weight = submerged_weight(sim, f);
   std::printf("seepage from an inlet: on the grains %.6e N, floor thrust %.6e N (%.3f %%), W' %.6e N\n",
               on_grains, thrust, 100.0 * (on_grains - thrust) / thrust, weight);
   EXPECT_GT(thrust, 0.1 * weight);  // a real load

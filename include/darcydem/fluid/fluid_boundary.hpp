@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "darcydem/core/vec.hpp"
+
 namespace darcydem {
 
 /// A value that varies in time: piecewise linear through (times, values),
@@ -49,10 +51,12 @@ struct FluidBoundary {
   }
 };
 
-/// Whether `centre` lies in [lo, hi] along every axis but `skip`.
+/// Whether `centre` lies in [lo, hi] along every axis but `skip`: for a
+/// face normal to `skip`, the centre of either cell beside it will do
+/// (FluidGrid::centre).
 template <int D>
-[[nodiscard]] bool in_box_across(int skip, const std::array<double, D>& centre,
-                                 const std::array<double, D>& lo, const std::array<double, D>& hi) {
+[[nodiscard]] bool in_box_across(int skip, const Vec<D>& centre, const std::array<double, D>& lo,
+                                 const std::array<double, D>& hi) {
   bool in = true;
   for (int k = 0; k < D; ++k) {
     if (k != skip) in = in && centre[k] >= lo[k] && centre[k] <= hi[k];
@@ -72,10 +76,9 @@ struct FluidPatch {
   std::array<double, D> hi{};
   FluidBoundary condition;
 
-  /// Whether the face centred at `centre` on this patch's side is in it.
-  [[nodiscard]] bool holds(const std::array<double, D>& centre) const {
-    return in_box_across<D>(side / 2, centre, lo, hi);
-  }
+  /// Whether the face beside the cell centred at `centre` on this patch's
+  /// side is in it.
+  [[nodiscard]] bool holds(const Vec<D>& centre) const { return in_box_across<D>(side / 2, centre, lo, hi); }
   /// Only the condition changes in a run (stages); where the patch lies
   /// comes from the scene.
   template <class Archive>
@@ -97,9 +100,8 @@ struct FluidBarrier {
   double at = 0.0;  ///< m, on a face between two cells
   std::array<double, D> lo{};
   std::array<double, D> hi{};
-  [[nodiscard]] bool holds(const std::array<double, D>& centre) const {
-    return in_box_across<D>(axis, centre, lo, hi);
-  }
+  /// Whether the face above the cell centred at `centre` along `axis` is in it.
+  [[nodiscard]] bool holds(const Vec<D>& centre) const { return in_box_across<D>(axis, centre, lo, hi); }
 };
 
 [[nodiscard]] inline std::string to_string(FluidBoundaryType t) {
