@@ -140,7 +140,7 @@ void check_initial_overlaps(const Simulation<D>& sim, double tolerance,
   const auto& p = sim.particles;
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (const auto& w : sim.walls) {
-      const double overlap = p.radius[i] - w.distance(p.position[i]);
+      const double overlap = p.radius[i] - w.gap(p.position[i]);
       if (overlap > tolerance * p.radius[i]) {
         throw SceneError(fmt::format(
             "{}: error: particle {} overlaps wall \"{}\" by {:.3g} m at start ({:.3g} of its radius; "
@@ -295,10 +295,42 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     Wall<D> w;
     w.name = r.string("name");
     if (wall_index.count(w.name) != 0) r.fail("name", fmt::format("wall \"{}\" is defined twice", w.name));
-    w.point = to_vec<D>(r.numbers("point", D));
-    w.normal = read_direction<D>(r, "normal", std::nullopt);
+    if (const toml::table* bt = r.optional_table("box")) {
+      // A box wall: min and max corners (equal along an axis for a plate).
+      for (auto k : {"point", "normal"}) {
+        if (r.has(k))
+          r.fail(k, fmt::format("a box wall is placed by 'box' alone; remove '{}' (a plane has 'point' and "
+                                "'normal', a box 'box = {{ min = [...], max = [...] }}')",
+                                k));
+      }
+      TableReader br(*bt, r.where() + " box", r.file());
+      const Vec<D> lo = to_vec<D>(br.numbers("min", D));
+      const Vec<D> hi = to_vec<D>(br.numbers("max", D));
+      for (int k = 0; k < D; ++k) {
+        if (!(lo[k] <= hi[k])) {
+          br.fail("max", fmt::format("must be >= min along every axis (a plate has min = max along one); "
+                                     "along {} min = {} and max = {}",
+                                     "xyz"[k], TableReader::format_number(lo[k]),
+                                     TableReader::format_number(hi[k])));
+        }
+      }
+      br.finish();
+      w.is_box = true;
+      w.point = 0.5 * (lo + hi);
+      w.half = 0.5 * (hi - lo);
+    } else {
+      if (!r.has("point") && !r.has("normal")) {
+        r.fail_table(
+            "a wall needs 'point' and 'normal' (an infinite plane) or 'box = { min = [...], max = "
+            "[...] }' (a box or plate)");
+      }
+      w.point = to_vec<D>(r.numbers("point", D));
+      w.normal = read_direction<D>(r, "normal", std::nullopt);
+    }
     w.material = materials.lookup(r, "material", r.string("material"));
     read_wall_motion<D>(r, w.velocity, w.motion, w.servo);
+    if (w.is_box && w.motion == WallMotion::servo)
+      r.fail("servo", "a box wall cannot be servo-controlled (it has no normal); give 'velocity' or 'fixed'");
     wall_index[w.name] = sim.walls.size();
     wall_names.push_back(w.name);
     sim.walls.push_back(w);
@@ -545,6 +577,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         WallChange<D> c;
         c.wall = it->second;
         read_wall_motion<D>(cr, c.velocity, c.motion, c.servo);
+        if (sim.walls[c.wall].is_box && c.motion == WallMotion::servo) {
+          cr.fail("servo",
+                  "a box wall cannot be servo-controlled (it has no normal); give 'velocity' or 'fixed'");
+        }
         cr.finish();
         s.walls.push_back(c);
       }

@@ -85,7 +85,7 @@ template <int D>
 void Simulation<D>::rebuild_if_needed(double moved) {
   double wall_moved = 0.0;
   for (const auto& w : walls) {
-    wall_moved = std::max(wall_moved, std::abs((w.point - w.point_at_build).dot(w.normal)));
+    wall_moved = std::max(wall_moved, w.moved_since_build());
   }
   if (2.0 * moved > skin || moved + wall_moved > skin) rebuild();
 }
@@ -182,15 +182,15 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     const auto mat_i = p.material[i];
     for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
       const Wall<D>& w = walls[W.wall[k]];
-      const double gap = w.distance(xi);
-      const double overlap = ri - gap;
+      const auto touch = w.touch(xi);
+      const double overlap = ri - touch.gap;
       if (overlap <= 0.0 || inv_mi == 0.0) {
         W.tangential[k].setZero();
         if constexpr (Rolling) W.rolling[k].setZero();
         W.force_on_particle[k].setZero();
         continue;
       }
-      const Vec<D> nrm = -w.normal;
+      const Vec<D> nrm = -touch.normal;
       const double arm_i = ri - overlap;
       const Vec<D> v_rel = vi + cross(AngVec<D>(wi * arm_i), nrm) - w.velocity;
       const auto c = evaluate_contact<D, Law>(contact_table(mat_i, w.material), nrm, overlap, arm_i, 0.0,
@@ -605,7 +605,7 @@ std::size_t Simulation<D>::contact_count() const {
                     [&](std::size_t, std::uint32_t, std::uint32_t, double, bool) { ++count; });
   for (std::size_t i = 0; i < particles.size(); ++i) {
     for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
-      if (walls[wall_list_.wall[k]].distance(particles.position[i]) < particles.radius[i]) ++count;
+      if (walls[wall_list_.wall[k]].gap(particles.position[i]) < particles.radius[i]) ++count;
     }
   }
   return count;
@@ -627,7 +627,7 @@ double Simulation<D>::max_overlap() const {
                     [&](std::size_t, std::uint32_t, std::uint32_t, double o, bool) { m = std::max(m, o); });
   for (std::size_t i = 0; i < particles.size(); ++i) {
     for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
-      m = std::max(m, particles.radius[i] - walls[wall_list_.wall[k]].distance(particles.position[i]));
+      m = std::max(m, particles.radius[i] - walls[wall_list_.wall[k]].gap(particles.position[i]));
     }
   }
   return m;
@@ -685,7 +685,7 @@ double Simulation<D>::elastic_energy() const {
     }
     for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
       const auto& w = walls[wall_list_.wall[k]];
-      const double overlap = p.radius[i] - w.distance(p.position[i]);
+      const double overlap = p.radius[i] - w.gap(p.position[i]);
       if (overlap <= 0.0) continue;
       const auto& pp = contact_table(p.material[i], w.material);
       e += normal_energy(pp, overlap, p.radius[i]);

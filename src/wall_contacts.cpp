@@ -15,7 +15,7 @@ void WallContactList<D>::build(const std::vector<Vec<D>>& position, const std::v
   const bool old_rolling = keep_rolling && rolling.size() == wall.size();
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t w = 0; w < walls.size(); ++w) {
-      if (walls[w].distance(position[i]) < radius[i] + skin) {
+      if (walls[w].gap(position[i]) < radius[i] + skin) {
         next_wall.push_back(static_cast<std::uint16_t>(w));
         Vec<D> t = Vec<D>::Zero();
         AngVec<D> r = AngVec<D>::Zero();

@@ -126,6 +126,42 @@ TEST(SceneErrors, OverlapWithWallAtStartIsRefused) {
   EXPECT_NE(msg.find("initial_overlap_tolerance"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, BoxWallsAreChecked) {
+  // A plate (a segment in 2D) beside the column: x = 2 mm, y in [0, 2] mm.
+  const std::string plate =
+      "\n[[wall]]\nname = \"pile\"\nbox = { min = [0.002, 0.0], max = [0.002, 0.002] }\nmaterial = "
+      "\"sand\"\n";
+  const std::string good = replace(kGood, "[[particles]]", plate + "\n[[particles]]");
+  EXPECT_EQ(load_error(good), "");
+  auto msg = load_error(replace(good, "max = [0.002, 0.002]", "max = [0.001, 0.002]"));
+  EXPECT_NE(msg.find("[[wall]] #2 box key 'max': must be >= min along every axis (a plate has min = max "
+                     "along one); along x min = 0.002 and max = 0.001"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, "box = {", "normal = [1.0, 0.0]\nbox = {"));
+  EXPECT_NE(msg.find("key 'normal': a box wall is placed by 'box' alone"), std::string::npos) << msg;
+  msg =
+      load_error(replace(good, "material = \"sand\"\n\n[[particles]]",
+                         "material = \"sand\"\nservo = { target_force = 1.0, gain = 1.0, max_speed = 1.0 }\n"
+                         "\n[[particles]]"));
+  EXPECT_NE(msg.find("key 'servo': a box wall cannot be servo-controlled"), std::string::npos) << msg;
+  msg = load_error(replace(good, "box = { min = [0.002, 0.0], max = [0.002, 0.002] }", ""));
+  EXPECT_NE(msg.find("a wall needs 'point' and 'normal' (an infinite plane) or 'box"), std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "min = [0.002, 0.0]", "min = [0.002, 0.0], size = 1"));
+  EXPECT_NE(msg.find("unknown key 'size'"), std::string::npos) << msg;
+  // A disc that starts inside the plate is refused like one behind a plane.
+  msg = load_error(replace(good, "min = [0.002, 0.0]", "min = [0.0003, 0.0]"));
+  EXPECT_NE(msg.find("overlaps wall \"pile\""), std::string::npos) << msg;
+  // A stage cannot make it a servo wall either.
+  msg = load_error(replace(good, "gravity = [0.0, -9.81]",
+                           "gravity = [0.0, -9.81]\nwalls.pile = { servo = { target_force = 1.0, gain = 1.0, "
+                           "max_speed = 1.0 } }"));
+  EXPECT_NE(msg.find("walls.pile key 'servo': a box wall cannot be servo-controlled"), std::string::npos)
+      << msg;
+}
+
 TEST(SceneErrors, OverlappingParticlesAtStartAreRefused) {
   // A second column 0.2 mm above the first: its discs overlap the first's by 0.8 mm.
   const auto msg = load_error(replace(kGood, "[[stage]]",

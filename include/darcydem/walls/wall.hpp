@@ -1,9 +1,15 @@
 #pragma once
-// Infinite plane walls. The normal points into the granular domain; a
-// particle touches the wall when its centre is closer to the plane than its
-// radius. A wall is fixed, moves at a prescribed velocity, or is
-// servo-controlled so that the load the particles put on it approaches a
-// target force.
+// Walls: infinite planes and boxes. A plane's normal points into the
+// granular domain; a particle touches it when its centre is closer to the
+// plane than its radius, and one behind it is pushed back out. A box wall is
+// an axis-aligned box (possibly of zero thickness along an axis: a plate in
+// 3D, a segment in 2D, such as a sheet pile or a baffle); particles touch it
+// from any side, on a face, an edge or a corner, along the line from the
+// box's nearest point to their centre. A wall is fixed, moves at a
+// prescribed velocity, or (planes only) is servo-controlled so that the load
+// the particles put on it approaches a target force.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -23,8 +29,10 @@ struct ServoControl {
 template <int D>
 struct Wall {
   std::string name;
-  Vec<D> point = Vec<D>::Zero();   ///< a point of the plane, m
-  Vec<D> normal = Vec<D>::Zero();  ///< unit, pointing into the domain
+  Vec<D> point = Vec<D>::Zero();   ///< a point of the plane, m (a box: its centre)
+  Vec<D> normal = Vec<D>::Zero();  ///< unit, pointing into the domain (a box: unused)
+  bool is_box = false;             ///< a box wall rather than a plane
+  Vec<D> half = Vec<D>::Zero();    ///< a box's half-extents, m (>= 0; from the scene)
   std::uint16_t material = 0;
   WallMotion motion = WallMotion::fixed;
   Vec<D> velocity = Vec<D>::Zero();  ///< m/s (velocity mode; servo sets it)
@@ -38,8 +46,40 @@ struct Wall {
     ar(point, normal, material, motion, velocity, servo, force, point_at_build);
   }
 
-  /// Signed distance of x from the plane, positive on the domain side.
-  [[nodiscard]] double distance(const Vec<D>& x) const { return (x - point).dot(normal); }
+  /// Where a particle centred at x stands against the wall: the gap from
+  /// the wall's nearest point to x (negative when x is behind a plane or
+  /// inside a box) and the unit normal from the wall towards x.
+  struct Touch {
+    double gap = 0.0;
+    Vec<D> normal = Vec<D>::Zero();
+  };
+  [[nodiscard]] Touch touch(const Vec<D>& x) const {
+    if (!is_box) return {(x - point).dot(normal), normal};
+    const Vec<D> d = x - point;
+    const Vec<D> outside = d - d.cwiseMax(-half).cwiseMin(half);
+    const double g2 = outside.squaredNorm();
+    if (g2 > 0.0) {
+      const double g = std::sqrt(g2);
+      return {g, outside / g};
+    }
+    // Inside (or on) the box: out through the nearest face.
+    int axis = 0;
+    for (int k = 1; k < D; ++k) {
+      if (half[k] - std::abs(d[k]) < half[axis] - std::abs(d[axis])) axis = k;
+    }
+    Touch t;
+    t.gap = std::abs(d[axis]) - half[axis];
+    t.normal[axis] = d[axis] < 0.0 ? -1.0 : 1.0;
+    return t;
+  }
+  /// The gap alone (touch(x).gap).
+  [[nodiscard]] double gap(const Vec<D>& x) const { return touch(x).gap; }
+  /// How far the wall has come towards particles since the last contact
+  /// list build: along its normal for a plane, any way for a box.
+  [[nodiscard]] double moved_since_build() const {
+    const Vec<D> shift = point - point_at_build;
+    return is_box ? shift.norm() : std::abs(shift.dot(normal));
+  }
   /// Compressive load on the wall (N): the force's component against the normal.
   [[nodiscard]] double load() const { return -force.dot(normal); }
 

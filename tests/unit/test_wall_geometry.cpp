@@ -1,0 +1,80 @@
+// Where a particle's centre stands against a wall (Wall::touch): planes as
+// before, and box walls touched on a face, an edge or a corner, from either
+// side, and from inside; each case against the nearest point worked out by
+// hand.
+#include <gtest/gtest.h>
+
+#include "darcydem/walls/wall.hpp"
+
+namespace darcydem {
+namespace {
+
+template <int D>
+Wall<D> box(const Vec<D>& lo, const Vec<D>& hi) {
+  Wall<D> w;
+  w.is_box = true;
+  w.point = 0.5 * (lo + hi);
+  w.half = 0.5 * (hi - lo);
+  return w;
+}
+
+// Round-off of a few operations on numbers of order 1.
+constexpr double kTol = 1e-14;
+
+void expect_touch(const Wall<3>::Touch& t, double gap, const Vec<3>& normal) {
+  EXPECT_NEAR(t.gap, gap, kTol);
+  EXPECT_NEAR((t.normal - normal).norm(), 0.0, kTol) << t.normal.transpose();
+}
+
+TEST(WallTouch, PlaneGivesTheSignedDistanceAndItsNormal) {
+  Wall<3> w;
+  w.point = Vec<3>(1, 2, 3);
+  w.normal = Vec<3>(0, 0.6, 0.8);
+  expect_touch(w.touch(Vec<3>(5, 2, 4)), 0.8, w.normal);
+  expect_touch(w.touch(Vec<3>(5, 2, 2)), -0.8, w.normal);  // behind: pushed back out
+}
+
+TEST(WallTouch, PlateIsTouchedOnBothFacesOnItsEdgesAndCorners) {
+  // A plate 2 x 4 in the plane z = 0, centred at the origin.
+  const auto w = box<3>(Vec<3>(-1, -2, 0), Vec<3>(1, 2, 0));
+  expect_touch(w.touch(Vec<3>(0.5, 1, 3)), 3.0, Vec<3>(0, 0, 1));    // above a face
+  expect_touch(w.touch(Vec<3>(0.5, 1, -3)), 3.0, Vec<3>(0, 0, -1));  // below it
+  // Beyond the edge x = 1: nearest point (1, 1, 0), offset (3, 0, 4).
+  expect_touch(w.touch(Vec<3>(4, 1, 4)), 5.0, Vec<3>(0.6, 0, 0.8));
+  // Beyond the corner (1, 2, 0): offset (1, 2, 2), length 3.
+  expect_touch(w.touch(Vec<3>(2, 4, 2)), 3.0, Vec<3>(1, 2, 2) / 3.0);
+  // In the plate's own plane, beyond its edge y = -2.
+  expect_touch(w.touch(Vec<3>(0, -2.5, 0)), 0.5, Vec<3>(0, -1, 0));
+}
+
+TEST(WallTouch, InsideABoxTheNearestFaceWins) {
+  const auto w = box<3>(Vec<3>(-1, -2, -3), Vec<3>(1, 2, 3));
+  expect_touch(w.touch(Vec<3>(0.9, 0, 0)), -0.1, Vec<3>(1, 0, 0));
+  expect_touch(w.touch(Vec<3>(-0.2, 1.9, 0)), -0.1, Vec<3>(0, 1, 0));
+  expect_touch(w.touch(Vec<3>(0, 0, -2.5)), -0.5, Vec<3>(0, 0, -1));
+}
+
+TEST(WallTouch, SegmentIn2D) {
+  // A vertical segment x = 0, y in [0, 1] (a sheet pile in 2D).
+  const auto w = box<2>(Vec<2>(0, 0), Vec<2>(0, 1));
+  auto t = w.touch(Vec<2>(0.3, 1.4));  // beyond its top end: offset (0.3, 0.4)
+  EXPECT_NEAR(t.gap, 0.5, kTol);
+  EXPECT_NEAR((t.normal - Vec<2>(0.6, 0.8)).norm(), 0.0, kTol);
+  t = w.touch(Vec<2>(-0.25, 0.5));  // beside it, upstream
+  EXPECT_NEAR(t.gap, 0.25, kTol);
+  EXPECT_NEAR((t.normal - Vec<2>(-1, 0)).norm(), 0.0, kTol);
+}
+
+TEST(WallTouch, ABoxThatMovesSidewaysHasMovedAPlaneDoesNot) {
+  auto plate = box<3>(Vec<3>(0, 0, 0), Vec<3>(1, 1, 0));
+  plate.point_at_build = plate.point;
+  plate.point += Vec<3>(0.3, 0.4, 0);
+  EXPECT_NEAR(plate.moved_since_build(), 0.5, kTol);
+  Wall<3> floor;
+  floor.normal = Vec<3>(0, 0, 1);
+  floor.point = Vec<3>(0.3, 0.4, 0.1);
+  EXPECT_NEAR(floor.moved_since_build(), 0.1, kTol);
+}
+
+}  // namespace
+}  // namespace darcydem
