@@ -337,6 +337,51 @@ TEST(FluidScenes, SheetPile) {
   EXPECT_NEAR(f.total_balance().imbalance(), 0.0, 1e-7 * f.total_balance().gross);
 }
 
+/// Mean height of the grains on each side of x = at: {upstream, downstream}.
+std::pair<double, double> mean_heights(const ParticleData<2>& p, double at) {
+  double sum[2] = {0.0, 0.0};
+  double count[2] = {0.0, 0.0};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const int side = p.position[i].x() > at ? 1 : 0;
+    sum[side] += p.position[i].y();
+    count[side] += 1.0;
+  }
+  return {sum[0] / count[0], sum[1] / count[1]};
+}
+
+TEST(FluidScenes, SheetPileHeave) {
+  // examples/fluid_cases/sheet_pile_heave.toml: stacked discs behind a
+  // sheet pile (a box wall for the grains, a barrier for the water); the
+  // upstream excess pressure rises to p_up = 440 Pa. Expected without the
+  // run: by the flow's symmetry about the pile, the floor's excess pressure
+  // just downstream of it is about p_up / 2 = 220 Pa, 1.5 times the bed's
+  // submerged weight per unit area, W' = (rho_s - rho_f) g 12 pi r^2 / s =
+  // 146.5 Pa, so the seepage force lifts the downstream bed. Compared with
+  // the same scene run without the head (the settled bed), the downstream
+  // grains' mean height must rise by more than half a grain diameter
+  // (measured: +1.39 mm), and the upstream bed, which loses grains under
+  // the pile's tip, must sink (measured: -1.23 mm). This checks the
+  // coupling at heave, not the plate: the same scene without the plate
+  // heaves alike (+1.48 mm); test_box_walls.cpp checks the plate itself.
+  auto heave = darcydem::testing::load_scene<2>("examples/fluid_cases/sheet_pile_heave.toml");
+  auto still = darcydem::testing::load_scene<2>("examples/fluid_cases/sheet_pile_heave.toml");
+  ASSERT_EQ(still.stages.size(), 2U);
+  ASSERT_EQ(still.stages[1].fluid_patches.size(), 1U);
+  still.stages[1].fluid_patches[0].second.value = TimeSeries::constant(0.0);
+  RunOptions options;
+  options.out_dir = temp_dir("sheet_pile_heave");
+  run_scene(heave, options);
+  options.out_dir = temp_dir("sheet_pile_still");
+  run_scene(still, options);
+  const auto [up_heave, down_heave] = mean_heights(heave.simulation.particles, 0.02);
+  const auto [up_still, down_still] = mean_heights(still.simulation.particles, 0.02);
+  std::printf("sheet pile heave: downstream mean height %+.3f mm, upstream %+.3f mm against the still bed\n",
+              1e3 * (down_heave - down_still), 1e3 * (up_heave - up_still));
+  const double d = 0.98e-3;
+  EXPECT_GT(down_heave - down_still, 0.5 * d);
+  EXPECT_LT(up_heave, up_still);
+}
+
 TEST(FluidScenes, TerzaghiConsolidation) {
   // examples/fluid_cases/consolidation_column.toml: the paper's column, then
   // a permeable lid loads it with F = 0.5 N. Expected (independent of the
