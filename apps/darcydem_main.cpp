@@ -47,13 +47,16 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
                              scene.stages.size(), scene.simulation.time_step);
     if (scene.fluid) {
       const auto& f = *scene.fluid;
+      const double dry = scene.simulation.critical_time_step();
+      const double wet = f.critical_time_step(scene.simulation.particles, dry);
       std::cout << fmt::format(
           "  pore fluid: {} cells, K_f = {:.4g} Pa, {} solver, fluid step every {} DEM steps{}; "
-          "critical step {:.4g} s (dry {:.4g} s)\n",
+          "critical step {}\n",
           f.grid.size(), f.fluid.bulk_modulus, darcydem::to_string(f.solver().kind()), f.steps_per_update,
           f.hold_forces ? " (forces held)" : "",
-          f.critical_time_step(scene.simulation.particles, scene.simulation.critical_time_step()),
-          scene.simulation.critical_time_step());
+          std::isinf(wet) ? darcydem::describe_critical_step(wet)
+                          : fmt::format("{} (dry {})", darcydem::describe_critical_step(wet),
+                                        darcydem::describe_critical_step(dry)));
       std::istringstream patches(darcydem::describe_patches_and_barriers(f));
       for (std::string line; std::getline(patches, line);) std::cout << "  " << line << '\n';
     }

@@ -192,6 +192,12 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
 
 }  // namespace
 
+std::string describe_critical_step(double seconds) {
+  // Only fixed particles (or none free to move): nothing limits the step.
+  if (std::isinf(seconds)) return "none (no particle is free to move)";
+  return fmt::format("{:.4g} s", seconds);
+}
+
 bool output_dir_is_free(const std::string& dir) {
   std::error_code ec;
   if (!fs::exists(dir, ec)) return true;
@@ -282,11 +288,12 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   double& next_snapshot = pos.next_snapshot;
   const double wall_before = pos.wall_time;
   if (options.log != nullptr) {
-    *options.log << fmt::format("darcydem {}: {} particles, {}D, time step {:.4g} s (critical {:.4g} s)\n",
-                                version_string, sim.particles.size(), D, dt,
-                                fluid != nullptr
-                                    ? fluid->critical_time_step(sim.particles, sim.critical_time_step())
-                                    : sim.critical_time_step());
+    *options.log << fmt::format(
+        "darcydem {}: {} particles, {}D, time step {:.4g} s (critical {})\n", version_string,
+        sim.particles.size(), D, dt,
+        describe_critical_step(fluid != nullptr
+                                   ? fluid->critical_time_step(sim.particles, sim.critical_time_step())
+                                   : sim.critical_time_step()));
     if (fluid != nullptr) {
       std::string sides;
       for (int k = 0; k < 2 * D; ++k)
