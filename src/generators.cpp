@@ -71,6 +71,62 @@ Packing<D> lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spacing, d
 }
 
 template <int D>
+Packing<D> dense_lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spacing, double radius) {
+  // A rectangular cell (2D: a by a sqrt(3); 3D: a cube of edge a sqrt(2))
+  // and its basis, in units of the cell.
+  std::vector<Vec<D>> basis;
+  Vec<D> cell;
+  if constexpr (D == 2) {
+    cell = Vec<D>(spacing, spacing * std::sqrt(3.0));
+    basis = {Vec<D>(0.0, 0.0), Vec<D>(0.5, 0.5)};
+  } else {
+    cell = Vec<D>::Constant(spacing * std::sqrt(2.0));
+    basis = {Vec<D>(0.0, 0.0, 0.0), Vec<D>(0.5, 0.5, 0.0), Vec<D>(0.5, 0.0, 0.5), Vec<D>(0.0, 0.5, 0.5)};
+  }
+  const Vec<D> first = lo + Vec<D>::Constant(radius);
+  const Vec<D> last = hi - Vec<D>::Constant(radius);
+  // A centre within 1e-9 of a spacing outside the box still counts, as in
+  // lattice_packing (the box's edges are usually multiples of it).
+  const double slack = 1e-9 * spacing;
+  std::array<int, D> n{};
+  for (int k = 0; k < D; ++k) {
+    const double span = last[k] - first[k];
+    n[k] = span < -slack ? 0 : static_cast<int>(std::floor((span + slack) / cell[k])) + 1;
+  }
+  std::vector<Vec<D>> centres;
+  std::array<int, D> idx{};
+  std::int64_t total = 1;
+  for (int k = 0; k < D; ++k) total *= n[k];
+  for (std::int64_t c = 0; c < total; ++c) {
+    std::int64_t rest = c;
+    for (int k = 0; k < D; ++k) {
+      idx[k] = static_cast<int>(rest % n[k]);
+      rest /= n[k];
+    }
+    for (const auto& b : basis) {
+      Vec<D> x;
+      bool inside = true;
+      for (int k = 0; k < D; ++k) {
+        x[k] = first[k] + (idx[k] + b[k]) * cell[k];
+        inside = inside && x[k] <= last[k] + slack;
+      }
+      if (inside) centres.push_back(x);
+    }
+  }
+  // By height, then along y (3D), then x.
+  std::sort(centres.begin(), centres.end(), [](const Vec<D>& a, const Vec<D>& b) {
+    for (int k = D - 1; k >= 0; --k) {
+      if (a[k] != b[k]) return a[k] < b[k];
+    }
+    return false;
+  });
+  Packing<D> out;
+  out.position = std::move(centres);
+  out.radius.assign(out.position.size(), radius);
+  return out;
+}
+
+template <int D>
 Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, double radius, double gap) {
   Packing<D> out;
   const Vec<D> a = axis.normalized();
@@ -221,6 +277,7 @@ void write_packing_csv(const std::string& path, const ParticleData<D>& p, const 
 
 #define DARCYDEM_INSTANTIATE(D)                                                                  \
   template Packing<D> lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);          \
+  template Packing<D> dense_lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);    \
   template Packing<D> column_packing<D>(const Vec<D>&, const Vec<D>&, int, double, double);      \
   template Packing<D> random_packing<D>(const Vec<D>&, const Vec<D>&, std::int64_t,              \
                                         const RadiusDistribution&, std::uint64_t, std::int64_t); \

@@ -1,5 +1,7 @@
 #include "darcydem/output/probes.hpp"
 
+#include <limits>
+
 namespace darcydem {
 
 template <int D>
@@ -49,6 +51,23 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       return fluid != nullptr ? fluid->total_balance().imbalance() : 0.0;
     case ProbeQuantity::fluid_iterations:
       return fluid != nullptr ? fluid->last_solve().iterations : 0.0;
+    case ProbeQuantity::particles_in_box:
+    case ProbeQuantity::mean_particle_position: {
+      double count = 0.0;
+      double sum = 0.0;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        bool inside = true;
+        for (int k = 0; k < D; ++k) {
+          inside = inside && p.position[i][k] >= probe.box_min[k] && p.position[i][k] <= probe.box_max[k];
+        }
+        if (inside) {
+          count += 1.0;
+          sum += p.position[i][probe.component];
+        }
+      }
+      if (probe.quantity == ProbeQuantity::particles_in_box) return count;
+      return count > 0.0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
+    }
   }
   return 0.0;
 }

@@ -350,7 +350,13 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       const double spacing = r.check(
           "spacing", r.number_or("spacing", 2.0 * radius), [&](double v) { return v >= 2.0 * radius; },
           ">= 2 x radius (m)");
-      pk = lattice_packing<D>(lo, hi, spacing, radius);
+      const std::string arrangement =
+          r.optional_choice("arrangement", D == 2 ? std::vector<std::string>{"square", "hexagonal"}
+                                                  : std::vector<std::string>{"cubic", "fcc"})
+              .value_or(D == 2 ? "square" : "cubic");
+      pk = arrangement == "hexagonal" || arrangement == "fcc"
+               ? dense_lattice_packing<D>(lo, hi, spacing, radius)
+               : lattice_packing<D>(lo, hi, spacing, radius);
     } else if (gen == "column") {
       const Vec<D> base = to_vec<D>(r.numbers("base", D));
       Vec<D> up = Vec<D>::Zero();
@@ -443,21 +449,23 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       r.fail("name", fmt::format("probe \"{}\" is defined twice", p.name));
     }
     probe_names.push_back(p.name);
-    const std::string q =
-        r.choice("quantity",
-                 {"particle_position", "particle_velocity", "wall_position", "wall_force", "kinetic_energy",
-                  "contact_count", "coordination", "max_overlap", "unbalanced_force", "pore_pressure",
-                  "pore_pressure_profile", "fluid_inflow", "fluid_balance", "fluid_iterations"});
-    r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points"});
+    const std::string q = r.choice(
+        "quantity", {"particle_position", "particle_velocity", "wall_position", "wall_force",
+                     "kinetic_energy", "contact_count", "coordination", "max_overlap", "unbalanced_force",
+                     "pore_pressure", "pore_pressure_profile", "fluid_inflow", "fluid_balance",
+                     "fluid_iterations", "particles_in_box", "mean_particle_position"});
+    r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points", "min", "max"});
     const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
                              q == "fluid_balance" || q == "fluid_iterations";
     if (fluid_probe && !scene.fluid) {
       r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
     }
-    for (std::string k : {"position", "side", "from", "to", "points"}) {
+    const bool box_probe = q == "particles_in_box" || q == "mean_particle_position";
+    for (std::string k : {"position", "side", "from", "to", "points", "min", "max"}) {
       const bool applies = (q == "pore_pressure" && k == "position") ||
                            (q == "fluid_inflow" && k == "side") ||
-                           (q == "pore_pressure_profile" && (k == "from" || k == "to" || k == "points"));
+                           (q == "pore_pressure_profile" && (k == "from" || k == "to" || k == "points")) ||
+                           (box_probe && (k == "min" || k == "max"));
       if (r.has(k) && !applies) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
     }
     if (q == "pore_pressure_profile") {
@@ -476,7 +484,29 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       }
       return;
     }
-    if (q == "pore_pressure") {
+    if (box_probe) {
+      // The particles whose centres lie in [min, max] at each output time.
+      p.quantity =
+          q == "particles_in_box" ? ProbeQuantity::particles_in_box : ProbeQuantity::mean_particle_position;
+      p.box_min = r.numbers("min", D);
+      p.box_max = r.numbers("max", D);
+      for (int k = 0; k < D; ++k) {
+        if (!(p.box_max[k] > p.box_min[k])) {
+          r.fail("max",
+                 fmt::format("must be greater than 'min' along every axis; along {} min = {} and max = {}",
+                             "xyz"[k], TableReader::format_number(p.box_min[k]),
+                             TableReader::format_number(p.box_max[k])));
+        }
+      }
+      if (q == "mean_particle_position") {
+        p.component = static_cast<int>(axis_component<D>(r, "component", false));
+      } else if (r.has("component")) {
+        r.fail("component", "does not apply to quantity \"particles_in_box\"");
+      }
+      for (auto k : {"particle", "wall"}) {
+        if (r.has(k)) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
+      }
+    } else if (q == "pore_pressure") {
       p.quantity = ProbeQuantity::pore_pressure;
       p.position = r.numbers("position", D);
     } else if (q == "fluid_inflow") {

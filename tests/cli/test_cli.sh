@@ -21,7 +21,7 @@ scene="$src/examples/column_settling/column.toml"
   && ok "check prints a boundary patch's faces and area" || bad "check: patch"
 "$exe" check "$src/examples/fluid_cases/sheet_pile.toml" | grep -q "critical step none (no particle is free to move)$" \
   && ok "check says what an infinite critical step means (only fixed particles)" || bad "check: critical step"
-"$exe" check "$src/examples/fluid_cases/sheet_pile_heave.toml" | grep -q "OK (2D, 480 particles, 4 walls" \
+"$exe" check "$src/examples/fluid_cases/sheet_pile_heave.toml" | grep -q "OK (2D, 508 particles, 4 walls" \
   && ok "check accepts a scene with a box wall" || bad "check: box wall"
 
 sed 's/^density = 2650.0/densty = 2650.0/' "$scene" > "$work/bad.toml"

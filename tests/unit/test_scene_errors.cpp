@@ -351,6 +351,30 @@ TEST(SceneErrors, FluidPreconditionerIsChecked) {
   EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
 }
 
+TEST(SceneErrors, BoxProbesAreChecked) {
+  const std::string probe =
+      "\n[[probe]]\nname = \"bed\"\nquantity = \"mean_particle_position\"\nmin = [0.0, 0.0]\n"
+      "max = [0.001, 0.01]\ncomponent = \"y\"\n";
+  const std::string good = replace(kGood, "[[stage]]", probe + "\n[[stage]]");
+  EXPECT_EQ(load_error(good), "");
+  auto msg = load_error(replace(good, "max = [0.001, 0.01]", "max = [0.001, 0.0]"));
+  EXPECT_NE(
+      msg.find("[[probe]] #1 key 'max': must be greater than 'min' along every axis; along y min = 0 and "
+               "max = 0"),
+      std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, "component = \"y\"", "component = \"norm\""));
+  EXPECT_NE(msg.find("key 'component'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "mean_particle_position", "particles_in_box"));
+  EXPECT_NE(msg.find("key 'component': does not apply to quantity \"particles_in_box\""), std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "mean_particle_position", "kinetic_energy"));
+  EXPECT_NE(msg.find("key 'min': does not apply to quantity \"kinetic_energy\""), std::string::npos) << msg;
+  msg = load_error(replace(good, "min = [0.0, 0.0]\n", ""));
+  EXPECT_NE(msg.find("missing required key 'min'"), std::string::npos) << msg;
+}
+
 TEST(SceneErrors, FluidProbeWithoutFluidIsRefused) {
   const auto msg =
       load_error(std::string(kGood) +

@@ -113,6 +113,56 @@ TEST(Generators, RandomPackingIsInsideAndDoesNotOverlap) {
   EXPECT_NE(other.position[123], pk.position[123]);
 }
 
+// The dense lattices: nearest centres exactly a spacing apart, and a
+// particle away from the box's edges has the kissing number of its
+// arrangement as neighbours at that distance (6 hexagonal, 12 fcc), none
+// closer; every particle inside the box; the 2D count worked out by hand.
+template <int D>
+void dense_lattice(double box, int kissing, std::size_t expected_count) {
+  const double a = 1e-3;
+  const double r = 0.5 * a;
+  const auto pk = dense_lattice_packing<D>(Vec<D>::Zero(), Vec<D>::Constant(box), a, r);
+  if (expected_count > 0) {
+    EXPECT_EQ(pk.position.size(), expected_count);
+  }
+  ASSERT_GT(pk.position.size(), 50U);
+  // Round-off of lattice coordinates of order 1e-2 m: 1e-12 of a spacing.
+  const double tol = 1e-12 * a;
+  int interior = 0;
+  for (std::size_t i = 0; i < pk.position.size(); ++i) {
+    const auto& x = pk.position[i];
+    bool inner = true;
+    for (int k = 0; k < D; ++k) {
+      EXPECT_GE(x[k] - r, -tol);
+      EXPECT_LE(x[k] + r, box + tol);
+      inner = inner && x[k] > 1.5 * a && x[k] < box - 1.5 * a;
+    }
+    int touching = 0;
+    for (std::size_t j = 0; j < pk.position.size(); ++j) {
+      if (j == i) continue;
+      const double dist = (pk.position[j] - x).norm();
+      EXPECT_GE(dist, a - tol);
+      touching += dist < a + tol ? 1 : 0;
+    }
+    if (inner) {
+      EXPECT_EQ(touching, kissing) << "particle " << i;
+      ++interior;
+    }
+    // In order of height.
+    if (i > 0) {
+      EXPECT_LE(pk.position[i - 1][D - 1], x[D - 1]);
+    }
+  }
+  EXPECT_GT(interior, 10);
+}
+
+TEST(Generators, HexagonalLatticeIsDense) {
+  // Box 10 a: 11 rows (pitch a sqrt(3)/2 over 9 a), 10 particles in the 6
+  // unshifted rows and 9 in the 5 shifted ones: 105.
+  dense_lattice<2>(10e-3, 6, 105);
+}
+TEST(Generators, FccLatticeIsDense) { dense_lattice<3>(6e-3, 12, 0); }
+
 TEST(Generators, RandomPackingFollowsTheSizeTable) {
   // 4000 draws with fractions 0.3 / 0.7: the count of small ones is binomial,
   // sigma = sqrt(4000 * 0.3 * 0.7) = 29; allow 4 sigma.

@@ -38,6 +38,14 @@ struct Packing {
 template <int D>
 Packing<D> lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spacing, double radius);
 
+/// The densest regular arrangement with nearest centres `spacing` apart:
+/// hexagonal in 2D (rows along x, every other row shifted by half a
+/// spacing), face-centred cubic in 3D (a cubic cell of edge sqrt(2) spacing
+/// with four centres); the particles of radius r inside [lo, hi], in order of
+/// height, then y, then x.
+template <int D>
+Packing<D> dense_lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spacing, double radius);
+
 /// `count` particles stacked along `axis` from `base` (the point the lowest
 /// particle rests on), centre to centre 2r + gap.
 template <int D>

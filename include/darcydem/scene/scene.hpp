@@ -25,10 +25,12 @@ enum class ProbeQuantity {
   coordination,
   max_overlap,
   unbalanced_force,
-  pore_pressure,     ///< excess pore pressure at a point, Pa
-  fluid_inflow,      ///< flow into the grid through one side, m^3/s
-  fluid_balance,     ///< inflow - stored - pore change since the start, m^3
-  fluid_iterations,  ///< iterations of the last pressure solve
+  pore_pressure,           ///< excess pore pressure at a point, Pa
+  fluid_inflow,            ///< flow into the grid through one side, m^3/s
+  fluid_balance,           ///< inflow - stored - pore change since the start, m^3
+  fluid_iterations,        ///< iterations of the last pressure solve
+  particles_in_box,        ///< how many particle centres lie in a box
+  mean_particle_position,  ///< one component of their mean centre, m (NaN with none)
 };
 
 struct ProbeSpec {
@@ -37,8 +39,9 @@ struct ProbeSpec {
   std::int64_t particle = -1;  ///< creation index; -1: the topmost particle
   int component = 0;           ///< 0..D-1, or -1 for the norm
   std::size_t wall = 0;
-  std::vector<double> position;  ///< pore_pressure: the point, m
-  int side = 0;                  ///< fluid_inflow: x_min, x_max, y_min, ...
+  std::vector<double> position;          ///< pore_pressure: the point, m
+  int side = 0;                          ///< fluid_inflow: x_min, x_max, y_min, ...
+  std::vector<double> box_min, box_max;  ///< particles_in_box, mean_particle_position: the box, m
 };
 
 struct OutputSpec {
