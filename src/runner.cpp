@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <ostream>
 #include <stdexcept>
 
@@ -214,12 +215,13 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   std::ofstream probes;
   PvdSeries series((out / "particles.pvd").string());
   PvdSeries fluid_series((out / "fluid.pvd").string());
+  PvdSeries wall_series((out / "walls.pvd").string());
   PoreFluid<D>* fluid = scene.fluid.get();
   std::optional<SeepageColumnAnalysis<D>> seepage;
   if (scene.seepage_column) seepage.emplace(*scene.seepage_column, scene);
   // Where the run stands; a checkpoint stores it with the state.
   RunPosition pos;
-  const RunState<D> state{pos, sim, fluid, seepage ? &*seepage : nullptr, series, fluid_series};
+  const RunState<D> state{pos, sim, fluid, seepage ? &*seepage : nullptr, series, fluid_series, wall_series};
   auto write_probes = [&] {
     probes << fmt::format("{:.10g}", sim.time);
     for (const auto& p : scene.output.probes)
@@ -230,6 +232,22 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     const std::string name = fmt::format("particles_{:05d}.vtu", pos.snapshot_index);
     write_particles_vtu<D>((out / name).string(), sim.particles);
     series.add(sim.time, name);
+    if (!sim.walls.empty()) {
+      // Planes are drawn across the particles' box and the fluid grid's.
+      Vec<D> lo = Vec<D>::Constant(std::numeric_limits<double>::infinity());
+      Vec<D> hi = -lo;
+      for (std::size_t i = 0; i < sim.particles.size(); ++i) {
+        lo = lo.cwiseMin(sim.particles.position[i] - Vec<D>::Constant(sim.particles.radius[i]));
+        hi = hi.cwiseMax(sim.particles.position[i] + Vec<D>::Constant(sim.particles.radius[i]));
+      }
+      if (fluid != nullptr) {
+        lo = lo.cwiseMin(fluid->grid.origin);
+        hi = hi.cwiseMax(fluid->grid.upper());
+      }
+      const std::string wname = fmt::format("walls_{:05d}.vtu", pos.snapshot_index);
+      write_walls_vtu<D>((out / wname).string(), sim.walls, lo, hi);
+      wall_series.add(sim.time, wname);
+    }
     if (fluid != nullptr) {
       const std::string fname = fmt::format("fluid_{:05d}.vti", pos.snapshot_index);
       write_fluid_vti<D>((out / fname).string(), *fluid);

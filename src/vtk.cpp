@@ -1,5 +1,6 @@
 #include "darcydem/output/vtk.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <stdexcept>
 
@@ -61,6 +62,94 @@ void write_particles_vtu(const std::string& path, const ParticleData<D>& p) {
 }
 
 template <int D>
+void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls, const Vec<D>& lo,
+                     const Vec<D>& hi) {
+  // Each wall's corners (as 3D points) and VTK cell type.
+  std::vector<Vec<3>> points;
+  std::vector<int> offsets;
+  std::vector<int> types;
+  auto lift = [](const Vec<D>& x) {
+    Vec<3> y = Vec<3>::Zero();
+    for (int k = 0; k < D; ++k) y[k] = x[k];
+    return y;
+  };
+  const Vec<D> middle = 0.5 * (lo + hi);
+  const double half_size = 0.55 * (hi - lo).norm();
+  for (const auto& w : walls) {
+    if (w.is_box) {
+      const Vec<D> a = w.point - w.half;
+      const Vec<D> b = w.point + w.half;
+      // Corners counter-clockwise in the x-y plane, then (3D) the same on top.
+      const double xs[4] = {a[0], b[0], b[0], a[0]};
+      const double ys[4] = {a[1], a[1], b[1], b[1]};
+      for (int layer = 0; layer < (D == 3 ? 2 : 1); ++layer) {
+        for (int c = 0; c < 4; ++c) {
+          Vec<3> p(xs[c], ys[c], 0.0);
+          if constexpr (D == 3) p[2] = layer == 0 ? a[2] : b[2];
+          points.push_back(p);
+        }
+      }
+      types.push_back(D == 3 ? 12 : 9);  // VTK_HEXAHEDRON, VTK_QUAD
+    } else {
+      const Vec<D> centre = middle - (middle - w.point).dot(w.normal) * w.normal;
+      if constexpr (D == 2) {
+        const Vec<D> t(-w.normal[1], w.normal[0]);
+        points.push_back(lift(centre - half_size * t));
+        points.push_back(lift(centre + half_size * t));
+        types.push_back(3);  // VTK_LINE
+      } else {
+        // Two directions in the plane: from the axis least along the normal.
+        int least = 0;
+        for (int k = 1; k < 3; ++k) {
+          if (std::abs(w.normal[k]) < std::abs(w.normal[least])) least = k;
+        }
+        Vec<3> axis = Vec<3>::Zero();
+        axis[least] = 1.0;
+        const Vec<3> n = lift(w.normal);
+        Vec<3> t1 = axis - axis.dot(n) * n;
+        t1.normalize();
+        const Vec<3> t2(n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
+                        n[0] * t1[1] - n[1] * t1[0]);
+        const Vec<3> c = lift(centre);
+        points.push_back(c - half_size * t1 - half_size * t2);
+        points.push_back(c + half_size * t1 - half_size * t2);
+        points.push_back(c + half_size * t1 + half_size * t2);
+        points.push_back(c - half_size * t1 + half_size * t2);
+        types.push_back(9);  // VTK_QUAD
+      }
+    }
+    offsets.push_back(static_cast<int>(points.size()));
+  }
+  try {
+    auto out = fmt::output_file(path);
+    out.print(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+        "byte_order=\"LittleEndian\">\n");
+    out.print("  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", points.size(),
+              walls.size());
+    out.print("      <Points>\n");
+    write_vector_array<3>(out, "position", points.size(), [&](std::size_t i) { return points[i]; });
+    out.print("      </Points>\n      <CellData Scalars=\"wall_id\">\n");
+    out.print("        <DataArray type=\"Int32\" Name=\"wall_id\" format=\"ascii\">\n");
+    for (std::size_t i = 0; i < walls.size(); ++i) out.print("{}\n", i);
+    out.print("        </DataArray>\n");
+    write_vector_array<D>(out, "force", walls.size(), [&](std::size_t i) { return walls[i].force; });
+    write_vector_array<D>(out, "velocity", walls.size(), [&](std::size_t i) { return walls[i].velocity; });
+    out.print("      </CellData>\n      <Cells>\n");
+    out.print("        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n");
+    for (std::size_t i = 0; i < points.size(); ++i) out.print("{}\n", i);
+    out.print("        </DataArray>\n        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n");
+    for (int o : offsets) out.print("{}\n", o);
+    out.print("        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    for (int t : types) out.print("{}\n", t);
+    out.print("        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+    out.close();
+  } catch (const std::system_error& e) {
+    throw std::runtime_error(fmt::format("{}: cannot write the walls: {}", path, e.what()));
+  }
+}
+
+template <int D>
 void write_fluid_vti(const std::string& path, const PoreFluid<D>& f) {
   try {
     auto out = fmt::output_file(path);
@@ -114,6 +203,10 @@ void PvdSeries::add(double time, const std::string& file) {
 
 template void write_particles_vtu<2>(const std::string&, const ParticleData<2>&);
 template void write_particles_vtu<3>(const std::string&, const ParticleData<3>&);
+template void write_walls_vtu<2>(const std::string&, const std::vector<Wall<2>>&, const Vec<2>&,
+                                 const Vec<2>&);
+template void write_walls_vtu<3>(const std::string&, const std::vector<Wall<3>>&, const Vec<3>&,
+                                 const Vec<3>&);
 template void write_fluid_vti<2>(const std::string&, const PoreFluid<2>&);
 template void write_fluid_vti<3>(const std::string&, const PoreFluid<3>&);
 

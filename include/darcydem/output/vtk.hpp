@@ -9,11 +9,21 @@
 
 #include "darcydem/fluid/pore_fluid.hpp"
 #include "darcydem/particles/particle_data.hpp"
+#include "darcydem/walls/wall.hpp"
 
 namespace darcydem {
 
 template <int D>
 void write_particles_vtu(const std::string& path, const ParticleData<D>& particles);
+
+/// The walls as VTK cells (.vtu), with their index (`wall_id`), force and
+/// velocity as cell data. A box is a hexahedron in 3D and a quad in 2D
+/// (flat for a plate or a segment); an infinite plane is drawn as a square
+/// in 3D or a line in 2D, centred on the point of the plane nearest the
+/// centre of [lo, hi] and as wide as 1.1 times that box's diagonal.
+template <int D>
+void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls, const Vec<D>& lo,
+                     const Vec<D>& hi);
 
 /// The pore fluid's cell fields as VTK ImageData (.vti): excess pressure,
 /// porosity, intrinsic permeability, Darcy velocity, solid velocity. In 2D

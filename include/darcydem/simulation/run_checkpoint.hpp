@@ -46,6 +46,7 @@ struct RunState {
   SeepageColumnAnalysis<D>* analysis;  ///< null without the analysis
   PvdSeries& particle_series;
   PvdSeries& fluid_series;
+  PvdSeries& wall_series;
 };
 
 /// Writes the checkpoint to `path` (through a temporary file renamed over

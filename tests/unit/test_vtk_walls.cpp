@@ -1,0 +1,106 @@
+// The walls' VTK file: a box's corners where the box is, an infinite plane
+// drawn as a square (a line in 2D) in its plane, centred on the point of
+// the plane nearest the middle of the drawing box and as wide as 1.1 of its
+// diagonal; the cell types and counts ParaView reads.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "darcydem/output/vtk.hpp"
+
+namespace darcydem {
+namespace {
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// The numbers of the DataArray named `name`.
+std::vector<double> array_of(const std::string& text, const std::string& name) {
+  const auto at = text.find("Name=\"" + name + "\"");
+  EXPECT_NE(at, std::string::npos) << name;
+  const auto begin = text.find('>', at) + 1;
+  const auto end = text.find("</DataArray>", begin);
+  std::stringstream s(text.substr(begin, end - begin));
+  std::vector<double> v;
+  for (double x; s >> x;) v.push_back(x);
+  return v;
+}
+
+std::string temp_file(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / (name + std::to_string(getpid()) + ".vtu")).string();
+}
+
+TEST(WallsVtu, PlateAndFloorIn3D) {
+  Wall<3> plate;
+  plate.is_box = true;
+  plate.point = Vec<3>(1.0, 1.5, 1.0);
+  plate.half = Vec<3>(1.0, 1.5, 0.0);  // x 0..2, y 0..3 at z = 1
+  plate.force = Vec<3>(0.0, 0.0, -2.5);
+  Wall<3> floor;
+  floor.point = Vec<3>(5.0, 5.0, 0.0);
+  floor.normal = Vec<3>(0.0, 0.0, 1.0);
+  const std::string path = temp_file("walls3d_");
+  write_walls_vtu<3>(path, {plate, floor}, Vec<3>(0, 0, 0), Vec<3>(2, 2, 2));
+  const std::string text = read_all(path);
+  std::filesystem::remove(path);
+  EXPECT_NE(text.find("NumberOfPoints=\"12\" NumberOfCells=\"2\""), std::string::npos);
+  const auto p = array_of(text, "position");
+  ASSERT_EQ(p.size(), 36U);
+  const double plate_corners[8][3] = {{0, 0, 1}, {2, 0, 1}, {2, 3, 1}, {0, 3, 1},
+                                      {0, 0, 1}, {2, 0, 1}, {2, 3, 1}, {0, 3, 1}};
+  for (int c = 0; c < 8; ++c) {
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(p[3 * c + k], plate_corners[c][k]) << c;
+  }
+  // The floor: corners in z = 0 about (1, 1, 0), half-width 0.55 sqrt(12).
+  const double half = 0.55 * std::sqrt(12.0);
+  for (int c = 8; c < 12; ++c) {
+    EXPECT_EQ(p[3 * c + 2], 0.0);
+    EXPECT_NEAR(std::hypot(p[3 * c] - 1.0, p[3 * c + 1] - 1.0), half * std::sqrt(2.0), 1e-12);
+  }
+  EXPECT_EQ(array_of(text, "offsets"), (std::vector<double>{8, 12}));
+  EXPECT_EQ(array_of(text, "types"), (std::vector<double>{12, 9}));  // hexahedron, quad
+  EXPECT_EQ(array_of(text, "force"), (std::vector<double>{0, 0, -2.5, 0, 0, 0}));
+}
+
+TEST(WallsVtu, SegmentAndSlopeIn2D) {
+  Wall<2> pile;
+  pile.is_box = true;
+  pile.point = Vec<2>(0.02, 0.013);
+  pile.half = Vec<2>(0.0, 0.007);
+  Wall<2> slope;
+  slope.point = Vec<2>(0.0, 0.0);
+  slope.normal = Vec<2>(-0.6, 0.8);
+  const std::string path = temp_file("walls2d_");
+  write_walls_vtu<2>(path, {pile, slope}, Vec<2>(0, 0), Vec<2>(0.04, 0.03));
+  const std::string text = read_all(path);
+  std::filesystem::remove(path);
+  EXPECT_NE(text.find("NumberOfPoints=\"6\" NumberOfCells=\"2\""), std::string::npos);
+  const auto p = array_of(text, "position");
+  ASSERT_EQ(p.size(), 18U);
+  EXPECT_NEAR(p[0], 0.02, 1e-15);  // the pile's lower corner
+  EXPECT_NEAR(p[1], 0.006, 1e-15);
+  EXPECT_NEAR(p[7], 0.02, 1e-15);  // its upper one
+  // The slope's line: both ends on the plane, 1.1 x 0.05 m apart, centred
+  // on the point of it nearest (0.02, 0.015): (0.02, 0.015) - (-0.6 x 0.02 +
+  // 0.8 x 0.015) n = (0.02, 0.015), which lies on it.
+  const Vec<2> a(p[12], p[13]);
+  const Vec<2> b(p[15], p[16]);
+  EXPECT_NEAR(a.dot(slope.normal), 0.0, 1e-15);
+  EXPECT_NEAR(b.dot(slope.normal), 0.0, 1e-15);
+  EXPECT_NEAR((a - b).norm(), 1.1 * 0.05, 1e-15);
+  EXPECT_NEAR((0.5 * (a + b) - Vec<2>(0.02, 0.015)).norm(), 0.0, 1e-15);
+  EXPECT_EQ(array_of(text, "types"), (std::vector<double>{9, 3}));  // quad, line
+}
+
+}  // namespace
+}  // namespace darcydem
