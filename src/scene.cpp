@@ -291,6 +291,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   // [[wall]]
   std::map<std::string, std::size_t> wall_index;
   std::vector<std::string> wall_names;
+  std::vector<WallBarrier<D>> wall_barriers;
+  std::vector<bool> wall_is_barrier;
   for_each_table(top, "wall", "wall", [&](TableReader& r, int) {
     Wall<D> w;
     w.name = r.string("name");
@@ -331,6 +333,42 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     read_wall_motion<D>(r, w.velocity, w.motion, w.servo);
     if (w.is_box && w.motion == WallMotion::servo)
       r.fail("servo", "a box wall cannot be servo-controlled (it has no normal); give 'velocity' or 'fixed'");
+    const bool impermeable = r.boolean_or("impermeable", false);
+    if (impermeable) {
+      // A plate that the pore fluid cannot cross either: a barrier on its plane.
+      if (!w.is_box) {
+        r.fail("impermeable",
+               "only a box wall flat along one axis (a plate) can be impermeable; a plane wall on a side of "
+               "the fluid grid leaves the side's condition as [fluid.boundary] gives it");
+      }
+      int flat = -1;
+      int flats = 0;
+      for (int k = 0; k < D; ++k) {
+        if (w.half[k] == 0.0) {
+          flat = k;
+          ++flats;
+        }
+      }
+      if (flats != 1) {
+        r.fail("impermeable",
+               "needs a plate: a box with min = max along exactly one axis (its normal), e.g. a sheet pile");
+      }
+      if (w.motion != WallMotion::fixed) {
+        r.fail("impermeable", "an impermeable wall cannot move: its barrier is fixed in the fluid grid");
+      }
+      WallBarrier<D> b;
+      b.barrier.name = w.name;
+      b.barrier.axis = flat;
+      b.barrier.at = w.point[flat];
+      for (int k = 0; k < D; ++k) {
+        b.barrier.lo[k] = w.point[k] - w.half[k];
+        b.barrier.hi[k] = w.point[k] + w.half[k];
+      }
+      b.error_prefix = fmt::format(
+          "{}: error: {} key 'impermeable': ", r.location(r.raw("impermeable")->source()), r.where());
+      wall_barriers.push_back(b);
+    }
+    wall_is_barrier.push_back(impermeable);
     wall_index[w.name] = sim.walls.size();
     wall_names.push_back(w.name);
     sim.walls.push_back(w);
@@ -423,10 +461,14 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
 
   // [fluid]
   if (const toml::table* t = top.optional_table("fluid")) {
-    scene.fluid = read_fluid<D>(*t, file, sim.particles);
+    scene.fluid = read_fluid<D>(*t, file, sim.particles, wall_barriers);
     sim.force_field = scene.fluid.get();
   } else if (top.has("fluid")) {
     top.fail("fluid", "must be a table ([fluid])");
+  }
+  if (!scene.fluid && !wall_barriers.empty()) {
+    throw SceneError(wall_barriers.front().error_prefix +
+                     "needs a pore fluid to keep out: the scene has no [fluid] table");
   }
 
   // [output] and [[probe]]
@@ -607,6 +649,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         WallChange<D> c;
         c.wall = it->second;
         read_wall_motion<D>(cr, c.velocity, c.motion, c.servo);
+        if (wall_is_barrier[c.wall] && c.motion != WallMotion::fixed) {
+          cr.fail(c.motion == WallMotion::velocity ? "velocity" : "servo",
+                  "an impermeable wall cannot move: its barrier is fixed in the fluid grid");
+        }
         if (sim.walls[c.wall].is_box && c.motion == WallMotion::servo) {
           cr.fail("servo",
                   "a box wall cannot be servo-controlled (it has no normal); give 'velocity' or 'fixed'");

@@ -152,6 +152,47 @@ FluidPatch<D> read_patch_place(TableReader& r, const std::string& name, const Fl
   return patch;
 }
 
+/// Checks a barrier against the grid: a plane of faces between cells, and
+/// at least one face in it; `fail(key, message)` (which does not return)
+/// otherwise, with 'axis', 'at' or 'from' as the key at fault.
+template <int D, class Fail>
+void check_barrier(const FluidBarrier<D>& barrier, const FluidGrid<D>& grid, Fail&& fail) {
+  const int k = barrier.axis;
+  const std::string axis(1, "xyz"[k]);
+  if (grid.cells[k] < 2) {
+    fail("axis",
+         fmt::format("the grid has one cell along {}: there is no face between cells to close", axis));
+  }
+  const double plane = (barrier.at - grid.origin[k]) / grid.spacing[k];
+  const double nearest = std::round(plane);
+  if (!(std::abs(plane - nearest) <= 1e-6 && nearest >= 1.0 && nearest <= grid.cells[k] - 1.0)) {
+    const double below =
+        grid.origin[k] + grid.spacing[k] * std::clamp(std::round(plane), 1.0, grid.cells[k] - 1.0);
+    fail("at",
+         fmt::format("must be on a plane of faces between two cells inside the grid: along {} they are at "
+                     "{} + n x {} m, n = 1 .. {} (the nearest: {} m)",
+                     axis, TableReader::format_number(grid.origin[k]),
+                     TableReader::format_number(grid.spacing[k]), grid.cells[k] - 1,
+                     TableReader::format_number(below)));
+  }
+  std::size_t faces = 1;
+  for (int a = 0; a < D; ++a) {
+    if (a == k) continue;
+    // Cell centres along a inside [lo, hi].
+    std::size_t in = 0;
+    for (int c = 0; c < grid.cells[a]; ++c) {
+      const double x = grid.origin[a] + grid.spacing[a] * (c + 0.5);
+      in += x >= barrier.lo[a] && x <= barrier.hi[a] ? 1U : 0U;
+    }
+    faces *= in;
+  }
+  if (faces == 0) {
+    fail("from",
+         "the barrier holds no face: a face is in it when its centre lies within the barrier's extent along "
+         "the other axes");
+  }
+}
+
 /// One [[fluid.barrier]]: 'axis' (its normal), 'at' (a plane of faces
 /// between cells), 'from' and 'to' along the other axes; checked against
 /// the grid.
@@ -164,48 +205,19 @@ FluidBarrier<D> read_barrier(const toml::table& table, const std::string& where,
   const std::vector<std::string> axes =
       D == 2 ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};
   const std::string axis = r.choice("axis", axes);
-  const int k = static_cast<int>(std::find(axes.begin(), axes.end(), axis) - axes.begin());
-  barrier.axis = k;
-  if (grid.cells[k] < 2) {
-    r.fail("axis",
-           fmt::format("the grid has one cell along {}: there is no face between cells to close", axis));
-  }
+  barrier.axis = static_cast<int>(std::find(axes.begin(), axes.end(), axis) - axes.begin());
   barrier.at = r.number("at");
-  const double plane = (barrier.at - grid.origin[k]) / grid.spacing[k];
-  const double nearest = std::round(plane);
-  if (!(std::abs(plane - nearest) <= 1e-6 && nearest >= 1.0 && nearest <= grid.cells[k] - 1.0)) {
-    const double below =
-        grid.origin[k] + grid.spacing[k] * std::clamp(std::round(plane), 1.0, grid.cells[k] - 1.0);
-    r.fail("at",
-           fmt::format("must be on a plane of faces between two cells inside the grid: along {} they are at "
-                       "{} + n x {} m, n = 1 .. {} (the nearest: {} m)",
-                       axis, TableReader::format_number(grid.origin[k]),
-                       TableReader::format_number(grid.spacing[k]), grid.cells[k] - 1,
-                       TableReader::format_number(below)));
-  }
   const auto from = r.numbers("from", D - 1);
   const auto to = r.numbers("to", D - 1);
   int j = 0;
-  std::size_t faces = 1;
   for (int a = 0; a < D; ++a) {
-    if (a == k) continue;
+    if (a == barrier.axis) continue;
     if (!(to[j] > from[j])) r.fail("to", fmt::format("must be greater than 'from' along {}", "xyz"[a]));
     barrier.lo[a] = from[j];
     barrier.hi[a] = to[j];
-    // Cell centres along a inside [from, to].
-    std::size_t in = 0;
-    for (int c = 0; c < grid.cells[a]; ++c) {
-      const double x = grid.origin[a] + grid.spacing[a] * (c + 0.5);
-      in += x >= from[j] && x <= to[j] ? 1U : 0U;
-    }
-    faces *= in;
     ++j;
   }
-  if (faces == 0) {
-    r.fail("from",
-           "the barrier holds no face: a face is in it when its centre is (between 'from' and 'to' along "
-           "the other axes)");
-  }
+  check_barrier(barrier, grid, [&](const char* key, const std::string& message) { r.fail(key, message); });
   r.finish();
   return barrier;
 }
@@ -289,7 +301,8 @@ int read_steps_per_update(TableReader& r) {
 
 template <int D>
 std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::string& file,
-                                         const ParticleData<D>& particles) {
+                                         const ParticleData<D>& particles,
+                                         const std::vector<WallBarrier<D>>& wall_barriers) {
   TableReader r(table, "[fluid]", file);
   const std::string solver = r.optional_choice("solver", {"cholesky", "cg"}).value_or("cg");
   const double tolerance =
@@ -413,6 +426,15 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
           read_barrier<D>(*t, fmt::format("[[fluid.barrier]] #{}", index), file, fluid->grid));
     }
   }
+  // Impermeable box walls: barriers on their planes, checked like the
+  // others but reported at the wall's 'impermeable' key.
+  for (const auto& w : wall_barriers) {
+    check_barrier(w.barrier, fluid->grid, [&](const char*, const std::string& message) {
+      throw SceneError(fmt::format("{}the plate at {} = {} m: {}", w.error_prefix, "xyz"[w.barrier.axis],
+                                   TableReader::format_number(w.barrier.at), message));
+    });
+    fluid->barriers.push_back(w.barrier);
+  }
   r.finish();
   fluid->initialize(particles);
   return fluid;
@@ -425,8 +447,10 @@ template FluidBoundaryChanges read_fluid_boundary_changes<3>(const toml::table&,
                                                              const std::string&, const PoreFluid<3>*,
                                                              std::vector<FluidPatch<3>>*);
 template std::unique_ptr<PoreFluid<2>> read_fluid<2>(const toml::table&, const std::string&,
-                                                     const ParticleData<2>&);
+                                                     const ParticleData<2>&,
+                                                     const std::vector<WallBarrier<2>>&);
 template std::unique_ptr<PoreFluid<3>> read_fluid<3>(const toml::table&, const std::string&,
-                                                     const ParticleData<3>&);
+                                                     const ParticleData<3>&,
+                                                     const std::vector<WallBarrier<3>>&);
 
 }  // namespace darcydem

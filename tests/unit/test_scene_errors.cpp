@@ -340,6 +340,55 @@ TEST(SceneErrors, FluidBarriersAreChecked) {
   EXPECT_NE(msg.find("unknown key 'thickness'"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, ImpermeableWallsAreChecked) {
+  // A plate on the one plane of faces between the grid's cells (y = 2 mm),
+  // across the grid's width; the discs of the column touch it, no more.
+  const std::string plate =
+      "\n[[wall]]\nname = \"pile\"\nbox = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }\n"
+      "material = \"sand\"\nimpermeable = true\n";
+  auto with_plate = [&](const std::string& wall, bool fluid = true) {
+    const std::string dem = replace(kGood, "[[particles]]", wall + "\n[[particles]]");
+    if (!fluid) return dem;
+    return with_fluid().replace(0, std::string(kGood).size(), dem);
+  };
+  EXPECT_EQ(load_error(with_plate(plate)), "");
+  auto msg = load_error(with_plate(replace(plate, "min = [-0.0005, 0.002]", "min = [-0.0005, 0.0015]")));
+  EXPECT_NE(
+      msg.find("[[wall]] #2 key 'impermeable': needs a plate: a box with min = max along exactly one axis"),
+      std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(with_plate(replace(plate, "box = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }",
+                                      "point = [0.0, 0.002]\nnormal = [0.0, -1.0]")));
+  EXPECT_NE(msg.find("key 'impermeable': only a box wall flat along one axis (a plate) can be impermeable"),
+            std::string::npos)
+      << msg;
+  msg = load_error(with_plate(plate + "velocity = [0.0, 0.01]\n"));
+  EXPECT_NE(msg.find("key 'impermeable': an impermeable wall cannot move"), std::string::npos) << msg;
+  msg = load_error(replace(with_plate(plate), "gravity = [0.0, -9.81]",
+                           "gravity = [0.0, -9.81]\nwalls.pile = { velocity = [0.0, 0.01] }"));
+  EXPECT_NE(msg.find("walls.pile key 'velocity': an impermeable wall cannot move"), std::string::npos) << msg;
+  msg = load_error(with_plate(plate, false));
+  EXPECT_NE(msg.find("key 'impermeable': needs a pore fluid to keep out: the scene has no [fluid] table"),
+            std::string::npos)
+      << msg;
+  msg = load_error(with_plate(replace(replace(plate, "0.002]", "0.003]"), "0.002]", "0.003]")));
+  EXPECT_NE(
+      msg.find("key 'impermeable': the plate at y = 0.003 m: must be on a plane of faces between two cells "
+               "inside the grid: along y they are at 0 + n x 0.002 m, n = 1 .. 1 (the nearest: 0.002 m)"),
+      std::string::npos)
+      << msg;
+  msg = load_error(with_plate(replace(plate, "min = [-0.0005, 0.002]", "min = [0.0001, 0.002]")));
+  EXPECT_NE(msg.find("key 'impermeable': the plate at y = 0.002 m: the barrier holds no face"),
+            std::string::npos)
+      << msg;
+  msg = load_error(with_plate(replace(plate, "box = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }",
+                                      "box = { min = [0.0006, 0.0], max = [0.0006, 0.004] }")));
+  EXPECT_NE(msg.find("key 'impermeable': the plate at x = 0.0006 m: the grid has one cell along x"),
+            std::string::npos)
+      << msg;
+}
+
 TEST(SceneErrors, FluidPreconditionerIsChecked) {
   const std::string base = "drag = \"darcy\"\n";
   EXPECT_EQ(load_error(replace(with_fluid(), base, base + "preconditioner = \"multigrid\"\n")), "");

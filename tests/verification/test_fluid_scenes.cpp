@@ -349,7 +349,7 @@ double probe_at(const std::map<std::string, std::vector<double>>& probes, const 
 
 TEST(FluidScenes, SheetPileHeave) {
   // examples/fluid_cases/sheet_pile_heave.toml: a dense bed of discs behind
-  // a sheet pile (a box wall for the grains, a barrier for the water), the
+  // a sheet pile (an impermeable box wall: for the grains and the water), the
   // upstream excess pressure raised to p_up at t = 0.1 s over 0.05 s.
   // Expected without the run: by the symmetry of the confined flow about
   // the pile, the floor below it is at p_up / 2 and the floor downstream
@@ -374,6 +374,10 @@ TEST(FluidScenes, SheetPileHeave) {
   auto rest = darcydem::testing::load_scene<2>("examples/fluid_cases/sheet_pile_heave.toml");
   ASSERT_EQ(rest.stages.size(), 2U);
   ASSERT_EQ(rest.stages[1].fluid_patches.size(), 1U);
+  // The impermeable plate closes the grid's faces on x = 20 mm from the tip
+  // up: the cells centred at y = 7, 9 and 11 mm.
+  ASSERT_EQ(rest.fluid->barriers.size(), 1U);
+  EXPECT_EQ(rest.fluid->barrier_faces(0), 3U);
   auto& head = rest.stages[1].fluid_patches[0].second.value;
   ASSERT_EQ(head.values.size(), 2U);
   EXPECT_NEAR(heave.stages[1].fluid_patches[0].second.value.values[1], 1.5 * 2.0 * w_sub, 0.005 * w_sub);

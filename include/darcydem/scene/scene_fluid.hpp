@@ -4,6 +4,7 @@
 // [stage.fluid.boundary].
 // Documented in docs/SCENE.md.
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -35,9 +36,21 @@ FluidBoundaryChanges read_fluid_boundary_changes(const toml::table& table, const
 /// fluid step, 1 to 2^31 - 1 (refused otherwise, with the key).
 int read_steps_per_update(TableReader& r);
 
-/// The pore fluid of a [fluid] table, initialised on the particles.
+/// The barrier an impermeable box wall makes ([[wall]] impermeable = true):
+/// on the plate's plane, over its extent; errors found against the grid
+/// start with `error_prefix` ("file:line:column: error: [[wall]] #N key
+/// 'impermeable': ").
+template <int D>
+struct WallBarrier {
+  FluidBarrier<D> barrier;
+  std::string error_prefix;
+};
+
+/// The pore fluid of a [fluid] table with the impermeable walls' barriers,
+/// initialised on the particles.
 template <int D>
 std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::string& file,
-                                         const ParticleData<D>& particles);
+                                         const ParticleData<D>& particles,
+                                         const std::vector<WallBarrier<D>>& wall_barriers = {});
 
 }  // namespace darcydem
