@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -100,6 +101,34 @@ Vec<D> read_direction(TableReader& r, std::string_view key, std::optional<Vec<D>
   Vec<D> out = to_vec<D>(*v);
   if (!(out.norm() > 0.0)) r.fail(key, "must be a non-zero vector");
   return out.normalized();
+}
+
+/// A box wall's `rotation` about its centre: in 2D an angle (degrees,
+/// counter-clockwise), in 3D `{ axis = [3 numbers], angle = degrees }`.
+/// Returns the box's own axes as the columns of the rotation.
+template <int D>
+Eigen::Matrix<double, D, D> read_box_rotation(TableReader& r) {
+  Eigen::Matrix<double, D, D> axes = Eigen::Matrix<double, D, D>::Identity();
+  if constexpr (D == 2) {
+    const double angle = r.number("rotation") * std::numbers::pi / 180.0;
+    if (!std::isfinite(angle)) r.fail("rotation", "must be a finite angle in degrees");
+    axes << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+  } else {
+    const toml::node* n = r.raw("rotation");
+    const toml::table* t = n != nullptr ? n->as_table() : nullptr;
+    if (t == nullptr) r.fail("rotation", "must be a table: rotation = { axis = [x, y, z], angle = degrees }");
+    TableReader rr(*t, r.where() + " rotation", r.file());
+    const Vec<3> u = read_direction<3>(rr, "axis", std::nullopt);
+    const double angle = rr.number("angle") * std::numbers::pi / 180.0;
+    if (!std::isfinite(angle)) rr.fail("angle", "must be a finite angle in degrees");
+    rr.finish();
+    // Rodrigues: R = cos I + sin [u]x + (1 - cos) u u^T.
+    Eigen::Matrix<double, 3, 3> ux;
+    ux << 0.0, -u.z(), u.y(), u.z(), 0.0, -u.x(), -u.y(), u.x(), 0.0;
+    axes = std::cos(angle) * Eigen::Matrix<double, 3, 3>::Identity() + std::sin(angle) * ux +
+           (1.0 - std::cos(angle)) * u * u.transpose();
+  }
+  return axes;
 }
 
 template <int D>
@@ -316,10 +345,11 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                      TableReader::format_number(hi[k])));
         }
       }
-      br.finish();
       w.is_box = true;
       w.point = 0.5 * (lo + hi);
       w.half = 0.5 * (hi - lo);
+      if (br.has("rotation")) w.axes = read_box_rotation<D>(br);
+      br.finish();
     } else {
       if (!r.has("point") && !r.has("normal")) {
         r.fail_table(
@@ -352,6 +382,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       if (flats != 1) {
         r.fail("impermeable",
                "needs a plate: a box with min = max along exactly one axis (its normal), e.g. a sheet pile");
+      }
+      if (w.axes != Eigen::Matrix<double, D, D>::Identity()) {
+        r.fail("impermeable", "an impermeable plate lies on the fluid grid's faces: it cannot be rotated");
       }
       if (w.motion != WallMotion::fixed) {
         r.fail("impermeable", "an impermeable wall cannot move: its barrier is fixed in the fluid grid");

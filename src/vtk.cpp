@@ -77,16 +77,17 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
   const double half_size = 0.55 * (hi - lo).norm();
   for (const auto& w : walls) {
     if (w.is_box) {
-      const Vec<D> a = w.point - w.half;
-      const Vec<D> b = w.point + w.half;
-      // Corners counter-clockwise in the x-y plane, then (3D) the same on top.
-      const double xs[4] = {a[0], b[0], b[0], a[0]};
-      const double ys[4] = {a[1], a[1], b[1], b[1]};
+      // Corners counter-clockwise about the box's third axis (in 2D, the
+      // plane's normal), then (3D) the same on the far side, in its own axes.
+      const double xs[4] = {-1.0, 1.0, 1.0, -1.0};
+      const double ys[4] = {-1.0, -1.0, 1.0, 1.0};
       for (int layer = 0; layer < (D == 3 ? 2 : 1); ++layer) {
         for (int c = 0; c < 4; ++c) {
-          Vec<3> p(xs[c], ys[c], 0.0);
-          if constexpr (D == 3) p[2] = layer == 0 ? a[2] : b[2];
-          points.push_back(p);
+          Vec<D> local;
+          local[0] = xs[c] * w.half[0];
+          local[1] = ys[c] * w.half[1];
+          if constexpr (D == 3) local[2] = (layer == 0 ? -1.0 : 1.0) * w.half[2];
+          points.push_back(lift(Vec<D>(w.point + w.axes * local)));
         }
       }
       types.push_back(D == 3 ? 12 : 9);  // VTK_HEXAHEDRON, VTK_QUAD

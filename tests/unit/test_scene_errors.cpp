@@ -2,6 +2,7 @@
 // the file, the line, the key and what is allowed.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -159,6 +160,62 @@ TEST(SceneErrors, BoxWallsAreChecked) {
                            "gravity = [0.0, -9.81]\nwalls.pile = { servo = { target_force = 1.0, gain = 1.0, "
                            "max_speed = 1.0 } }"));
   EXPECT_NE(msg.find("walls.pile key 'servo': a box wall cannot be servo-controlled"), std::string::npos)
+      << msg;
+}
+
+TEST(SceneErrors, BoxWallRotationsAreReadAndChecked) {
+  // 2D: degrees counter-clockwise; the box's own axes are the rotation's
+  // columns (cos, sin) and (-sin, cos).
+  const std::string plate =
+      "\n[[wall]]\nname = \"baffle\"\nbox = { min = [0.002, 0.0], max = [0.002, 0.002], rotation = 30.0 }\n"
+      "material = \"sand\"\n";
+  const std::string good = replace(kGood, "[[particles]]", plate + "\n[[particles]]");
+  ASSERT_EQ(load_error(good), "");
+  {
+    const std::string path = write_scene(good);
+    std::string text;
+    const auto scene = build_scene<2>(parse_toml_file(path, text), path, text);
+    std::filesystem::remove(path);
+    const auto& axes = scene.simulation.walls[1].axes;
+    const double c = std::sqrt(3.0) / 2.0;
+    EXPECT_NEAR(axes(0, 0), c, 1e-15);
+    EXPECT_NEAR(axes(1, 0), 0.5, 1e-15);
+    EXPECT_NEAR(axes(0, 1), -0.5, 1e-15);
+    EXPECT_NEAR(axes(1, 1), c, 1e-15);
+  }
+  auto msg = load_error(replace(good, "rotation = 30.0", "rotation = \"30\""));
+  EXPECT_NE(msg.find("key 'rotation'"), std::string::npos) << msg;
+  // 3D: { axis, angle }; 90 degrees about z turns x into y.
+  std::string good3 = replace(kGood, "dimension = 2", "dimension = 3");
+  good3 = replace(good3, "point = [0.0, 0.0]", "point = [0.0, 0.0, 0.0]");
+  good3 = replace(good3, "normal = [0.0, 1.0]", "normal = [0.0, 0.0, 1.0]");
+  good3 = replace(good3, "base = [0.0, 0.0]", "base = [0.0, 0.0, 0.0]");
+  good3 = replace(good3, "gravity = [0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]");
+  good3 = replace(
+      good3, "[[particles]]",
+      "[[wall]]\nname = \"baffle\"\nmaterial = \"sand\"\nbox = { min = [0.002, 0.0, 0.0], max = "
+      "[0.002, 0.002, 0.002], rotation = { axis = [0.0, 0.0, 2.0], angle = 90.0 } }\n\n[[particles]]");
+  ASSERT_EQ(load_error(good3), "");
+  {
+    const std::string path = write_scene(good3);
+    std::string text;
+    const auto scene = build_scene<3>(parse_toml_file(path, text), path, text);
+    std::filesystem::remove(path);
+    Eigen::Matrix3d expected;
+    expected << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+    EXPECT_LT((scene.simulation.walls[1].axes - expected).norm(), 1e-15);
+  }
+  msg = load_error(replace(good3, "rotation = { axis = [0.0, 0.0, 2.0], angle = 90.0 }", "rotation = 90.0"));
+  EXPECT_NE(msg.find("key 'rotation': must be a table: rotation = { axis = [x, y, z], angle = degrees }"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good3, "axis = [0.0, 0.0, 2.0]", "axis = [0.0, 0.0, 0.0]"));
+  EXPECT_NE(msg.find("rotation key 'axis': must be a non-zero vector"), std::string::npos) << msg;
+  msg = load_error(replace(good, "material = \"sand\"\n\n[[particles]]",
+                           "material = \"sand\"\nimpermeable = true\n\n[[particles]]"));
+  EXPECT_NE(msg.find("key 'impermeable': an impermeable plate lies on the fluid grid's faces: it cannot be "
+                     "rotated"),
+            std::string::npos)
       << msg;
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -80,13 +81,25 @@ TEST(WallsVtu, SegmentAndSlopeIn2D) {
   Wall<2> slope;
   slope.point = Vec<2>(0.0, 0.0);
   slope.normal = Vec<2>(-0.6, 0.8);
+  // A segment from (0, 0) to (2, 0) turned by 90 degrees about its middle:
+  // from (1, -1) to (1, 1).
+  Wall<2> turned;
+  turned.is_box = true;
+  turned.point = Vec<2>(1.0, 0.0);
+  turned.half = Vec<2>(1.0, 0.0);
+  turned.axes << std::cos(std::numbers::pi / 2), -1.0, 1.0, std::cos(std::numbers::pi / 2);
   const std::string path = temp_file("walls2d_");
-  write_walls_vtu<2>(path, {pile, slope}, Vec<2>(0, 0), Vec<2>(0.04, 0.03));
+  write_walls_vtu<2>(path, {pile, slope, turned}, Vec<2>(0, 0), Vec<2>(0.04, 0.03));
   const std::string text = read_all(path);
   std::filesystem::remove(path);
-  EXPECT_NE(text.find("NumberOfPoints=\"6\" NumberOfCells=\"2\""), std::string::npos);
+  EXPECT_NE(text.find("NumberOfPoints=\"10\" NumberOfCells=\"3\""), std::string::npos);
   const auto p = array_of(text, "position");
-  ASSERT_EQ(p.size(), 18U);
+  ASSERT_EQ(p.size(), 30U);
+  const double turned_corners[4][2] = {{1, -1}, {1, 1}, {1, 1}, {1, -1}};
+  for (int c = 0; c < 4; ++c) {
+    EXPECT_NEAR(p[18 + 3 * c], turned_corners[c][0], 1e-15) << c;
+    EXPECT_NEAR(p[19 + 3 * c], turned_corners[c][1], 1e-15) << c;
+  }
   EXPECT_NEAR(p[0], 0.02, 1e-15);  // the pile's lower corner
   EXPECT_NEAR(p[1], 0.006, 1e-15);
   EXPECT_NEAR(p[7], 0.02, 1e-15);  // its upper one
@@ -99,7 +112,7 @@ TEST(WallsVtu, SegmentAndSlopeIn2D) {
   EXPECT_NEAR(b.dot(slope.normal), 0.0, 1e-15);
   EXPECT_NEAR((a - b).norm(), 1.1 * 0.05, 1e-15);
   EXPECT_NEAR((0.5 * (a + b) - Vec<2>(0.02, 0.015)).norm(), 0.0, 1e-15);
-  EXPECT_EQ(array_of(text, "types"), (std::vector<double>{9, 3}));  // quad, line
+  EXPECT_EQ(array_of(text, "types"), (std::vector<double>{9, 3, 9}));  // quad, line, quad
 }
 
 }  // namespace

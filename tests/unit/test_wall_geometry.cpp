@@ -65,6 +65,27 @@ TEST(WallTouch, SegmentIn2D) {
   EXPECT_NEAR((t.normal - Vec<2>(-1, 0)).norm(), 0.0, kTol);
 }
 
+TEST(WallTouch, RotatedBoxesUseTheirOwnAxes) {
+  // A 2D segment of half-length 1 along its own x, turned by 30 degrees:
+  // its end is at (cos 30, sin 30).
+  auto seg = box<2>(Vec<2>(-1, 0), Vec<2>(1, 0));
+  const double c = std::sqrt(3.0) / 2.0;
+  seg.axes << c, -0.5, 0.5, c;
+  auto t = seg.touch(Vec<2>(2.0 * c, 1.0));  // beyond the end, along the segment
+  EXPECT_NEAR(t.gap, 1.0, kTol);
+  EXPECT_NEAR((t.normal - Vec<2>(c, 0.5)).norm(), 0.0, kTol);
+  t = seg.touch(Vec<2>(-0.25, 0.5 * c));  // half a unit off its middle, across it
+  EXPECT_NEAR(t.gap, 0.5, kTol);
+  EXPECT_NEAR((t.normal - Vec<2>(-0.5, c)).norm(), 0.0, kTol);
+  // A 3D plate 2 x 4 turned by 90 degrees about z: it spans y in [-1, 1]
+  // and x in [-2, 2] at z = 0.
+  auto plate = box<3>(Vec<3>(-1, -2, 0), Vec<3>(1, 2, 0));
+  plate.axes << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+  expect_touch(plate.touch(Vec<3>(1.5, 0.5, 1)), 1.0, Vec<3>(0, 0, 1));  // over it
+  expect_touch(plate.touch(Vec<3>(0, 4, 0)), 3.0, Vec<3>(0, 1, 0));      // beyond its edge y = 1
+  expect_touch(plate.touch(Vec<3>(5, 1, 4)), 5.0, Vec<3>(0.6, 0, 0.8));  // beyond its edge x = 2
+}
+
 TEST(WallTouch, ABoxThatMovesSidewaysHasMovedAPlaneDoesNot) {
   auto plate = box<3>(Vec<3>(0, 0, 0), Vec<3>(1, 1, 0));
   plate.point_at_build = plate.point;

@@ -99,6 +99,62 @@ void corner_scattering() {
 TEST(BoxWall, CornerScattersADiscLikeAHardDisc) { corner_scattering<2>(); }
 TEST(BoxWall, CornerScattersASphereLikeAHardSphere) { corner_scattering<3>(); }
 
+// The same corner turned as a whole (plate, grain and velocity) by a
+// rotation R about the corner, the plate given as a rotated box: physics
+// does not depend on the axes, so the grain leaves along R times the
+// unturned run's velocity, to the round-off of the turned coordinates
+// (some 1e-16 of r per step over the 40 000 steps, 4e-12, in a collision
+// that does not amplify it; measured 2.4e-12 in 2D, 1.4e-12 in 3D).
+template <int D>
+Vec<D> corner_bounce(const Eigen::Matrix<double, D, D>& turn) {
+  const double r = 1e-3;
+  const double v = 0.1;
+  const double m = 2500.0 * particle_volume<D>(r);
+  ContactSpec spec;
+  spec.normal_stiffness = m * v * v / (1e-6 * r * r);
+  spec.restitution = 1.0;
+  auto sim = single_material<D>(2500.0, spec);
+  Vec<D> lo = Vec<D>::Constant(-2.0 * r);
+  Vec<D> hi = Vec<D>::Zero();
+  lo[D - 1] = 0.0;
+  auto plate = box_wall<D>(lo, hi);
+  plate.point = turn * plate.point;
+  plate.axes = turn;
+  sim.walls.push_back(plate);
+  Vec<D> x = Vec<D>::Constant(0.5 * r / std::sqrt(D - 1.0));
+  x[D - 1] = 1.02 * r;
+  Vec<D> v0 = Vec<D>::Zero();
+  v0[D - 1] = -v;
+  sim.particles.add(turn * x, r, 2500.0, 0, false, turn * v0);
+  sim.time_step = 0.01 * std::sqrt(m / spec.normal_stiffness);
+  sim.prepare();
+  // Down 0.15 r to the touch (1.5e-3 s), the bounce (3e-5 s), away.
+  while (sim.time < 0.4 * r / v) sim.step();
+  return sim.particles.velocity[0];
+}
+
+TEST(BoxWall, ARotatedPlateBouncesAsTheUnturnedOne) {
+  const double v = 0.1;
+  const auto still2 = corner_bounce<2>(Eigen::Matrix2d::Identity());
+  const double a = 0.5236;  // about 30 degrees
+  Eigen::Matrix2d turn2;
+  turn2 << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  const auto turned2 = corner_bounce<2>(turn2);
+  EXPECT_GT(still2.x(), 0.4 * v);  // deflected by the corner, as above
+  EXPECT_LT((turned2 - turn2 * still2).norm(), 1e-10 * v) << turned2.transpose();
+  // 3D: 40 degrees about an oblique axis (Rodrigues' formula).
+  const Vec<3> u = Vec<3>(1.0, 2.0, 2.0) / 3.0;
+  const double b = 0.6981;
+  Eigen::Matrix3d ux;
+  ux << 0.0, -u.z(), u.y(), u.z(), 0.0, -u.x(), -u.y(), u.x(), 0.0;
+  const Eigen::Matrix3d turn3 =
+      std::cos(b) * Eigen::Matrix3d::Identity() + std::sin(b) * ux + (1.0 - std::cos(b)) * u * u.transpose();
+  const auto still3 = corner_bounce<3>(Eigen::Matrix3d::Identity());
+  const auto turned3 = corner_bounce<3>(turn3);
+  EXPECT_GT(still3.x(), 0.2 * v);
+  EXPECT_LT((turned3 - turn3 * still3).norm(), 1e-10 * v) << turned3.transpose();
+}
+
 // Two grains on a horizontal plate 4 r wide: one with its centre over the
 // plate rests on it and loads it with its weight; one with its centre a
 // quarter radius beyond the edge is pushed outwards by the edge, rolls off

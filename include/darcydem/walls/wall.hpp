@@ -2,8 +2,9 @@
 // Walls: infinite planes and boxes. A plane's normal points into the
 // granular domain; a particle touches it when its centre is closer to the
 // plane than its radius, and one behind it is pushed back out. A box wall is
-// an axis-aligned box (possibly of zero thickness along an axis: a plate in
-// 3D, a segment in 2D, such as a sheet pile or a baffle); particles touch it
+// a box with its own axes (those of the grid unless the scene rotates it;
+// possibly of zero thickness along one: a plate in 3D, a segment in 2D, such
+// as a sheet pile, a baffle or a hopper's side); particles touch it
 // from any side, on a face, an edge or a corner, along the line from the
 // box's nearest point to their centre. A wall is fixed, moves at a
 // prescribed velocity, or (planes only) is servo-controlled so that the load
@@ -33,6 +34,8 @@ struct Wall {
   Vec<D> normal = Vec<D>::Zero();  ///< unit, pointing into the domain (a box: unused)
   bool is_box = false;             ///< a box wall rather than a plane
   Vec<D> half = Vec<D>::Zero();    ///< a box's half-extents, m (>= 0; from the scene)
+  /// A box's own axes, as the columns of a rotation (from the scene).
+  Eigen::Matrix<double, D, D> axes = Eigen::Matrix<double, D, D>::Identity();
   std::uint16_t material = 0;
   WallMotion motion = WallMotion::fixed;
   Vec<D> velocity = Vec<D>::Zero();  ///< m/s (velocity mode; servo sets it)
@@ -55,12 +58,13 @@ struct Wall {
   };
   [[nodiscard]] Touch touch(const Vec<D>& x) const {
     if (!is_box) return {(x - point).dot(normal), normal};
-    const Vec<D> d = x - point;
+    // In the box's own axes.
+    const Vec<D> d = axes.transpose() * (x - point);
     const Vec<D> outside = d - d.cwiseMax(-half).cwiseMin(half);
     const double g2 = outside.squaredNorm();
     if (g2 > 0.0) {
       const double g = std::sqrt(g2);
-      return {g, outside / g};
+      return {g, axes * (outside / g)};
     }
     // Inside (or on) the box: out through the nearest face.
     int axis = 0;
@@ -69,7 +73,7 @@ struct Wall {
     }
     Touch t;
     t.gap = std::abs(d[axis]) - half[axis];
-    t.normal[axis] = d[axis] < 0.0 ? -1.0 : 1.0;
+    t.normal = (d[axis] < 0.0 ? -1.0 : 1.0) * axes.col(axis);
     return t;
   }
   /// The gap alone (touch(x).gap).
