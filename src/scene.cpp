@@ -326,6 +326,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     Wall<D> w;
     w.name = r.string("name");
     if (wall_index.count(w.name) != 0) r.fail("name", fmt::format("wall \"{}\" is defined twice", w.name));
+    Vec<D> box_lo = Vec<D>::Zero();  // a box's corners as given (an impermeable plate's extent)
+    Vec<D> box_hi = Vec<D>::Zero();
     if (const toml::table* bt = r.optional_table("box")) {
       // A box wall: min and max corners (equal along an axis for a plate).
       for (auto k : {"point", "normal"}) {
@@ -346,6 +348,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         }
       }
       w.is_box = true;
+      box_lo = lo;
+      box_hi = hi;
       w.point = 0.5 * (lo + hi);
       w.half = 0.5 * (hi - lo);
       if (br.has("rotation")) w.axes = read_box_rotation<D>(br);
@@ -392,10 +396,11 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       WallBarrier<D> b;
       b.barrier.name = w.name;
       b.barrier.axis = flat;
-      b.barrier.at = w.point[flat];
+      b.barrier.at = box_lo[flat];
       for (int k = 0; k < D; ++k) {
-        b.barrier.lo[k] = w.point[k] - w.half[k];
-        b.barrier.hi[k] = w.point[k] + w.half[k];
+        // As given: a face whose centre lies on the plate's edge is in it.
+        b.barrier.lo[k] = box_lo[k];
+        b.barrier.hi[k] = box_hi[k];
       }
       b.error_prefix = fmt::format(
           "{}: error: {} key 'impermeable': ", r.location(r.raw("impermeable")->source()), r.where());
