@@ -42,6 +42,23 @@ double RadiusDistribution::sample(std::mt19937_64& rng) const {
   return value;
 }
 
+/// Calls f(idx) for every index of an n[0] x ... x n[D-1] block of cells,
+/// the first axis fastest.
+template <int D, class F>
+void for_each_cell_index(const std::array<int, D>& n, F&& f) {
+  std::int64_t total = 1;
+  for (int k = 0; k < D; ++k) total *= n[k];
+  std::array<int, D> idx{};
+  for (std::int64_t c = 0; c < total; ++c) {
+    std::int64_t rest = c;
+    for (int k = 0; k < D; ++k) {
+      idx[k] = static_cast<int>(rest % n[k]);
+      rest /= n[k];
+    }
+    f(idx);
+  }
+}
+
 template <int D>
 Packing<D> lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spacing, double radius) {
   Packing<D> out;
@@ -50,23 +67,12 @@ Packing<D> lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spacing, d
     const double span = hi[k] - lo[k] - 2.0 * radius;
     n[k] = span < 0.0 ? 0 : static_cast<int>(std::floor(span / spacing + 1e-9)) + 1;
   }
-  std::array<int, D> idx{};
-  const std::int64_t total = [&] {
-    std::int64_t t = 1;
-    for (int k = 0; k < D; ++k) t *= n[k];
-    return t;
-  }();
-  for (std::int64_t c = 0; c < total; ++c) {
-    std::int64_t rest = c;
+  for_each_cell_index<D>(n, [&](const std::array<int, D>& idx) {
     Vec<D> x;
-    for (int k = 0; k < D; ++k) {
-      idx[k] = static_cast<int>(rest % n[k]);
-      rest /= n[k];
-      x[k] = lo[k] + radius + idx[k] * spacing;
-    }
+    for (int k = 0; k < D; ++k) x[k] = lo[k] + radius + idx[k] * spacing;
     out.position.push_back(x);
     out.radius.push_back(radius);
-  }
+  });
   return out;
 }
 
@@ -94,15 +100,7 @@ Packing<D> dense_lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spac
     n[k] = span < -slack ? 0 : static_cast<int>(std::floor((span + slack) / cell[k])) + 1;
   }
   std::vector<Vec<D>> centres;
-  std::array<int, D> idx{};
-  std::int64_t total = 1;
-  for (int k = 0; k < D; ++k) total *= n[k];
-  for (std::int64_t c = 0; c < total; ++c) {
-    std::int64_t rest = c;
-    for (int k = 0; k < D; ++k) {
-      idx[k] = static_cast<int>(rest % n[k]);
-      rest /= n[k];
-    }
+  for_each_cell_index<D>(n, [&](const std::array<int, D>& idx) {
     for (const auto& b : basis) {
       Vec<D> x;
       bool inside = true;
@@ -112,7 +110,7 @@ Packing<D> dense_lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spac
       }
       if (inside) centres.push_back(x);
     }
-  }
+  });
   // By height, then along y (3D), then x.
   std::sort(centres.begin(), centres.end(), [](const Vec<D>& a, const Vec<D>& b) {
     for (int k = D - 1; k >= 0; --k) {

@@ -131,6 +131,50 @@ Eigen::Matrix<double, D, D> read_box_rotation(TableReader& r) {
   return axes;
 }
 
+/// The barrier of an impermeable wall (`impermeable = true`): it must be a
+/// fixed, unturned box flat along one axis (a plate); the barrier lies on
+/// that plane over the box's corners as given, lo and hi. Refused at the
+/// wall's 'impermeable' key otherwise; the grid checks it later.
+template <int D>
+WallBarrier<D> plate_barrier(TableReader& r, const Wall<D>& w, const Vec<D>& box_lo, const Vec<D>& box_hi) {
+  // A plate that the pore fluid cannot cross either: a barrier on its plane.
+  if (!w.is_box) {
+    r.fail("impermeable",
+           "only a box wall flat along one axis (a plate) can be impermeable; a plane wall on a side of "
+           "the fluid grid leaves the side's condition as [fluid.boundary] gives it");
+  }
+  int flat = -1;
+  int flats = 0;
+  for (int k = 0; k < D; ++k) {
+    if (w.half[k] == 0.0) {
+      flat = k;
+      ++flats;
+    }
+  }
+  if (flats != 1) {
+    r.fail("impermeable",
+           "needs a plate: a box with min = max along exactly one axis (its normal), e.g. a sheet pile");
+  }
+  if (w.axes != Eigen::Matrix<double, D, D>::Identity()) {
+    r.fail("impermeable", "an impermeable plate lies on the fluid grid's faces: it cannot be rotated");
+  }
+  if (w.motion != WallMotion::fixed) {
+    r.fail("impermeable", "an impermeable wall cannot move: its barrier is fixed in the fluid grid");
+  }
+  WallBarrier<D> b;
+  b.barrier.name = w.name;
+  b.barrier.axis = flat;
+  b.barrier.at = box_lo[flat];
+  for (int k = 0; k < D; ++k) {
+    // As given: a face whose centre lies on the plate's edge is in it.
+    b.barrier.lo[k] = box_lo[k];
+    b.barrier.hi[k] = box_hi[k];
+  }
+  b.error_prefix =
+      fmt::format("{}: error: {} key 'impermeable': ", r.location(r.raw("impermeable")->source()), r.where());
+  return b;
+}
+
 template <int D>
 void read_wall_motion(TableReader& r, Vec<D>& velocity, WallMotion& motion, ServoControl& servo) {
   r.allow({"velocity", "servo", "fixed"});
@@ -369,42 +413,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       r.fail("servo", "a box wall cannot be servo-controlled (it has no normal); give 'velocity' or 'fixed'");
     const bool impermeable = r.boolean_or("impermeable", false);
     if (impermeable) {
-      // A plate that the pore fluid cannot cross either: a barrier on its plane.
-      if (!w.is_box) {
-        r.fail("impermeable",
-               "only a box wall flat along one axis (a plate) can be impermeable; a plane wall on a side of "
-               "the fluid grid leaves the side's condition as [fluid.boundary] gives it");
-      }
-      int flat = -1;
-      int flats = 0;
-      for (int k = 0; k < D; ++k) {
-        if (w.half[k] == 0.0) {
-          flat = k;
-          ++flats;
-        }
-      }
-      if (flats != 1) {
-        r.fail("impermeable",
-               "needs a plate: a box with min = max along exactly one axis (its normal), e.g. a sheet pile");
-      }
-      if (w.axes != Eigen::Matrix<double, D, D>::Identity()) {
-        r.fail("impermeable", "an impermeable plate lies on the fluid grid's faces: it cannot be rotated");
-      }
-      if (w.motion != WallMotion::fixed) {
-        r.fail("impermeable", "an impermeable wall cannot move: its barrier is fixed in the fluid grid");
-      }
-      WallBarrier<D> b;
-      b.barrier.name = w.name;
-      b.barrier.axis = flat;
-      b.barrier.at = box_lo[flat];
-      for (int k = 0; k < D; ++k) {
-        // As given: a face whose centre lies on the plate's edge is in it.
-        b.barrier.lo[k] = box_lo[k];
-        b.barrier.hi[k] = box_hi[k];
-      }
-      b.error_prefix = fmt::format(
-          "{}: error: {} key 'impermeable': ", r.location(r.raw("impermeable")->source()), r.where());
-      wall_barriers.push_back(b);
+      wall_barriers.push_back(plate_barrier<D>(r, w, box_lo, box_hi));
     }
     wall_is_barrier.push_back(impermeable);
     wall_index[w.name] = sim.walls.size();

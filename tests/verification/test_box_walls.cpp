@@ -39,10 +39,12 @@ double size_of(const Vec<3>& m) { return m.norm(); }
 
 // A grain falls onto the corner of a plate (in 2D, the end of a segment):
 // the plate covers x_k <= 0 for k < D-1 on the plane x_{D-1} = 0 (2L
-// wide), and the grain comes down at an impact parameter b = r/2 from the
-// corner, along the plate's diagonal in 3D.
+// wide), and the grain (r = 1 mm) comes down at 0.1 m/s from 0.02 r above
+// the plate's plane, at an impact parameter b = r/2 from the corner, along
+// the plate's diagonal in 3D; frictionless and elastic. The whole set-up
+// is turned by `turn` about the corner (the plate a rotated box). Prepared.
 template <int D>
-void corner_scattering() {
+Simulation<D> grain_over_corner(const Eigen::Matrix<double, D, D>& turn) {
   const double r = 1e-3;
   const double v = 0.1;
   const double m = 2500.0 * particle_volume<D>(r);
@@ -57,16 +59,28 @@ void corner_scattering() {
   Vec<D> lo = Vec<D>::Constant(-2.0 * r);
   Vec<D> hi = Vec<D>::Zero();
   lo[D - 1] = 0.0;
-  sim.walls.push_back(box_wall<D>(lo, hi));
-  const double b = 0.5 * r;
-  Vec<D> x = Vec<D>::Constant(b / std::sqrt(D - 1.0));
+  auto plate = box_wall<D>(lo, hi);
+  plate.point = turn * plate.point;
+  plate.axes = turn;
+  sim.walls.push_back(plate);
+  Vec<D> x = Vec<D>::Constant(0.5 * r / std::sqrt(D - 1.0));
   x[D - 1] = 1.02 * r;
   Vec<D> v0 = Vec<D>::Zero();
   v0[D - 1] = -v;
-  sim.particles.add(x, r, 2500.0, 0, false, v0);
+  sim.particles.add(turn * x, r, 2500.0, 0, false, turn * v0);
   sim.time_step = 0.01 * std::sqrt(m / spec.normal_stiffness);
   sim.prepare();
-  const auto l0 = moment(x, v0);
+  return sim;
+}
+
+template <int D>
+void corner_scattering() {
+  const double r = 1e-3;
+  const double v = 0.1;
+  const double b = 0.5 * r;
+  auto sim = grain_over_corner<D>(Eigen::Matrix<double, D, D>::Identity());
+  const auto l0 = moment(sim.particles.position[0], sim.particles.velocity[0]);
+  const Vec<D> v0 = sim.particles.velocity[0];
   // Down to the corner (0.02 r at v), then until the grain is as high again
   // as it started (the contact over): about 4000 steps.
   while (sim.time < 0.02 * r / v) sim.step();
@@ -110,25 +124,7 @@ template <int D>
 Vec<D> corner_bounce(const Eigen::Matrix<double, D, D>& turn) {
   const double r = 1e-3;
   const double v = 0.1;
-  const double m = 2500.0 * particle_volume<D>(r);
-  ContactSpec spec;
-  spec.normal_stiffness = m * v * v / (1e-6 * r * r);
-  spec.restitution = 1.0;
-  auto sim = single_material<D>(2500.0, spec);
-  Vec<D> lo = Vec<D>::Constant(-2.0 * r);
-  Vec<D> hi = Vec<D>::Zero();
-  lo[D - 1] = 0.0;
-  auto plate = box_wall<D>(lo, hi);
-  plate.point = turn * plate.point;
-  plate.axes = turn;
-  sim.walls.push_back(plate);
-  Vec<D> x = Vec<D>::Constant(0.5 * r / std::sqrt(D - 1.0));
-  x[D - 1] = 1.02 * r;
-  Vec<D> v0 = Vec<D>::Zero();
-  v0[D - 1] = -v;
-  sim.particles.add(turn * x, r, 2500.0, 0, false, turn * v0);
-  sim.time_step = 0.01 * std::sqrt(m / spec.normal_stiffness);
-  sim.prepare();
+  auto sim = grain_over_corner<D>(turn);
   // Down 0.15 r to the touch (1.5e-3 s), the bounce (3e-5 s), away.
   while (sim.time < 0.4 * r / v) sim.step();
   return sim.particles.velocity[0];

@@ -57,10 +57,10 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options);
 template <int D>
 std::string describe_patches_and_barriers(const PoreFluid<D>& fluid);
 
-/// True when dir does not exist or is an empty directory.
 /// "1.256e-05 s", or what an infinite critical step means (no free particle).
 std::string describe_critical_step(double seconds);
 
+/// True when dir does not exist or is an empty directory.
 bool output_dir_is_free(const std::string& dir);
 
 }  // namespace darcydem
