@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs what darcydem needs from Debian 12's packages. Idempotent: does
 # nothing when everything is already present. Needs root (or sudo) for apt-get.
+# With --compare it also installs YADE and LIGGGHTS (with Open MPI), which only
+# bench/compare/compare_codes.py uses (about 190 packages).
 set -euo pipefail
 
 packages=(
@@ -9,6 +11,14 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-matplotlib python3-numpy
 )
+case "${1:-}" in
+  "") ;;
+  --compare) packages+=(yade liggghts openmpi-bin) ;;
+  *)
+    echo "install-deps: unknown option '$1' (allowed: --compare, to add YADE and LIGGGHTS)" >&2
+    exit 2
+    ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do
