@@ -650,6 +650,7 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
   // took 10-20 % longer on a 2.6 GHz EPYC; docs/PERFORMANCE.md).
   constexpr std::int64_t chunk = 64;
   const auto count = static_cast<std::int64_t>(p.size());
+  const bool still_water = !std::isnan(water_level);
   // Ergun/Wen-Yu or the Darcy law: each compiled on its own, so that a
   // grain does only its law's work.
   auto run = [&]<bool Ergun>(std::int64_t b) {
@@ -747,6 +748,17 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
         force[begin + j][k] = inside[j] > 0.0 ? f : 0.0;
       }
     }
+    // Grains outside the grid, below a free water surface: buoyancy and
+    // the drag of still water.
+    if (still_water) {
+      for (std::int64_t j = 0; j < n; ++j) {
+        const std::int64_t i = begin + j;
+        if (inside[j] > 0.0 || !(p.position[i][D - 1] < water_level)) continue;
+        const Vec<D>& v = p.velocity[i];
+        const double d = 2.0 * p.radius[i];
+        force[i] = -vp[j] * (fluid.density * gravity + still_water_drag(d, v.norm(), fluid) * v);
+      }
+    }
   };
   const std::int64_t chunks = (count + chunk - 1) / chunk;
   auto run_all = [&]<bool Ergun>() {
@@ -767,18 +779,27 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
 }
 
 template <int D>
-std::size_t PoreFluid<D>::grains_outside(const ParticleData<D>& p) const {
-  // As particle_forces locates them: in cell units, inside if in [0, cells).
-  std::size_t outside = 0;
-  for (const Vec<D>& x : p.position) {
-    bool in = true;
-    for (int k = 0; k < D; ++k) {
-      const double s = (x[k] - grid.origin[k]) * inv_spacing_[k];
-      in = in && s >= 0.0 && s < grid.cells[k];
-    }
-    outside += in ? 0 : 1;
+bool PoreFluid<D>::in_grid(const Vec<D>& x) const {
+  // As particle_forces locates grains: in cell units, inside if in [0, cells).
+  bool in = true;
+  for (int k = 0; k < D; ++k) {
+    const double s = (x[k] - grid.origin[k]) * inv_spacing_[k];
+    in = in && s >= 0.0 && s < grid.cells[k];
   }
-  return outside;
+  return in;
+}
+
+template <int D>
+std::size_t PoreFluid<D>::grains_outside(const ParticleData<D>& p) const {
+  return static_cast<std::size_t>(
+      std::count_if(p.position.begin(), p.position.end(), [&](const Vec<D>& x) { return !in_grid(x); }));
+}
+
+template <int D>
+std::size_t PoreFluid<D>::grains_in_still_water(const ParticleData<D>& p) const {
+  return static_cast<std::size_t>(std::count_if(p.position.begin(), p.position.end(), [&](const Vec<D>& x) {
+    return !in_grid(x) && x[D - 1] < water_level;  // false for a NaN level
+  }));
 }
 
 template <int D>

@@ -518,5 +518,34 @@ TEST(SceneErrors, FluidCouplingIntervalIsChecked) {
   EXPECT_NE(msg.find("key 'hold_forces': must be true or false"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, FluidWaterLevelIsReadAndChecked) {
+  const std::string base = "drag = \"darcy\"\n";
+  const std::string good = replace(with_fluid(), base, base + "water_level = 0.05\n");
+  ASSERT_EQ(load_error(good), "");
+  {
+    const std::string path = write_scene(good);
+    std::string text;
+    const auto scene = build_scene<2>(parse_toml_file(path, text), path, text);
+    std::filesystem::remove(path);
+    EXPECT_EQ(scene.fluid->water_level, 0.05);
+  }
+  {  // Without the key: no water outside the grid.
+    const std::string path = write_scene(with_fluid());
+    std::string text;
+    const auto scene = build_scene<2>(parse_toml_file(path, text), path, text);
+    std::filesystem::remove(path);
+    EXPECT_TRUE(std::isnan(scene.fluid->water_level));
+  }
+  auto msg = load_error(replace(with_fluid(), base, base + "water_level = nan\n"));
+  EXPECT_NE(msg.find("key 'water_level': must be a finite height, m (y in 2D, z in 3D), got nan"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(with_fluid(), base, base + "water_level = \"top\"\n"));
+  EXPECT_NE(msg.find("key 'water_level'"), std::string::npos) << msg;
+  msg = load_error(replace(with_fluid(), base, base + "water_levle = 0.05\n"));
+  EXPECT_NE(msg.find("Did you mean 'water_level'?"), std::string::npos) << msg;
+}
+
 }  // namespace
 }  // namespace darcydem

@@ -367,7 +367,9 @@ TEST(FluidScenes, SheetPileHeave) {
   //   above the floor, by the tip's singular corner);
   // - p_up = 1.5 x 2 W' (the scene as written): the bed is still rising
   //   over the same half second by more than 20 % of a diameter (measured
-  //   0.517 mm) and grains are carried under the pile (measured 33 by 1.1 s).
+  //   0.824 mm; 0.517 mm before the grains lifted out of the grid were put
+  //   in still water by the scene's water_level) and grains are carried
+  //   under the pile (measured 46 by 1.1 s; 33 before).
   const double r = 0.49e-3;
   const double w_sub = (2650.0 - 1000.0) * 9.81 * 254.0 * std::numbers::pi * r * r / 0.02;
   auto heave = darcydem::testing::load_scene<2>("examples/fluid_cases/sheet_pile_heave.toml");

@@ -10,6 +10,7 @@
 
 #include "darcydem/fluid/pore_fluid.hpp"
 #include "darcydem/generation/generators.hpp"
+#include "dem_setup.hpp"
 
 using namespace darcydem;
 
@@ -389,6 +390,22 @@ TEST(PoreFluid, SetPressureChecksItsSize) {
   EXPECT_THROW(f.set_pressure(std::vector<double>(8, 0.0)), std::invalid_argument);
 }
 
+namespace {
+
+/// A 2 x 2 x 2 grid of 1 mm cells at the origin; water (mu = 1e-3 Pa s,
+/// K_f = 1e7 Pa), Ergun/Wen-Yu drag, Kozeny-Carman for grains of `diameter`.
+void set_up_cube_of_cells(PoreFluid<3>& f, double diameter) {
+  f.grid.origin = Vec<3>::Zero();
+  f.grid.spacing = Vec<3>::Constant(1e-3);
+  f.grid.cells = {2, 2, 2};
+  f.fluid = {1000.0, 1.0e-3, 1e7};
+  f.drag = DragLaw::ergun;
+  f.permeability.model = PermeabilityModel::kozeny_carman;
+  f.permeability.diameter = diameter;
+}
+
+}  // namespace
+
 TEST(PoreFluid, GrainsOutsideTheGridFeelNoFluid) {
   // A 2 x 2 x 2 grid of 1 mm cells and still fluid: a grain whose centre is
   // in the grid (a cell's lower face included) feels exactly its buoyancy,
@@ -402,13 +419,7 @@ TEST(PoreFluid, GrainsOutsideTheGridFeelNoFluid) {
   for (const auto& x : inside) p.add(x, r, 2650.0, 0, false);
   for (const auto& x : outside) p.add(x, r, 2650.0, 0, false);
   PoreFluid<3> f;
-  f.grid.origin = Vec<3>::Zero();
-  f.grid.spacing = Vec<3>::Constant(1e-3);
-  f.grid.cells = {2, 2, 2};
-  f.fluid = {1000.0, 1.0e-3, 1e7};
-  f.drag = DragLaw::ergun;
-  f.permeability.model = PermeabilityModel::kozeny_carman;
-  f.permeability.diameter = 2 * r;
+  set_up_cube_of_cells(f, 2 * r);
   f.initialize(p);
   EXPECT_EQ(f.grains_outside(p), outside.size());
   std::vector<Vec<3>> force(p.size());
@@ -420,4 +431,92 @@ TEST(PoreFluid, GrainsOutsideTheGridFeelNoFluid) {
     EXPECT_EQ(force[i].head<2>().norm(), 0.0) << "grain " << i;
   }
   for (std::size_t i = inside.size(); i < p.size(); ++i) EXPECT_EQ(force[i].norm(), 0.0) << "grain " << i;
+}
+
+TEST(PoreFluid, GrainsOutsideTheGridBelowTheWaterLevelAreInStillWater) {
+  // The grid of the test above with a free water surface at z = 2.5 mm,
+  // 0.5 mm above its top. A grain outside the grid and below the surface
+  // feels its buoyancy and the drag of a sphere alone in still water,
+  // Schiller and Naumann's 3 pi mu d v (1 + 0.15 Re^0.687), written out
+  // here; one above the surface feels nothing; one inside the grid is as
+  // before (still fluid: its buoyancy alone).
+  ParticleData<3> p;
+  const double r = 2e-4;
+  const Vec<3> v(0.01, 0.0, -0.02);
+  p.add(Vec<3>(5e-4, 5e-4, 5e-4), r, 2650.0, 0, false);    // in the grid
+  p.add(Vec<3>(5e-4, 5e-4, 2.2e-3), r, 2650.0, 0, false);  // above the grid, in the water, moving
+  p.add(Vec<3>(-1e-3, 5e-4, 1e-3), r, 2650.0, 0, false);   // beside the grid, in the water, at rest
+  p.add(Vec<3>(5e-4, 5e-4, 2.6e-3), r, 2650.0, 0, false);  // above the water
+  p.velocity[1] = v;
+  PoreFluid<3> f;
+  set_up_cube_of_cells(f, 2 * r);
+  f.water_level = 2.5e-3;
+  f.initialize(p);
+  EXPECT_EQ(f.grains_outside(p), 3U);
+  EXPECT_EQ(f.grains_in_still_water(p), 2U);
+  std::vector<Vec<3>> force(p.size());
+  f.particle_forces(p, Vec<3>(0.0, 0.0, -g), force);
+  const double vp = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const Vec<3> buoyancy(0.0, 0.0, 1000.0 * g * vp);
+  const double re = 1000.0 * 2.0 * r * v.norm() / 1.0e-3;  // 4.47
+  const Vec<3> drag = -3.0 * std::numbers::pi * 1.0e-3 * 2.0 * r * (1.0 + 0.15 * std::pow(re, 0.687)) * v;
+  // Round-off only: the same formulas in another order.
+  EXPECT_LT((force[0] - buoyancy).norm(), 1e-12 * buoyancy.norm());
+  EXPECT_LT((force[1] - (buoyancy + drag)).norm(), 1e-12 * (buoyancy + drag).norm());
+  EXPECT_LT((force[2] - buoyancy).norm(), 1e-12 * buoyancy.norm());
+  EXPECT_EQ(force[3].norm(), 0.0);
+}
+
+TEST(PoreFluid, AGrainSinksInStillWaterAtItsTerminalVelocity) {
+  // A sphere (d = 0.5 mm, 2650 kg/m^3) released from rest in still water
+  // above the grid (water_level far above it). Its equation of motion,
+  // m dv/dt = (rho_s - rho_f) V g - 3 pi mu d v (1 + 0.15 Re^0.687), starts
+  // at the submerged acceleration (1 - rho_f/rho_s) g and ends at the
+  // terminal velocity where the drag carries the submerged weight, found
+  // here by bisection (v_t = 7.84 cm/s, Re = 39).
+  const double r = 2.5e-4;
+  const double d = 2 * r;
+  const double rho_s = 2650.0;
+  const double mu = 1.0e-3;
+  const double vp = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double weight = (rho_s - 1000.0) * vp * g;
+  auto drag = [&](double v) {
+    const double re = 1000.0 * d * v / mu;
+    return 3.0 * std::numbers::pi * mu * d * v * (1.0 + 0.15 * std::pow(re, 0.687));
+  };
+  double lo = 0.0;
+  double hi = 1.0;
+  for (int i = 0; i < 200; ++i) (drag(0.5 * (lo + hi)) < weight ? lo : hi) = 0.5 * (lo + hi);
+  const double v_terminal = 0.5 * (lo + hi);
+
+  ContactSpec spec;
+  spec.normal_stiffness = 1e3;
+  spec.restitution = 0.5;
+  auto sim = darcydem::testing::single_material<3>(rho_s, spec);
+  sim.particles.add(Vec<3>(1e-3, 1e-3, 0.1), r, rho_s, 0, false);
+  PoreFluid<3> fluid;
+  set_up_cube_of_cells(fluid, d);
+  fluid.water_level = 1.0;
+  fluid.initialize(sim.particles);
+  sim.force_field = &fluid;
+  sim.gravity = Vec<3>(0.0, 0.0, -g);
+  sim.time_step = 1e-5;
+  sim.prepare();
+  // Ten steps: v = (1 - rho_f/rho_s) g t (1 - O(t / tau)), tau = m v_t /
+  // submerged weight = 12.8 ms: within t / tau = 8e-3 of it (bound 2e-2).
+  for (int s = 0; s < 10; ++s) sim.step();
+  const double v_early = (1.0 - 1000.0 / rho_s) * g * 10 * sim.time_step;
+  const double v_10 = -sim.particles.velocity[0].z();
+  EXPECT_NEAR(v_10, v_early, 2e-2 * v_early);
+  // 0.2 s is 15.6 tau and the approach to v_t is at least as fast as
+  // exp(-t / tau) (the drag grows faster than linearly with the speed):
+  // 2e-7 of v_t is left. The time step adds nothing there: the step's
+  // fixed point is the velocity at which the forces balance. Bound 1e-5.
+  for (int s = 10; s < 20000; ++s) sim.step();
+  const Vec<3> v = sim.particles.velocity[0];
+  std::printf(
+      "still water: v after 10 steps %.6g m/s against %.6g; after 0.2 s %.10g m/s against v_t = %.10g\n",
+      v_10, v_early, -v.z(), v_terminal);
+  EXPECT_NEAR(-v.z(), v_terminal, 1e-5 * v_terminal);
+  EXPECT_EQ(v.head<2>().norm(), 0.0);
 }

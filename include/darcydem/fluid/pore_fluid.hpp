@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -81,6 +82,12 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Keep each cell's permeability as it is (a stage can freeze it, e.g. to
   /// compare with a closed form that assumes a constant k).
   bool permeability_frozen = false;
+  /// The height of a free water surface (along y in 2D, z in 3D), m: a
+  /// grain whose centre is outside the grid and below it is in still water,
+  /// with its buoyancy, -rho_f g V_p, and a grain's drag alone in water
+  /// (still_water_drag), e.g. a grain lifted above a heaving bed. NaN (the
+  /// default): no fluid outside the grid, as above the water.
+  double water_level = std::numeric_limits<double>::quiet_NaN();
 
   PoreFluid(PressureSolverKind solver = PressureSolverKind::cg, double tolerance = 1e-10,
             CgPreconditioner preconditioner = CgPreconditioner::automatic);
@@ -156,6 +163,8 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Grains whose centres are outside the grid: the fluid exerts no force
   /// (and no buoyancy) on them, as on grains above the water.
   [[nodiscard]] std::size_t grains_outside(const ParticleData<D>& particles) const;
+  /// Of those, the grains below water_level: in still water.
+  [[nodiscard]] std::size_t grains_in_still_water(const ParticleData<D>& particles) const;
   /// Flow into the grid through one side in the last step, m^3/s.
   [[nodiscard]] double side_inflow(int side) const { return side_inflow_[side]; }
   /// Flow into the grid through one patch (index in `patches`) in the last
@@ -195,6 +204,8 @@ class PoreFluid final : public ParticleForceField<D> {
   }
 
  private:
+  /// Whether a grain's centre at x is in the grid (as the forces count it).
+  [[nodiscard]] bool in_grid(const Vec<D>& x) const;
   void compute_solid(const ParticleData<D>& particles);
   void compute_cell_properties();
   void build_pattern();
