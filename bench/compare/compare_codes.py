@@ -290,10 +290,13 @@ def cpu_model():
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--darcydem", default=str(ROOT / "build" / "darcydem"))
-    parser.add_argument("--work", default="/tmp/darcydem_compare")
-    parser.add_argument("--steps", type=int, nargs=2, default=[500, 1500])
-    parser.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--darcydem", default=str(ROOT / "build" / "darcydem"), help="the darcydem program")
+    parser.add_argument("--work", default="/tmp/darcydem_compare",
+                        help="folder for the runs; the settled bed is kept there (settle/) and reused")
+    parser.add_argument("--steps", type=int, nargs=2, default=[500, 1500], metavar=("N1", "N2"),
+                        help="the two runs' lengths; a step costs (T(N2) - T(N1)) / (N2 - N1)")
+    parser.add_argument("--threads", type=int, nargs="+", default=[1, 2],
+                        help="thread counts (LIGGGHTS: MPI ranks)")
     parser.add_argument("--codes", nargs="+", default=["darcydem", "yade", "liggghts"],
                         choices=["darcydem", "yade", "liggghts", "darcydem_fluid", "yade_pfv"],
                         help="darcydem_fluid and yade_pfv: the same bed with upward seepage (darcydem's "
@@ -305,7 +308,8 @@ def main():
     parser.add_argument("--p-bottom", type=float, default=30.0,
                         help="the seepage runs' excess pressure on the floor, Pa (the bed's submerged "
                              "weight is about 70 Pa per unit area of floor)")
-    parser.add_argument("--out", default=str(ROOT / "bench" / "results" / "compare_codes.json"))
+    parser.add_argument("--out", default=str(ROOT / "bench" / "results" / "compare_codes.json"),
+                        help="the results' JSON file")
     args = parser.parse_args()
     n1, n2 = args.steps
     if not 0 < n1 < n2:
