@@ -70,6 +70,16 @@ def settled_bed(darcydem, work):
     return csv
 
 
+def is_grain_row(line):
+    """Whether a line of darcydem's particle CSV is a grain (not the header)."""
+    return not line.startswith("#") and not line.startswith("x,")
+
+
+def grains(csv):
+    """The bed's grains as (x, y, z, radius), m."""
+    return [tuple(float(v) for v in line.split(",")) for line in open(csv) if is_grain_row(line)]
+
+
 def cropped_bed(csv, side, work):
     """The grains of the bed that lie wholly in [0, side]^2 (all of them at
     the bed's own side), as a CSV with the same header."""
@@ -78,7 +88,7 @@ def cropped_bed(csv, side, work):
     out = work / f"bed_{side}.csv"
     with open(csv) as f, open(out, "w") as g:
         for line in f:
-            if line.startswith("#") or line.startswith("x,"):
+            if not is_grain_row(line):
                 g.write(line)
                 continue
             x, y, _, r = (float(v) for v in line.split(","))
@@ -186,8 +196,7 @@ def fluid_block(csv, side, p_bottom):
     """darcydem's pore fluid over the bed: cells of about 2.5 grains across,
     the grid's top 1 mm above the bed (YADE's lid is there), the excess
     pressure p_bottom on the floor and zero on top."""
-    top = max(float(line.split(",")[2]) + float(line.split(",")[3])
-              for line in open(csv) if not line.startswith("#") and not line.startswith("x,"))
+    top = max(z + r for _, _, z, r in grains(csv))
     nx = round(side / 2.5e-3)
     nz = max(1, round((top + 1e-3) / 2.5e-3))
     return FLUID.format(nx=nx, nz=nz, h=side / nx, hz=(top + 1e-3) / nz, p_bottom=p_bottom)
@@ -241,13 +250,13 @@ def liggghts_data(csv, side, work):
     data = work / f"bed_{side}.data"
     if data.exists():
         return data
-    rows = [line.strip().split(",") for line in open(csv) if not line.startswith("#") and not line.startswith("x,")]
-    top = max(float(r[2]) + float(r[3]) for r in rows)
+    rows = grains(csv)
+    top = max(z + r for _, _, z, r in rows)
     with open(data, "w") as f:
         f.write(f"darcydem settled bed\n\n{len(rows)} atoms\n1 atom types\n\n0 {side} xlo xhi\n0 {side} ylo yhi\n"
                 f"0 {2.0 * top:.6g} zlo zhi\n\nAtoms\n\n")
         for k, (x, y, z, r) in enumerate(rows):
-            f.write(f"{k + 1} 1 {2.0 * float(r):.17g} {DENSITY} {x} {y} {z}\n")
+            f.write(f"{k + 1} 1 {2.0 * r:.17g} {DENSITY} {x!r} {y!r} {z!r}\n")
     return data
 
 

@@ -77,6 +77,16 @@ std::string load_error(const std::string& text) {
   return "";
 }
 
+/// Builds a scene that loads (check it with load_error first), to read what it holds.
+template <int D>
+Scene<D> built_scene(const std::string& text) {
+  const std::string path = write_scene(text);
+  std::string t;
+  auto scene = build_scene<D>(parse_toml_file(path, t), path, t);
+  std::filesystem::remove(path);
+  return scene;
+}
+
 std::string replace(std::string s, const std::string& from, const std::string& to) {
   const auto at = s.find(from);
   EXPECT_NE(at, std::string::npos) << from;
@@ -172,10 +182,7 @@ TEST(SceneErrors, BoxWallRotationsAreReadAndChecked) {
   const std::string good = replace(kGood, "[[particles]]", plate + "\n[[particles]]");
   ASSERT_EQ(load_error(good), "");
   {
-    const std::string path = write_scene(good);
-    std::string text;
-    const auto scene = build_scene<2>(parse_toml_file(path, text), path, text);
-    std::filesystem::remove(path);
+    const auto scene = built_scene<2>(good);
     const auto& axes = scene.simulation.walls[1].axes;
     const double c = std::sqrt(3.0) / 2.0;
     EXPECT_NEAR(axes(0, 0), c, 1e-15);
@@ -197,10 +204,7 @@ TEST(SceneErrors, BoxWallRotationsAreReadAndChecked) {
       "[0.002, 0.002, 0.002], rotation = { axis = [0.0, 0.0, 2.0], angle = 90.0 } }\n\n[[particles]]");
   ASSERT_EQ(load_error(good3), "");
   {
-    const std::string path = write_scene(good3);
-    std::string text;
-    const auto scene = build_scene<3>(parse_toml_file(path, text), path, text);
-    std::filesystem::remove(path);
+    const auto scene = built_scene<3>(good3);
     Eigen::Matrix3d expected;
     expected << 0, -1, 0, 1, 0, 0, 0, 0, 1;
     EXPECT_LT((scene.simulation.walls[1].axes - expected).norm(), 1e-15);
@@ -522,20 +526,9 @@ TEST(SceneErrors, FluidWaterLevelIsReadAndChecked) {
   const std::string base = "drag = \"darcy\"\n";
   const std::string good = replace(with_fluid(), base, base + "water_level = 0.05\n");
   ASSERT_EQ(load_error(good), "");
-  {
-    const std::string path = write_scene(good);
-    std::string text;
-    const auto scene = build_scene<2>(parse_toml_file(path, text), path, text);
-    std::filesystem::remove(path);
-    EXPECT_EQ(scene.fluid->water_level, 0.05);
-  }
-  {  // Without the key: no water outside the grid.
-    const std::string path = write_scene(with_fluid());
-    std::string text;
-    const auto scene = build_scene<2>(parse_toml_file(path, text), path, text);
-    std::filesystem::remove(path);
-    EXPECT_TRUE(std::isnan(scene.fluid->water_level));
-  }
+  EXPECT_EQ(built_scene<2>(good).fluid->water_level, 0.05);
+  // Without the key: no water outside the grid.
+  EXPECT_TRUE(std::isnan(built_scene<2>(with_fluid()).fluid->water_level));
   auto msg = load_error(replace(with_fluid(), base, base + "water_level = nan\n"));
   EXPECT_NE(msg.find("key 'water_level': must be a finite height, m (y in 2D, z in 3D), got nan"),
             std::string::npos)
