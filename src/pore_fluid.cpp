@@ -650,7 +650,7 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
   // took 10-20 % longer on a 2.6 GHz EPYC; docs/PERFORMANCE.md).
   constexpr std::int64_t chunk = 64;
   const auto count = static_cast<std::int64_t>(p.size());
-  const bool still_water = !std::isnan(water_level);
+  const bool free_water = !std::isnan(water_level);
   // Ergun/Wen-Yu or the Darcy law: each compiled on its own, so that a
   // grain does only its law's work.
   auto run = [&]<bool Ergun>(std::int64_t b) {
@@ -749,14 +749,26 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
       }
     }
     // Grains outside the grid, below a free water surface: buoyancy and
-    // the drag of still water.
-    if (still_water) {
+    // the drag of a lone grain in the water there. Above the grid's top
+    // (within its sides) the water rises at the flux through the top face
+    // below (continuity across the surface, porosity 1), interpolated
+    // across the columns as the vertical component is inside; beside or
+    // below the grid it is still.
+    if (free_water) {
+      constexpr int up = D - 1;
       for (std::int64_t j = 0; j < n; ++j) {
         const std::int64_t i = begin + j;
-        if (inside[j] > 0.0 || !(p.position[i][D - 1] < water_level)) continue;
-        const Vec<D>& v = p.velocity[i];
+        if (inside[j] > 0.0 || !(p.position[i][up] < water_level)) continue;
+        bool above = s[up][j] >= grid.cells[up];
+        for (int k = 0; k < up; ++k) above = above && s[k][j] >= 0.0 && s[k][j] < grid.cells[k];
+        Vec<D> slip = -p.velocity[i];
+        if (above) {
+          std::array<double, D> fr{};
+          for (int k = 0; k < D; ++k) fr[k] = k == up ? face_frac[k][j] : centre_frac[k][j];
+          slip[up] += interpolate_component<up>(base[up][j], fr)[1];
+        }
         const double d = 2.0 * p.radius[i];
-        force[i] = -vp[j] * (fluid.density * gravity + still_water_drag(d, v.norm(), fluid) * v);
+        force[i] = -vp[j] * fluid.density * gravity + vp[j] * lone_grain_drag(d, slip.norm(), fluid) * slip;
       }
     }
   };
@@ -796,7 +808,7 @@ std::size_t PoreFluid<D>::grains_outside(const ParticleData<D>& p) const {
 }
 
 template <int D>
-std::size_t PoreFluid<D>::grains_in_still_water(const ParticleData<D>& p) const {
+std::size_t PoreFluid<D>::grains_in_free_water(const ParticleData<D>& p) const {
   return static_cast<std::size_t>(std::count_if(p.position.begin(), p.position.end(), [&](const Vec<D>& x) {
     return !in_grid(x) && x[D - 1] < water_level;  // false for a NaN level
   }));

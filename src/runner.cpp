@@ -170,13 +170,13 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
         "\"iterations\": {}, "
         "\"max_residual\": {:.6g}, \"inflow\": {:.17g}, \"stored\": {:.17g}, \"pore_change\": {:.17g}, "
         "\"imbalance\": {:.6g}, \"gross_flow\": {:.6g}, \"grains_outside_grid\": {}, "
-        "\"grains_in_still_water\": {}}},\n",
+        "\"grains_in_free_water\": {}}},\n",
         fluid->grid.size(), fluid->updates(), to_string(fluid->solver().kind()),
         fluid->solver().kind() == PressureSolverKind::cg
             ? to_string(fluid->solver().preconditioner_for(static_cast<Eigen::Index>(fluid->grid.size())))
             : "none",
         fluid_iterations, fluid_residual, tb.inflow, tb.stored, tb.pore_change, tb.imbalance(), tb.gross,
-        fluid->grains_outside(sim.particles), fluid->grains_in_still_water(sim.particles));
+        fluid->grains_outside(sim.particles), fluid->grains_in_free_water(sim.particles));
   }
   if (summary.seepage_column) {
     const auto& r = *summary.seepage_column;
@@ -462,7 +462,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
             tb.inflow, tb.stored, tb.pore_change, tb.imbalance(),
             tb.gross > 0 ? std::abs(tb.imbalance()) / tb.gross : 0.0, fluid_residual, fluid_iterations);
         const std::size_t outside = fluid->grains_outside(sim.particles);
-        const std::size_t immersed = fluid->grains_in_still_water(sim.particles);
+        const std::size_t immersed = fluid->grains_in_free_water(sim.particles);
         if (outside > immersed) {
           *options.log << fmt::format(
               "{} of {} grains have their centres outside the fluid grid{}: no fluid force or buoyancy on "
@@ -472,7 +472,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         }
         if (immersed > 0) {
           *options.log << fmt::format(
-              "{} of {} grains are outside the fluid grid below [fluid] water_level: in still water "
+              "{} of {} grains are outside the fluid grid below [fluid] water_level: in free water "
               "(buoyancy and a lone grain's drag)\n",
               immersed, sim.particles.size());
         }

@@ -86,7 +86,7 @@ bed="$src/examples/fluid_cases/hydrostatic_bed.toml"
   && grep -q 'Name="pressure"' "$work/bed/fluid_00000.vti" \
   && head -1 "$work/bed/probes.csv" | grep -q ",pressure_profile_0,.*,pressure_profile_4$" \
   && grep -q '"fluid": {"cells": 36' "$work/bed/run.json" && grep -q "fluid balance so far" "$work/bed.log" \
-  && grep -q '"grains_outside_grid": 0, "grains_in_still_water": 0}' "$work/bed/run.json" \
+  && grep -q '"grains_outside_grid": 0, "grains_in_free_water": 0}' "$work/bed/run.json" \
   && ok "fluid run writes .vti snapshots, profile probes and the balance" || bad "fluid run ($rc)"
 # The progress line at a stage's end: the time left is 0, not "-0" (the
 # last step may end a hair past the stage's end).

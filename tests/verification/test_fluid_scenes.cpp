@@ -365,11 +365,17 @@ TEST(FluidScenes, SheetPileHeave) {
   //   creeping), no grain passes under the pile, and the floor below the
   //   pile is at p_up / 2 within 3 % (measured -0.57 %: the probe is 1 mm
   //   above the floor, by the tip's singular corner);
-  // - p_up = 1.5 x 2 W' (the scene as written): the bed is still rising
-  //   over the same half second by more than 20 % of a diameter (measured
-  //   0.824 mm; 0.517 mm before the grains lifted out of the grid were put
-  //   in still water by the scene's water_level) and grains are carried
-  //   under the pile (measured 46 by 1.1 s; 33 before).
+  // - p_up = 1.5 x 2 W' (the scene as written): the bed heaves. Which
+  //   way a heaving bed goes is sensitive to small changes: scaling the
+  //   lone-grain drag on the few grains above the grid by 0.998 to 1.003
+  //   gave, over 0.6 to 1.1 s, rises of 0.095 to 0.906 mm and 8 to 51
+  //   grains carried under the pile by 1.1 s (session 15, six runs). So
+  //   the criteria are those that every such run met with a margin of about
+  //   2: the bed risen by 1.1 s by more than 20 % of a diameter since
+  //   the head stage began at 0.1 s (measured 0.44 to 1.37 mm), still
+  //   rising over 0.6 to 1.1 s by more than the 5 % of a diameter that the
+  //   rest case stays within (measured 0.095 mm at least), and at least 4
+  //   grains carried under the pile (8 at least; none at rest).
   const double r = 0.49e-3;
   const double w_sub = (2650.0 - 1000.0) * 9.81 * 254.0 * std::numbers::pi * r * r / 0.02;
   auto heave = darcydem::testing::load_scene<2>("examples/fluid_cases/sheet_pile_heave.toml");
@@ -393,19 +399,23 @@ TEST(FluidScenes, SheetPileHeave) {
   run_scene(heave, options);
   const auto heaving = read_probes(options.out_dir + "/probes.csv");
   const double d = 2.0 * r;
-  auto rise = [&](const auto& probes) {
-    return probe_at(probes, "downstream_mean_y", 1.1) - probe_at(probes, "downstream_mean_y", 0.6);
+  auto rise = [&](const auto& probes, double from) {
+    return probe_at(probes, "downstream_mean_y", 1.1) - probe_at(probes, "downstream_mean_y", from);
   };
+  auto rise_late = [&](const auto& probes) { return rise(probes, 0.6); };
   std::printf(
-      "sheet pile: at 0.65 x 2 W' the downstream bed rises %.4f mm from 0.6 to 1.1 s; at 1.5 x %.4f mm\n",
-      1e3 * rise(at_rest), 1e3 * rise(heaving));
-  EXPECT_LT(std::abs(rise(at_rest)), 0.05 * d);
+      "sheet pile: at 0.65 x 2 W' the downstream bed rises %.4f mm from 0.6 to 1.1 s (%.4f mm from 0.1 s); "
+      "at 1.5 x %.4f mm (%.4f mm from 0.1 s), %g grains carried under the pile\n",
+      1e3 * rise_late(at_rest), 1e3 * rise(at_rest, 0.1), 1e3 * rise_late(heaving), 1e3 * rise(heaving, 0.1),
+      probe_at(heaving, "downstream_grains", 1.1) - 254.0);
+  EXPECT_LT(std::abs(rise_late(at_rest)), 0.05 * d);
   EXPECT_EQ(probe_at(at_rest, "downstream_grains", 1.1), 254.0);
   const double floor = probe_at(at_rest, "floor_pressure_below_pile", 1.1);
   std::printf("sheet pile: floor below the pile %.3f Pa against p_up / 2 = %.3f Pa\n", floor, 0.5 * p_rest);
   EXPECT_NEAR(floor, 0.5 * p_rest, 0.03 * 0.5 * p_rest);
-  EXPECT_GT(rise(heaving), 0.2 * d);
-  EXPECT_GT(probe_at(heaving, "downstream_grains", 1.1), 254.0 + 10.0);
+  EXPECT_GT(rise(heaving, 0.1), 0.2 * d);
+  EXPECT_GT(rise_late(heaving), 0.05 * d);
+  EXPECT_GE(probe_at(heaving, "downstream_grains", 1.1), 254.0 + 4.0);
 }
 
 TEST(FluidScenes, TerzaghiConsolidation) {

@@ -53,12 +53,12 @@ inline double wen_yu_cd_re(double re) {
   return re < 1000.0 ? 24.0 * (1.0 + 0.15 * std::pow(re, 0.687)) : 0.44 * re;
 }
 
-/// The drag of a grain alone in still water, per unit of its volume and of
-/// its speed (N s/m^4): 3/4 C_d Re mu / d^2 with Wen and Yu's C_d Re at
-/// n = 1 and Re = rho_f d |v| / mu, so that the force on a sphere is
-/// Schiller and Naumann's 3 pi mu d |v| (1 + 0.15 Re^0.687) (0.44 C_d
+/// The drag of a grain alone in water, per unit of its volume and of its
+/// slip speed (N s/m^4): 3/4 C_d Re mu / d^2 with Wen and Yu's C_d Re at
+/// n = 1 and Re = rho_f d |slip| / mu, so that the force on a sphere is
+/// Schiller and Naumann's 3 pi mu d |slip| (1 + 0.15 Re^0.687) (0.44 C_d
 /// above Re = 1000).
-inline double still_water_drag(double d, double speed, const FluidProperties& f) {
+inline double lone_grain_drag(double d, double speed, const FluidProperties& f) {
   return 0.75 * wen_yu_cd_re(f.density * d * speed / f.viscosity) * f.viscosity / (d * d);
 }
 

@@ -83,10 +83,12 @@ class PoreFluid final : public ParticleForceField<D> {
   /// compare with a closed form that assumes a constant k).
   bool permeability_frozen = false;
   /// The height of a free water surface (along y in 2D, z in 3D), m: a
-  /// grain whose centre is outside the grid and below it is in still water,
+  /// grain whose centre is outside the grid and below it is in free water,
   /// with its buoyancy, -rho_f g V_p, and a grain's drag alone in water
-  /// (still_water_drag), e.g. a grain lifted above a heaving bed. NaN (the
-  /// default): no fluid outside the grid, as above the water.
+  /// (lone_grain_drag), e.g. a grain lifted above a heaving bed. Above the
+  /// grid's top the water rises at the Darcy flux through the top face
+  /// below; beside or below the grid it is still. NaN (the default): no
+  /// fluid outside the grid, as above the water.
   double water_level = std::numeric_limits<double>::quiet_NaN();
 
   PoreFluid(PressureSolverKind solver = PressureSolverKind::cg, double tolerance = 1e-10,
@@ -163,8 +165,8 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Grains whose centres are outside the grid: the fluid exerts no force
   /// (and no buoyancy) on them, as on grains above the water.
   [[nodiscard]] std::size_t grains_outside(const ParticleData<D>& particles) const;
-  /// Of those, the grains below water_level: in still water.
-  [[nodiscard]] std::size_t grains_in_still_water(const ParticleData<D>& particles) const;
+  /// Of those, the grains below water_level: in free water.
+  [[nodiscard]] std::size_t grains_in_free_water(const ParticleData<D>& particles) const;
   /// Flow into the grid through one side in the last step, m^3/s.
   [[nodiscard]] double side_inflow(int side) const { return side_inflow_[side]; }
   /// Flow into the grid through one patch (index in `patches`) in the last
