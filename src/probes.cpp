@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "darcydem/fluid/ball_overlap.hpp"
+
 namespace darcydem {
 
 template <int D>
@@ -11,6 +13,36 @@ std::size_t topmost_particle(const ParticleData<D>& particles) {
     if (particles.position[i][D - 1] > particles.position[best][D - 1]) best = i;
   }
   return best;
+}
+
+template <int D>
+double box_porosity(const ParticleData<D>& particles, const Vec<D>& lo, const Vec<D>& hi) {
+  std::array<double, D> a{};
+  std::array<double, D> b{};
+  for (int k = 0; k < D; ++k) {
+    a[k] = lo[k];
+    b[k] = hi[k];
+  }
+  double solid = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const double r = particles.radius[i];
+    const Vec<D>& x = particles.position[i];
+    bool apart = false;
+    bool within = true;
+    for (int k = 0; k < D; ++k) {
+      apart = apart || x[k] + r <= lo[k] || x[k] - r >= hi[k];
+      within = within && x[k] - r >= lo[k] && x[k] + r <= hi[k];
+    }
+    if (apart) continue;
+    if (within) {
+      solid += particle_volume<D>(r);
+      continue;
+    }
+    std::array<double, D> c{};
+    for (int k = 0; k < D; ++k) c[k] = x[k];
+    solid += ball_overlap::in_box<D>(r, c, a, b);
+  }
+  return 1.0 - solid / (hi - lo).prod();
 }
 
 template <int D>
@@ -51,6 +83,18 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       return fluid != nullptr ? fluid->total_balance().imbalance() : 0.0;
     case ProbeQuantity::fluid_iterations:
       return fluid != nullptr ? fluid->last_solve().iterations : 0.0;
+    case ProbeQuantity::stress:
+    case ProbeQuantity::porosity: {
+      Vec<D> lo;
+      Vec<D> hi;
+      for (int k = 0; k < D; ++k) {
+        lo[k] = probe.box_min[k];
+        hi[k] = probe.box_max[k];
+      }
+      if (probe.quantity == ProbeQuantity::porosity) return box_porosity<D>(p, lo, hi);
+      const auto s = sim.contact_stress(lo, hi);
+      return probe.tensor[0] < 0 ? s.trace() / D : s(probe.tensor[0], probe.tensor[1]);
+    }
     case ProbeQuantity::particles_in_box:
     case ProbeQuantity::mean_particle_position: {
       double count = 0.0;
@@ -74,6 +118,8 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
 
 template double evaluate_probe<2>(const ProbeSpec&, const Simulation<2>&, const PoreFluid<2>*);
 template double evaluate_probe<3>(const ProbeSpec&, const Simulation<3>&, const PoreFluid<3>*);
+template double box_porosity<2>(const ParticleData<2>&, const Vec<2>&, const Vec<2>&);
+template double box_porosity<3>(const ParticleData<3>&, const Vec<3>&, const Vec<3>&);
 template std::size_t topmost_particle<2>(const ParticleData<2>&);
 template std::size_t topmost_particle<3>(const ParticleData<3>&);
 

@@ -207,6 +207,17 @@ std::int64_t axis_component(TableReader& r, std::string_view key, bool allow_nor
   return c[0] - 'x';
 }
 
+/// A stress component: "xx", "xy", ... (i, j), or "mean" (-1, -1).
+template <int D>
+std::array<int, 2> tensor_component(TableReader& r, std::string_view key) {
+  std::vector<std::string> allowed = D == 2 ? std::vector<std::string>{"xx", "yy", "xy"}
+                                            : std::vector<std::string>{"xx", "yy", "zz", "xy", "xz", "yz"};
+  allowed.emplace_back("mean");
+  const std::string c = r.choice(key, allowed);
+  if (c == "mean") return {-1, -1};
+  return {c[0] - 'x', c[1] - 'x'};
+}
+
 template <int D>
 void check_initial_overlaps(const Simulation<D>& sim, double tolerance,
                             const std::vector<std::string>& origin) {
@@ -542,14 +553,15 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         "quantity", {"particle_position", "particle_velocity", "wall_position", "wall_force",
                      "kinetic_energy", "contact_count", "coordination", "max_overlap", "unbalanced_force",
                      "pore_pressure", "pore_pressure_profile", "fluid_inflow", "fluid_balance",
-                     "fluid_iterations", "particles_in_box", "mean_particle_position"});
+                     "fluid_iterations", "particles_in_box", "mean_particle_position", "stress", "porosity"});
     r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points", "min", "max"});
     const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
                              q == "fluid_balance" || q == "fluid_iterations";
     if (fluid_probe && !scene.fluid) {
       r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
     }
-    const bool box_probe = q == "particles_in_box" || q == "mean_particle_position";
+    const bool box_probe =
+        q == "particles_in_box" || q == "mean_particle_position" || q == "stress" || q == "porosity";
     for (std::string k : {"position", "side", "from", "to", "points", "min", "max"}) {
       const bool applies = (q == "pore_pressure" && k == "position") ||
                            (q == "fluid_inflow" && k == "side") ||
@@ -574,9 +586,12 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       return;
     }
     if (box_probe) {
-      // The particles whose centres lie in [min, max] at each output time.
-      p.quantity =
-          q == "particles_in_box" ? ProbeQuantity::particles_in_box : ProbeQuantity::mean_particle_position;
+      // The particles whose centres lie in [min, max] at each output time
+      // (stress: their contacts; porosity: the grains' parts in the box).
+      p.quantity = q == "particles_in_box"         ? ProbeQuantity::particles_in_box
+                   : q == "mean_particle_position" ? ProbeQuantity::mean_particle_position
+                   : q == "stress"                 ? ProbeQuantity::stress
+                                                   : ProbeQuantity::porosity;
       p.box_min = r.numbers("min", D);
       p.box_max = r.numbers("max", D);
       for (int k = 0; k < D; ++k) {
@@ -589,8 +604,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       }
       if (q == "mean_particle_position") {
         p.component = static_cast<int>(axis_component<D>(r, "component", false));
+      } else if (q == "stress") {
+        p.tensor = tensor_component<D>(r, "component");
       } else if (r.has("component")) {
-        r.fail("component", "does not apply to quantity \"particles_in_box\"");
+        r.fail("component", fmt::format("does not apply to quantity \"{}\"", q));
       }
       for (auto k : {"particle", "wall"}) {
         if (r.has(k)) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));

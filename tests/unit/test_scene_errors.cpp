@@ -485,6 +485,30 @@ TEST(SceneErrors, BoxProbesAreChecked) {
   EXPECT_NE(msg.find("missing required key 'min'"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, StressAndPorosityProbesAreChecked) {
+  // The box as for the other box probes; stress needs a tensor component
+  // of the scene's dimension (or "mean"), porosity takes none.
+  const std::string probe =
+      "\n[[probe]]\nname = \"s\"\nquantity = \"stress\"\nmin = [-0.001, 0.0]\nmax = [0.001, 0.01]\n"
+      "component = \"yy\"\n";
+  const std::string good = replace(kGood, "[[stage]]", probe + "\n[[stage]]");
+  EXPECT_EQ(load_error(good), "");
+  EXPECT_EQ(load_error(replace(good, "\"yy\"", "\"mean\"")), "");
+  auto msg = load_error(replace(good, "\"yy\"", "\"zz\""));  // the scene is 2D
+  EXPECT_NE(msg.find("[[probe]] #1 key 'component'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("\"xx\", \"yy\", \"xy\", \"mean\""), std::string::npos) << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, "component = \"yy\"\n", ""));
+  EXPECT_NE(msg.find("missing required key 'component'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "quantity = \"stress\"", "quantity = \"porosity\""));
+  EXPECT_NE(msg.find("key 'component': does not apply to quantity \"porosity\""), std::string::npos) << msg;
+  EXPECT_EQ(load_error(replace(replace(good, "quantity = \"stress\"", "quantity = \"porosity\""),
+                               "component = \"yy\"\n", "")),
+            "");
+  msg = load_error(replace(good, "max = [0.001, 0.01]", "max = [0.001, -0.01]"));
+  EXPECT_NE(msg.find("key 'max': must be greater than 'min'"), std::string::npos) << msg;
+}
+
 TEST(SceneErrors, FluidProbeWithoutFluidIsRefused) {
   const auto msg =
       load_error(std::string(kGood) +

@@ -189,6 +189,58 @@ TEST(FluidScenes, HydrostaticBed) {
   // 1e-6 of the bed's submerged stress at the floor.
   const double stress = submerged / (0.006 * 0.006);
   for (double u : scene.fluid->pressure()) EXPECT_LT(std::abs(u), 1e-6 * stress);
+
+  // The contacts' mean stress over a box holding the whole bed
+  // (Simulation::contact_stress; the effective stress, as the grains' own
+  // contacts carry it). (1) Against the same sum rearranged:
+  // -V sigma = sum over particles and contacts of (x_c - x_p) (x) f_c = sum
+  // over wall contacts of x_c (x) f_c - sum over particles of x_p (x) F_p,
+  // F_p the contact force on p: its total force less its weight and the
+  // fluid's force. The walls are frictionless planes at fixed coordinates
+  // (the floor z = 0, the sides x or y = 0 and 6 mm), so on the diagonal
+  // their terms are 6 mm x the x_high (y_high) wall's force and nothing for
+  // the floor. Only the dashpots, taken at the step's end velocities, can
+  // separate the two; in this bed at rest, bound 1e-9 (round-off). (2) The
+  // statics of soil mechanics: at rest in still water the contacts carry
+  // the submerged weight, so V sigma_zz = sum of z_p (m_p - rho_f V_p) g
+  // (the floor's contacts lie on z = 0), within 0.5 % as the floor's load.
+  const auto& p = sim.particles;
+  const Vec<3> lo(-0.001, -0.001, -0.001);
+  const Vec<3> hi(0.007, 0.007, 0.02);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    ASSERT_TRUE((p.position[i].array() > lo.array()).all() && (p.position[i].array() < hi.array()).all());
+  }
+  const double volume = (hi - lo).prod();
+  const auto sigma = sim.contact_stress(lo, hi);
+  Vec<3> moment = Vec<3>::Zero();  // the diagonal of the rearranged sum
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec<3> contact = p.force[i] - sim.gravity / p.inv_mass[i] - sim.field_forces()[i];
+    moment -= p.position[i].cwiseProduct(contact);
+  }
+  auto wall = [&](const char* name) -> const Wall<3>& {
+    for (const auto& w : sim.walls) {
+      if (w.name == name) return w;
+    }
+    throw std::runtime_error(name);
+  };
+  moment.x() += 0.006 * -wall("x_high").force.x();
+  moment.y() += 0.006 * -wall("y_high").force.y();
+  const double mean_stress = sigma.trace() / 3.0;
+  std::printf(
+      "hydrostatic bed: contact stress diagonal %.9g %.9g %.9g Pa, from the rearranged sum %.9g %.9g %.9g "
+      "Pa\n",
+      sigma(0, 0), sigma(1, 1), sigma(2, 2), -moment.x() / volume, -moment.y() / volume,
+      -moment.z() / volume);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(sigma(k, k), -moment[k] / volume, 1e-9 * mean_stress) << "axis " << k;
+  double weight_moment = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double v = particle_volume<3>(p.radius[i]);
+    weight_moment += p.position[i].z() * (1.0 / p.inv_mass[i] - scene.fluid->fluid.density * v) * 9.80665;
+  }
+  std::printf("hydrostatic bed: V sigma_zz %.9g N m against the submerged weight's moment %.9g N m\n",
+              sigma(2, 2) * volume, weight_moment);
+  EXPECT_NEAR(sigma(2, 2) * volume, weight_moment, 0.005 * weight_moment);
 }
 
 TEST(FluidScenes, UpwardSeepageThroughABed) {

@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 
 #include "darcydem/generation/generators.hpp"
 #include "dem_setup.hpp"
@@ -33,6 +36,173 @@ TEST(ColumnSettling, MatchesLinearSpringClosedForm) {
   EXPECT_NEAR(settlement, expected, 0.005 * expected);
   // The floor carries the whole weight (force balance), 0.5% as well.
   EXPECT_NEAR(-sim.walls[0].force.y(), 50.0 * m * g, 0.005 * 50.0 * m * g);
+}
+
+// The contacts' mean stress (Simulation::contact_stress) in the settled
+// column. Its statics are known exactly: the contact above disc k (0 at the
+// bottom) carries F_a = (49 - k) m g and the one below F_b = (50 - k) m g,
+// the springs compressed by F / k_n; a contact point lies r - F / (2 k_n)
+// from each disc's centre, and the floor's on the floor, r - F / k_n from
+// it. So a box of 2r x 2r (x 1 m) round disc k holds
+//   sigma_yy = (F_a (r - F_a / 2k_n) + F_b (r - F_b / (2 or 1) k_n)) / 4r^2,
+// compression positive, and sigma_xx = sigma_xy = 0 (the side walls touch
+// without overlap); a box round the whole column holds the sum over the
+// branch vectors (2r - F / k_n) F and the floor's (r - 50 m g / k_n) 50 m g.
+// Tolerance 1e-5 of the bottom disc's stress (about 0.01 Pa), at every
+// disc: the run stops at an unbalanced-force ratio of 1e-6, while the
+// column still compresses slowly; its dashpots then add about the same
+// force at every contact, measured 9e-5 of a disc's weight (0.0019 Pa).
+TEST(ContactStress, OfTheSettledColumnDiscByDisc) {
+  auto scene = testing::load_scene<2>("examples/column_settling/column.toml");
+  auto& sim = scene.simulation;
+  testing::run_stages(scene);
+  const double r = 5e-4;
+  const double k_n = 1e5;
+  const double w = 2650.0 * std::numbers::pi * r * r * 9.80665;
+  double column = 0.0;
+  const double bottom = (49 * w * (r - 49 * w / (2 * k_n)) + 50 * w * (r - 50 * w / k_n)) / (4 * r * r);
+  for (int k = 0; k < 50; ++k) {
+    const double f_above = (49 - k) * w;
+    const double f_below = (50 - k) * w;
+    const double arm_below = k == 0 ? r - f_below / k_n : r - f_below / (2 * k_n);
+    const double expected = (f_above * (r - f_above / (2 * k_n)) + f_below * arm_below) / (4 * r * r);
+    const Vec<2> x = sim.particles.position[static_cast<std::size_t>(k)];
+    const auto s = sim.contact_stress(x - Vec<2>::Constant(r), x + Vec<2>::Constant(r));
+    EXPECT_NEAR(s(1, 1), expected, 1e-5 * bottom) << "disc " << k;
+    EXPECT_NEAR(s(0, 0), 0.0, 1e-12 * bottom) << "disc " << k;
+    EXPECT_NEAR(s(0, 1), 0.0, 1e-12 * bottom) << "disc " << k;
+    column += k == 0 ? f_below * arm_below : 0.0;
+    column += k < 49 ? f_above * (2 * r - f_above / k_n) : 0.0;
+  }
+  const double top = sim.particles.position[49].y() + r;
+  const auto s = sim.contact_stress(Vec<2>(-r, 0.0), Vec<2>(r, top));
+  const double expected = column / (2 * r * top);
+  std::printf("column: sigma_yy over the whole column %.9g Pa against %.9g Pa\n", s(1, 1), expected);
+  EXPECT_NEAR(s(1, 1), expected, 1e-5 * expected);
+}
+
+namespace {
+
+/// The diagonal of -V sigma = sum over the particles in a box holding them
+/// all and their contacts of (x_c - x_p) (x) f_c, rearranged without the
+/// contact forces between grains: the two sides of such a contact share x_c
+/// and their forces cancel, which leaves sum over wall contacts of x_c (x)
+/// f_c - sum over particles of x_p (x) F_p, F_p the contact force on p (its
+/// total force less its weight). The walls are planes through the origin
+/// and at `far` along each axis, so on the diagonal a wall's term is its
+/// plane's coordinate times the force it exerts along its normal.
+template <int D>
+Vec<D> rearranged_moment(const Simulation<D>& sim, double far) {
+  const auto& p = sim.particles;
+  Vec<D> moment = Vec<D>::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec<D> contact = p.force[i] - sim.gravity / p.inv_mass[i];
+    moment -= p.position[i].cwiseProduct(contact);
+  }
+  for (const auto& w : sim.walls) {
+    for (int k = 0; k < D; ++k) {
+      if (w.normal[k] < -0.5) moment[k] += far * -w.force[k];
+    }
+  }
+  return moment;
+}
+
+/// A random bed of `count` grains (radii 0.4 to 0.6 mm) dropped into a
+/// box `far` wide with a floor and four (2D: two) side walls, settled for
+/// `settle` s with local damping 0.7; contacts between grains as `spec`, with
+/// the walls the same but frictionless (so that a wall's contacts push only
+/// along its normal, as rearranged_moment takes them).
+template <int D>
+Simulation<D> random_bed(const ContactSpec& spec, double youngs, double poisson, int count, double far,
+                         double settle) {
+  auto sim = testing::single_material<D>(2650.0, spec, youngs, poisson);
+  sim.materials.push_back(Material{"wall", 2650.0, youngs, poisson});
+  ContactSpec smooth = spec;
+  smooth.friction = 0.0;
+  smooth.rolling_friction = 0.0;
+  const Material& grain = sim.materials[0];
+  const Material& wall = sim.materials[1];
+  sim.contact_table = ContactTable(2);
+  sim.contact_table.set(0, 0, make_pair_parameters(grain, grain, spec));
+  sim.contact_table.set(0, 1, make_pair_parameters(grain, wall, smooth));
+  sim.contact_table.set(1, 1, make_pair_parameters(wall, wall, smooth));
+  RadiusDistribution radii;
+  radii.kind = RadiusDistribution::Kind::uniform;
+  radii.min = 0.4e-3;
+  radii.max = 0.6e-3;
+  Vec<D> top = Vec<D>::Constant(far);
+  top[D - 1] = 4 * far;
+  const auto packing = random_packing<D>(Vec<D>::Zero(), top, count, radii, 7, 1000);
+  for (std::size_t i = 0; i < packing.position.size(); ++i)
+    sim.particles.add(packing.position[i], packing.radius[i], 2650.0, 0, false);
+  for (int k = 0; k < D; ++k) {
+    const Vec<D> axis = Vec<D>::Unit(k);
+    sim.walls.push_back(testing::plane<D>(Vec<D>::Zero(), axis, "low"));
+    if (k < D - 1) sim.walls.push_back(testing::plane<D>(far * axis, -axis, "high"));
+  }
+  for (auto& w : sim.walls) w.material = 1;
+  sim.gravity[D - 1] = -9.81;
+  sim.damping.local = 0.7;
+  sim.time_step = 0.2 * sim.critical_time_step();
+  sim.prepare();
+  sim.advance(static_cast<std::uint64_t>(settle / sim.time_step));
+  return sim;
+}
+
+/// contact_stress over a box holding the whole bed against the rearranged
+/// sum. Contact forces between grains enter only the first; the two differ
+/// only by the dashpots, which contact_stress takes at the step's end
+/// velocities (the force evaluation at those of its middle). Without
+/// dashpots (restitution 1) they agree to round-off whatever the grains do;
+/// with them, in a bed at rest (its fastest grain printed). Bound 1e-9 of
+/// the mean stress: round-off in sums of a few thousand terms.
+/// (Soft linear contacts with dashpots, restitution 0.3, grains still
+/// rattling at up to 0.3 mm/s: 1.6e-2; the dashpots at the two times differ
+/// by the damping coefficient times (a_i - a_j) dt / 2.)
+template <int D>
+void expect_rearranged_sum(const Simulation<D>& sim, double far, const char* what) {
+  const Vec<D> lo = Vec<D>::Constant(-far);
+  const Vec<D> hi = Vec<D>::Constant(10 * far);
+  const double volume = (hi - lo).prod();
+  const auto sigma = sim.contact_stress(lo, hi);
+  const Vec<D> moment = rearranged_moment(sim, far);
+  const double mean = sigma.trace() / D;
+  double worst = 0.0;
+  for (int k = 0; k < D; ++k) worst = std::max(worst, std::abs(sigma(k, k) + moment[k] / volume) / mean);
+  double fastest = 0.0;
+  for (const auto& v : sim.particles.velocity) fastest = std::max(fastest, v.norm());
+  std::printf(
+      "%s: mean stress %.6g Pa, the diagonal against the rearranged sum within %.2g of it; fastest grain "
+      "%.2g "
+      "m/s\n",
+      what, mean, worst, fastest);
+  EXPECT_GT(mean, 0.0);
+  for (int k = 0; k < D; ++k)
+    EXPECT_NEAR(sigma(k, k), -moment[k] / volume, 1e-9 * mean) << what << ", axis " << k;
+  // Horizontal stresses in a frictional bed: neither zero nor the vertical.
+  EXPECT_GT(sigma(0, 0), 0.05 * sigma(D - 1, D - 1)) << what;
+}
+
+}  // namespace
+
+// The contacts' stress in frictional random beds, where grains also push
+// sideways and the tangential springs carry load: linear contacts (the
+// batched force pass), Hertz-Mindlin with rolling resistance (the general
+// one), 2D and 3D.
+TEST(ContactStress, EqualsTheRearrangedSumInFrictionalRandomBeds) {
+  ContactSpec linear;
+  linear.normal_stiffness = 1e3;
+  linear.restitution = 1.0;  // no dashpots (local damping settles the bed)
+  linear.friction = 0.5;
+  expect_rearranged_sum(random_bed<3>(linear, 0.0, 0.0, 100, 6e-3, 0.3), 6e-3, "3D linear");
+  ContactSpec discs = linear;  // discs of 1 m: as stiff for their weight per metre as the spheres
+  discs.normal_stiffness = 1e6;
+  expect_rearranged_sum(random_bed<2>(discs, 0.0, 0.0, 60, 10e-3, 0.3), 10e-3, "2D linear");
+  ContactSpec hertz = linear;
+  hertz.restitution = 0.3;  // with dashpots, in a bed at rest (0.6 s)
+  hertz.law = NormalLaw::hertz_mindlin;
+  hertz.rolling_friction = 0.1;
+  expect_rearranged_sum(random_bed<3>(hertz, 5e7, 0.3, 100, 6e-3, 0.6), 6e-3, "3D Hertz, rolling resistance");
 }
 
 // Undamped, frictionless discs bouncing in a box under gravity: velocity

@@ -1,6 +1,7 @@
 #pragma once
 // A scene: the simulation set up from a TOML file, with what to output and
 // the list of stages to run. Documented key by key in docs/SCENE.md.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -31,6 +32,8 @@ enum class ProbeQuantity {
   fluid_iterations,        ///< iterations of the last pressure solve
   particles_in_box,        ///< how many particle centres lie in a box
   mean_particle_position,  ///< one component of their mean centre, m (NaN with none)
+  stress,    ///< a component of the contacts' mean stress in a box, Pa (Simulation::contact_stress)
+  porosity,  ///< 1 - the grains' volume in a box (exact overlaps) / its volume
 };
 
 struct ProbeSpec {
@@ -39,9 +42,11 @@ struct ProbeSpec {
   std::int64_t particle = -1;  ///< creation index; -1: the topmost particle
   int component = 0;           ///< 0..D-1, or -1 for the norm
   std::size_t wall = 0;
-  std::vector<double> position;          ///< pore_pressure: the point, m
-  int side = 0;                          ///< fluid_inflow: x_min, x_max, y_min, ...
-  std::vector<double> box_min, box_max;  ///< particles_in_box, mean_particle_position: the box, m
+  std::vector<double> position;  ///< pore_pressure: the point, m
+  int side = 0;                  ///< fluid_inflow: x_min, x_max, y_min, ...
+  std::vector<double> box_min,
+      box_max;  ///< particles_in_box, mean_particle_position, stress, porosity: the box, m
+  std::array<int, 2> tensor{0, 0};  ///< stress: the component (i, j); (-1, -1) the mean, trace / D
 };
 
 struct OutputSpec {

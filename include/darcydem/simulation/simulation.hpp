@@ -73,6 +73,13 @@ class Simulation {
   [[nodiscard]] double unbalanced_force_ratio()
       const;  ///< mean |F_i| / mean |F_contact| (needs measure_contact_forces)
   [[nodiscard]] double elastic_energy() const;  ///< J, normal springs of linear contacts
+  /// The mean stress of the contact forces in the box [lo, hi] (Love and
+  /// Weber), Pa, compression positive: -(1/V) sum over the particles whose
+  /// centres lie in the box and over their contacts (with particles and
+  /// walls) of (x_c - x_p) (x) f_c, symmetrised; V is the box's volume (2D:
+  /// area x 1 m). In a saturated bed the contacts carry the effective
+  /// stress. Forces as in the last evaluation (src/contact_stress.cpp).
+  [[nodiscard]] Eigen::Matrix<double, D, D> contact_stress(const Vec<D>& lo, const Vec<D>& hi) const;
   [[nodiscard]] const VerletList<D>& pair_list() const { return list_; }
   [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
   /// Bytes held by the particle, list and wall-contact arrays (capacity).

@@ -1,0 +1,78 @@
+// Simulation::contact_stress: the mean stress of the contact forces over a
+// box (Love-Weber), the effective stress of a saturated bed.
+#include <cmath>
+#include <stdexcept>
+
+#include "darcydem/contact/contact_kernel.hpp"
+#include "darcydem/simulation/simulation.hpp"
+
+namespace darcydem {
+
+template <int D>
+Eigen::Matrix<double, D, D> Simulation<D>::contact_stress(const Vec<D>& lo, const Vec<D>& hi) const {
+  if (!prepared_) throw std::logic_error("Simulation::contact_stress before prepare");
+  const auto& p = particles;
+  const auto& L = list_;
+  const auto& W = wall_list_;
+  auto in_box = [&](std::size_t i) {
+    return (p.position[i].array() >= lo.array()).all() && (p.position[i].array() <= hi.array()).all();
+  };
+  // sum over the particles in the box and their contacts of (x_c - x_p) (x) f_c.
+  Eigen::Matrix<double, D, D> moment = Eigen::Matrix<double, D, D>::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const bool i_in = in_box(i);
+    for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
+      const std::uint32_t j = L.neighbour[k];
+      const bool j_in = in_box(j);
+      if (!i_in && !j_in) continue;
+      const Vec<D> d = p.position[j] - p.position[i];
+      const double reach = p.radius[i] + p.radius[j];
+      const double inv_m = p.inv_mass[i] + p.inv_mass[j];
+      const double dist = d.norm();
+      if (dist >= reach || inv_m == 0.0) continue;
+      // The force of the last evaluation, recomputed: the positions are
+      // those it saw, and the tangential spring it left, xi, gives its
+      // tangential force -k_t xi - c_t v_t whether the contact stuck or
+      // slid (contact_kernel.hpp). The dashpots take the velocities of the
+      // step's end (the evaluation saw those of its middle).
+      const Vec<D> nrm = d / dist;
+      const double overlap = reach - dist;
+      const double arm_i = p.radius[i] - 0.5 * overlap;
+      const double arm_j = p.radius[j] - 0.5 * overlap;
+      const Vec<D> v_rel =
+          p.velocity[i] - p.velocity[j] +
+          cross(AngVec<D>(p.angular_velocity[i] * arm_i + p.angular_velocity[j] * arm_j), nrm);
+      const double vn = v_rel.dot(nrm);
+      const double sqrt_m = std::sqrt(1.0 / inv_m);
+      const PairParameters& pp = contact_table(p.material[i], p.material[j]);
+      const NormalResponse nr =
+          MixedNormalLaw::evaluate(pp, overlap, vn, sqrt_m, p.radius[i] * p.radius[j] / reach);
+      const Vec<D> vt = v_rel - vn * nrm;
+      Vec<D> f_on_i = -nr.force * nrm;
+      if (pp.friction > 0.0) {
+        f_on_i += -nr.tangential_stiffness * L.tangential[k] -
+                  pp.tangential_damping * sqrt_m * nr.sqrt_tangential_stiffness * vt;
+      }
+      // The contact point is arm_i from i along n and arm_j from j against
+      // it; the force on j is -f_on_i.
+      if (i_in) moment += (arm_i * nrm) * f_on_i.transpose();
+      if (j_in) moment += (-arm_j * nrm) * (-f_on_i).transpose();
+    }
+    if (!i_in) continue;
+    for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
+      // Wall contacts keep their force; the contact point is on the wall.
+      const Vec<D>& f = W.force_on_particle[k];
+      if (f.squaredNorm() == 0.0) continue;
+      const auto touch = walls[W.wall[k]].touch(p.position[i]);
+      moment += (-touch.gap * touch.normal) * f.transpose();
+    }
+  }
+  const double volume = (hi - lo).prod();  // 2D: area x 1 m
+  const Eigen::Matrix<double, D, D> stress = -moment / volume;
+  return 0.5 * (stress + stress.transpose());
+}
+
+template Eigen::Matrix<double, 2, 2> Simulation<2>::contact_stress(const Vec<2>&, const Vec<2>&) const;
+template Eigen::Matrix<double, 3, 3> Simulation<3>::contact_stress(const Vec<3>&, const Vec<3>&) const;
+
+}  // namespace darcydem
