@@ -265,6 +265,31 @@ TEST(FluidScenes, UpwardSeepageThroughABed) {
   EXPECT_NEAR(floor, submerged - thrust, 0.01 * thrust);
   // In = out once steady.
   EXPECT_NEAR(f.side_inflow(5), -f.side_inflow(4), 1e-6 * f.side_inflow(4));
+  // Terzaghi's principle through the contacts: the seepage force takes
+  // over part of the submerged weight, so the grains' contacts carry less.
+  // With a uniform gradient i, the seepage force on each grain is
+  // proportional to its volume, and the effective stress integrated over
+  // the bed, V sigma'_zz (Simulation::contact_stress over a box holding
+  // it), is that of the bed at rest, sum of z_p W'_p, times 1 - i / i_c =
+  // 1 - (seepage force) / W'. Bound 2 %: the seepage force per grain
+  // volume follows each cell's porosity and drag, and its moment about the
+  // floor is 1.3 % below a uniform one's (measured from the grains' fluid
+  // forces, which account for the whole of the +1.24 % found).
+  const auto& p = sim.particles;
+  const Vec<3> lo(-0.001, -0.001, -0.001);
+  const Vec<3> hi(0.007, 0.007, 0.02);
+  double at_rest = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    ASSERT_TRUE((p.position[i].array() > lo.array()).all() && (p.position[i].array() < hi.array()).all());
+    const double v = particle_volume<3>(p.radius[i]);
+    at_rest += p.position[i].z() * (1.0 / p.inv_mass[i] - f.fluid.density * v) * 9.80665;
+  }
+  const double carried = sim.contact_stress(lo, hi)(2, 2) * (hi - lo).prod();
+  const double expected = at_rest * (1.0 - thrust / submerged);
+  std::printf(
+      "upward seepage: V sigma'_zz %.6e N m, at rest %.6e N m, times 1 - i/i_c = %.4f: %.6e N m (%+.3f %%)\n",
+      carried, at_rest, 1.0 - thrust / submerged, expected, 100.0 * (carried - expected) / expected);
+  EXPECT_NEAR(carried, expected, 0.02 * expected);
 }
 
 namespace {
