@@ -1,5 +1,6 @@
-// Simulation::contact_stress: the mean stress of the contact forces over a
-// box (Love-Weber), the effective stress of a saturated bed.
+// Simulation::contact_stress and contact_moments: the contact forces'
+// moments about the particles' centres, over a box (Love and Weber's mean
+// stress: the effective stress of a saturated bed) or particle by particle.
 #include <cmath>
 #include <stdexcept>
 
@@ -9,21 +10,17 @@
 namespace darcydem {
 
 template <int D>
-Eigen::Matrix<double, D, D> Simulation<D>::contact_stress(const Vec<D>& lo, const Vec<D>& hi) const {
-  if (!prepared_) throw std::logic_error("Simulation::contact_stress before prepare");
+template <class Select, class Add>
+void Simulation<D>::for_each_contact_moment(Select&& selected, Add&& add) const {
+  if (!prepared_) throw std::logic_error("Simulation: contact stresses before prepare");
   const auto& p = particles;
   const auto& L = list_;
   const auto& W = wall_list_;
-  auto in_box = [&](std::size_t i) {
-    return (p.position[i].array() >= lo.array()).all() && (p.position[i].array() <= hi.array()).all();
-  };
-  // sum over the particles in the box and their contacts of (x_c - x_p) (x) f_c.
-  Eigen::Matrix<double, D, D> moment = Eigen::Matrix<double, D, D>::Zero();
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const bool i_in = in_box(i);
+    const bool i_in = selected(i);
     for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
       const std::uint32_t j = L.neighbour[k];
-      const bool j_in = in_box(j);
+      const bool j_in = selected(j);
       if (!i_in && !j_in) continue;
       const Vec<D> d = p.position[j] - p.position[i];
       const double reach = p.radius[i] + p.radius[j];
@@ -55,8 +52,8 @@ Eigen::Matrix<double, D, D> Simulation<D>::contact_stress(const Vec<D>& lo, cons
       }
       // The contact point is arm_i from i along n and arm_j from j against
       // it; the force on j is -f_on_i.
-      if (i_in) moment += (arm_i * nrm) * f_on_i.transpose();
-      if (j_in) moment += (-arm_j * nrm) * (-f_on_i).transpose();
+      if (i_in) add(i, Moment((arm_i * nrm) * f_on_i.transpose()));
+      if (j_in) add(j, Moment((arm_j * nrm) * f_on_i.transpose()));
     }
     if (!i_in) continue;
     for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
@@ -64,15 +61,33 @@ Eigen::Matrix<double, D, D> Simulation<D>::contact_stress(const Vec<D>& lo, cons
       const Vec<D>& f = W.force_on_particle[k];
       if (f.squaredNorm() == 0.0) continue;
       const auto touch = walls[W.wall[k]].touch(p.position[i]);
-      moment += (-touch.gap * touch.normal) * f.transpose();
+      add(i, Moment((-touch.gap * touch.normal) * f.transpose()));
     }
   }
-  const double volume = (hi - lo).prod();  // 2D: area x 1 m
-  const Eigen::Matrix<double, D, D> stress = -moment / volume;
-  return 0.5 * (stress + stress.transpose());
 }
 
-template Eigen::Matrix<double, 2, 2> Simulation<2>::contact_stress(const Vec<2>&, const Vec<2>&) const;
-template Eigen::Matrix<double, 3, 3> Simulation<3>::contact_stress(const Vec<3>&, const Vec<3>&) const;
+template <int D>
+typename Simulation<D>::Moment Simulation<D>::contact_stress(const Vec<D>& lo, const Vec<D>& hi) const {
+  const auto& x = particles.position;
+  Moment moment = Moment::Zero();
+  for_each_contact_moment(
+      [&](std::size_t i) { return (x[i].array() >= lo.array()).all() && (x[i].array() <= hi.array()).all(); },
+      [&](std::size_t, const Moment& m) { moment += m; });
+  const double volume = (hi - lo).prod();  // 2D: area x 1 m
+  return -0.5 * (moment + moment.transpose()) / volume;
+}
+
+template <int D>
+std::vector<typename Simulation<D>::Moment> Simulation<D>::contact_moments() const {
+  std::vector<Moment> moments(particles.size(), Moment::Zero());
+  for_each_contact_moment([](std::size_t) { return true; },
+                          [&](std::size_t i, const Moment& m) { moments[i] += m; });
+  return moments;
+}
+
+template Simulation<2>::Moment Simulation<2>::contact_stress(const Vec<2>&, const Vec<2>&) const;
+template Simulation<3>::Moment Simulation<3>::contact_stress(const Vec<3>&, const Vec<3>&) const;
+template std::vector<Simulation<2>::Moment> Simulation<2>::contact_moments() const;
+template std::vector<Simulation<3>::Moment> Simulation<3>::contact_moments() const;
 
 }  // namespace darcydem

@@ -1,5 +1,6 @@
 #include "darcydem/output/probes.hpp"
 
+#include <array>
 #include <limits>
 
 #include "darcydem/fluid/ball_overlap.hpp"
@@ -43,6 +44,22 @@ double box_porosity(const ParticleData<D>& particles, const Vec<D>& lo, const Ve
     solid += ball_overlap::in_box<D>(r, c, a, b);
   }
   return 1.0 - solid / (hi - lo).prod();
+}
+
+template <int D>
+std::vector<typename Simulation<D>::Moment> cell_contact_stress(const Simulation<D>& sim,
+                                                                const FluidGrid<D>& grid) {
+  using Moment = typename Simulation<D>::Moment;
+  std::vector<Moment> sum(grid.size(), Moment::Zero());
+  const auto moments = sim.contact_moments();
+  for (std::size_t i = 0; i < moments.size(); ++i) {
+    std::array<int, D> c{};
+    for (int k = 0; k < D; ++k) c[k] = grid.cell_along(k, sim.particles.position[i][k]);
+    if (grid.inside(c)) sum[grid.index(c)] += moments[i];
+  }
+  const double volume = grid.cell_volume();
+  for (auto& m : sum) m = -0.5 * (m + m.transpose()) / volume;
+  return sum;
 }
 
 template <int D>
@@ -120,6 +137,8 @@ template double evaluate_probe<2>(const ProbeSpec&, const Simulation<2>&, const 
 template double evaluate_probe<3>(const ProbeSpec&, const Simulation<3>&, const PoreFluid<3>*);
 template double box_porosity<2>(const ParticleData<2>&, const Vec<2>&, const Vec<2>&);
 template double box_porosity<3>(const ParticleData<3>&, const Vec<3>&, const Vec<3>&);
+template std::vector<Simulation<2>::Moment> cell_contact_stress<2>(const Simulation<2>&, const FluidGrid<2>&);
+template std::vector<Simulation<3>::Moment> cell_contact_stress<3>(const Simulation<3>&, const FluidGrid<3>&);
 template std::size_t topmost_particle<2>(const ParticleData<2>&);
 template std::size_t topmost_particle<3>(const ParticleData<3>&);
 

@@ -251,7 +251,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     }
     if (fluid != nullptr) {
       const std::string fname = fmt::format("fluid_{:05d}.vti", pos.snapshot_index);
-      write_fluid_vti<D>((out / fname).string(), *fluid);
+      const auto stress = cell_contact_stress<D>(sim, fluid->grid);
+      write_fluid_vti<D>((out / fname).string(), *fluid, &stress);
       fluid_series.add(sim.time, fname);
     }
     ++pos.snapshot_index;

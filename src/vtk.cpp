@@ -151,7 +151,8 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
 }
 
 template <int D>
-void write_fluid_vti(const std::string& path, const PoreFluid<D>& f) {
+void write_fluid_vti(const std::string& path, const PoreFluid<D>& f,
+                     const std::vector<Eigen::Matrix<double, D, D>>* effective_stress) {
   try {
     auto out = fmt::output_file(path);
     const auto& g = f.grid;
@@ -180,6 +181,22 @@ void write_fluid_vti(const std::string& path, const PoreFluid<D>& f) {
     write_vector_array<D>(out, "darcy_velocity", g.size(), [&](std::size_t i) { return q[i]; });
     write_vector_array<D>(out, "solid_velocity", g.size(),
                           [&](std::size_t i) { return f.solid_velocity()[i]; });
+    if (effective_stress != nullptr) {
+      const auto& s = *effective_stress;
+      out.print(
+          "        <DataArray type=\"Float64\" Name=\"effective_stress\" NumberOfComponents=\"9\" "
+          "format=\"ascii\">\n");
+      for (const auto& m : s) {
+        for (int a = 0; a < 3; ++a) {
+          for (int b = 0; b < 3; ++b)
+            out.print("{:.17g}{}", a < D && b < D ? m(a, b) : 0.0, a * b == 4 ? "\n" : " ");
+        }
+      }
+      out.print("        </DataArray>\n");
+      std::vector<double> mean(s.size());
+      for (std::size_t i = 0; i < s.size(); ++i) mean[i] = s[i].trace() / D;
+      scalars("mean_effective_stress", mean);
+    }
     out.print("      </CellData>\n    </Piece>\n  </ImageData>\n</VTKFile>\n");
     out.close();
   } catch (const std::system_error& e) {
@@ -208,7 +225,9 @@ template void write_walls_vtu<2>(const std::string&, const std::vector<Wall<2>>&
                                  const Vec<2>&);
 template void write_walls_vtu<3>(const std::string&, const std::vector<Wall<3>>&, const Vec<3>&,
                                  const Vec<3>&);
-template void write_fluid_vti<2>(const std::string&, const PoreFluid<2>&);
-template void write_fluid_vti<3>(const std::string&, const PoreFluid<3>&);
+template void write_fluid_vti<2>(const std::string&, const PoreFluid<2>&,
+                                 const std::vector<Eigen::Matrix<double, 2, 2>>*);
+template void write_fluid_vti<3>(const std::string&, const PoreFluid<3>&,
+                                 const std::vector<Eigen::Matrix<double, 3, 3>>*);
 
 }  // namespace darcydem

@@ -9,12 +9,14 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "darcydem/output/probes.hpp"
 #include "darcydem/simulation/runner.hpp"
 #include "scene_loading.hpp"
 
@@ -241,6 +243,40 @@ TEST(FluidScenes, HydrostaticBed) {
   std::printf("hydrostatic bed: V sigma_zz %.9g N m against the submerged weight's moment %.9g N m\n",
               sigma(2, 2) * volume, weight_moment);
   EXPECT_NEAR(sigma(2, 2) * volume, weight_moment, 0.005 * weight_moment);
+
+  // (3) The effective stress field, cell by cell (cell_contact_stress, which
+  // the fluid snapshots write). The bed is 6 x 6 columns of 8 touching
+  // spheres (r = 0.49 mm, 1 mm apart); each 2 mm cell holds 2 x 2 columns
+  // of 2 spheres. Sphere j of a column (0 at the floor) carries (7 - j) W'
+  // above it and (8 - j) W' below, about r from its centre, so layer k of
+  // cells holds sigma'_zz = 4 r W' (28 - 8 k) / V_cell and no horizontal
+  // stress. 1e-4: the contact points lie r - F / 2k_n from the centres
+  // (F / k_n < 1e-5 r here).
+  const auto cells = cell_contact_stress<3>(sim, scene.fluid->grid);
+  const double r = 0.00049;
+  const double w_sphere = (2650.0 - 1000.0) * 9.80665 * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const auto& grid = scene.fluid->grid;
+  double worst = 0.0;
+  for (std::size_t c = 0; c < grid.size(); ++c) {
+    const int k = grid.coords(c)[2];
+    const double expected = 4.0 * r * w_sphere * (28.0 - 8.0 * k) / grid.cell_volume();
+    worst = std::max(worst, std::abs(cells[c](2, 2) - expected) / expected);
+    EXPECT_NEAR(cells[c](2, 2), expected, 1e-4 * expected) << "cell " << c;
+    EXPECT_NEAR(cells[c](0, 0), 0.0, 1e-9 * expected) << "cell " << c;
+  }
+  std::printf("hydrostatic bed: effective stress per cell within %.2g of the columns' statics\n", worst);
+  // The run's last fluid snapshot holds the same field's mean.
+  const auto snapshot = options.out_dir + "/fluid_00001.vti";
+  std::ifstream vti(snapshot);
+  const std::string text((std::istreambuf_iterator<char>(vti)), std::istreambuf_iterator<char>());
+  const auto at = text.find("Name=\"mean_effective_stress\"");
+  ASSERT_NE(at, std::string::npos) << snapshot;
+  std::istringstream values(text.substr(text.find('>', at) + 1));
+  for (std::size_t c = 0; c < grid.size(); ++c) {
+    double v = 0.0;
+    values >> v;
+    EXPECT_NEAR(v, cells[c].trace() / 3.0, 1e-12 * cells[c].trace()) << "cell " << c;
+  }
 }
 
 TEST(FluidScenes, UpwardSeepageThroughABed) {

@@ -12,6 +12,14 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
 template <int D>
 double box_porosity(const ParticleData<D>& particles, const Vec<D>& lo, const Vec<D>& hi);
 
+/// The contacts' mean stress in each cell of a grid (Simulation::
+/// contact_stress over the cell's box, with the particles whose centres
+/// lie in it; particles outside the grid count nowhere), Pa, compression
+/// positive: the effective stress field of a saturated bed.
+template <int D>
+std::vector<typename Simulation<D>::Moment> cell_contact_stress(const Simulation<D>& sim,
+                                                                const FluidGrid<D>& grid);
+
 /// Index of the particle with the highest centre along the last axis.
 template <int D>
 std::size_t topmost_particle(const ParticleData<D>& particles);

@@ -26,10 +26,13 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
                      const Vec<D>& hi);
 
 /// The pore fluid's cell fields as VTK ImageData (.vti): excess pressure,
-/// porosity, intrinsic permeability, Darcy velocity, solid velocity. In 2D
-/// the cells are 1 m thick.
+/// porosity, intrinsic permeability, Darcy velocity, solid velocity and,
+/// given the cells' contact stress (cell_contact_stress), the effective
+/// stress as a tensor (9 components, compression positive; zz = 0 in 2D)
+/// and its mean (trace / D). In 2D the cells are 1 m thick.
 template <int D>
-void write_fluid_vti(const std::string& path, const PoreFluid<D>& fluid);
+void write_fluid_vti(const std::string& path, const PoreFluid<D>& fluid,
+                     const std::vector<Eigen::Matrix<double, D, D>>* effective_stress = nullptr);
 
 class PvdSeries {
  public:

@@ -29,6 +29,7 @@ struct DampingSettings {
 template <int D>
 class Simulation {
  public:
+  using Moment = Eigen::Matrix<double, D, D>;  ///< a tensor of force x length (N m) or stress (Pa)
   ParticleData<D> particles;
   std::vector<Material> materials;
   ContactTable contact_table;
@@ -79,7 +80,11 @@ class Simulation {
   /// walls) of (x_c - x_p) (x) f_c, symmetrised; V is the box's volume (2D:
   /// area x 1 m). In a saturated bed the contacts carry the effective
   /// stress. Forces as in the last evaluation (src/contact_stress.cpp).
-  [[nodiscard]] Eigen::Matrix<double, D, D> contact_stress(const Vec<D>& lo, const Vec<D>& hi) const;
+  [[nodiscard]] Moment contact_stress(const Vec<D>& lo, const Vec<D>& hi) const;
+  /// Each particle's sum over its contacts of (x_c - x_p) (x) f_c, N m:
+  /// contact_stress is -1/V times the symmetric part of their sum over a
+  /// volume's particles (e.g. per fluid cell, write_fluid_vti).
+  [[nodiscard]] std::vector<Moment> contact_moments() const;
   [[nodiscard]] const VerletList<D>& pair_list() const { return list_; }
   [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
   /// Bytes held by the particle, list and wall-contact arrays (capacity).
@@ -121,6 +126,10 @@ class Simulation {
   /// First half kick and drift; returns the largest displacement since the
   /// last list build (m).
   double kick_drift();
+  /// Calls add(p, (x_c - x_p) (x) f_c) for each contact c of each particle
+  /// p for which selected(p) holds (src/contact_stress.cpp).
+  template <class Select, class Add>
+  void for_each_contact_moment(Select&& selected, Add&& add) const;
   void rebuild_if_needed(double moved);
   void rebuild();
 
