@@ -50,4 +50,32 @@ Simulation<D> particle_on_floor(ContactSpec spec, double r, double v0, double g)
   return sim;
 }
 
+/// The diagonal of -V sigma = sum over the particles in a box holding them
+/// all and their contacts of (x_c - x_p) (x) f_c (Simulation::
+/// contact_stress), rearranged without the contact forces between grains:
+/// the two sides of such a contact share x_c and their forces cancel, which
+/// leaves sum over wall contacts of x_c (x) f_c - sum over particles of x_p
+/// (x) F_p, F_p the contact force on p (its total force less its weight and
+/// any force field's force). The walls must be frictionless planes through
+/// the origin and at `far` along each axis, so that on the diagonal a
+/// wall's term is its plane's coordinate times the force it exerts along
+/// its normal.
+template <int D>
+Vec<D> rearranged_moment(const Simulation<D>& sim, double far) {
+  const auto& p = sim.particles;
+  const bool field = sim.field_forces().size() == p.size();
+  Vec<D> moment = Vec<D>::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    Vec<D> contact = p.force[i] - sim.gravity / p.inv_mass[i];
+    if (field) contact -= sim.field_forces()[i];
+    moment -= p.position[i].cwiseProduct(contact);
+  }
+  for (const auto& w : sim.walls) {
+    for (int k = 0; k < D; ++k) {
+      if (w.normal[k] < -0.5) moment[k] += far * -w.force[k];
+    }
+  }
+  return moment;
+}
+
 }  // namespace darcydem::testing

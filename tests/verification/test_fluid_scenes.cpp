@@ -18,6 +18,7 @@
 
 #include "darcydem/output/probes.hpp"
 #include "darcydem/simulation/runner.hpp"
+#include "dem_setup.hpp"
 #include "scene_loading.hpp"
 
 using namespace darcydem;
@@ -115,6 +116,17 @@ double submerged_weight(const Simulation<3>& sim, const PoreFluid<3>& f) {
   return w;
 }
 
+/// sum of z_p (m_p - rho_f V_p) g: the submerged weight's moment about the
+/// floor (z = 0), N m.
+double submerged_weight_moment(const Simulation<3>& sim, const PoreFluid<3>& f) {
+  double m = 0.0;
+  for (std::size_t i = 0; i < sim.particles.size(); ++i) {
+    const double v = particle_volume<3>(sim.particles.radius[i]);
+    m += sim.particles.position[i].z() * (1.0 / sim.particles.inv_mass[i] - f.fluid.density * v) * 9.80665;
+  }
+  return m;
+}
+
 /// The excess pressure on the grid's floor times the faces' areas, N: each
 /// bottom cell's value plus, on the faces where inflow(i, j) holds, the
 /// half-cell drop that carries the inflow q.
@@ -194,7 +206,8 @@ TEST(FluidScenes, HydrostaticBed) {
 
   // The contacts' mean stress over a box holding the whole bed
   // (Simulation::contact_stress; the effective stress, as the grains' own
-  // contacts carry it). (1) Against the same sum rearranged:
+  // contacts carry it). (1) Against the same sum rearranged
+  // (testing::rearranged_moment):
   // -V sigma = sum over particles and contacts of (x_c - x_p) (x) f_c = sum
   // over wall contacts of x_c (x) f_c - sum over particles of x_p (x) F_p,
   // F_p the contact force on p: its total force less its weight and the
@@ -214,19 +227,7 @@ TEST(FluidScenes, HydrostaticBed) {
   }
   const double volume = (hi - lo).prod();
   const auto sigma = sim.contact_stress(lo, hi);
-  Vec<3> moment = Vec<3>::Zero();  // the diagonal of the rearranged sum
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const Vec<3> contact = p.force[i] - sim.gravity / p.inv_mass[i] - sim.field_forces()[i];
-    moment -= p.position[i].cwiseProduct(contact);
-  }
-  auto wall = [&](const char* name) -> const Wall<3>& {
-    for (const auto& w : sim.walls) {
-      if (w.name == name) return w;
-    }
-    throw std::runtime_error(name);
-  };
-  moment.x() += 0.006 * -wall("x_high").force.x();
-  moment.y() += 0.006 * -wall("y_high").force.y();
+  const Vec<3> moment = darcydem::testing::rearranged_moment(sim, 0.006);
   const double mean_stress = sigma.trace() / 3.0;
   std::printf(
       "hydrostatic bed: contact stress diagonal %.9g %.9g %.9g Pa, from the rearranged sum %.9g %.9g %.9g "
@@ -235,11 +236,7 @@ TEST(FluidScenes, HydrostaticBed) {
       -moment.z() / volume);
   for (int k = 0; k < 3; ++k)
     EXPECT_NEAR(sigma(k, k), -moment[k] / volume, 1e-9 * mean_stress) << "axis " << k;
-  double weight_moment = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const double v = particle_volume<3>(p.radius[i]);
-    weight_moment += p.position[i].z() * (1.0 / p.inv_mass[i] - scene.fluid->fluid.density * v) * 9.80665;
-  }
+  const double weight_moment = submerged_weight_moment(sim, *scene.fluid);
   std::printf("hydrostatic bed: V sigma_zz %.9g N m against the submerged weight's moment %.9g N m\n",
               sigma(2, 2) * volume, weight_moment);
   EXPECT_NEAR(sigma(2, 2) * volume, weight_moment, 0.005 * weight_moment);
@@ -314,12 +311,10 @@ TEST(FluidScenes, UpwardSeepageThroughABed) {
   const auto& p = sim.particles;
   const Vec<3> lo(-0.001, -0.001, -0.001);
   const Vec<3> hi(0.007, 0.007, 0.02);
-  double at_rest = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     ASSERT_TRUE((p.position[i].array() > lo.array()).all() && (p.position[i].array() < hi.array()).all());
-    const double v = particle_volume<3>(p.radius[i]);
-    at_rest += p.position[i].z() * (1.0 / p.inv_mass[i] - f.fluid.density * v) * 9.80665;
   }
+  const double at_rest = submerged_weight_moment(sim, f);
   const double carried = sim.contact_stress(lo, hi)(2, 2) * (hi - lo).prod();
   const double expected = at_rest * (1.0 - thrust / submerged);
   std::printf(

@@ -83,30 +83,6 @@ TEST(ContactStress, OfTheSettledColumnDiscByDisc) {
 
 namespace {
 
-/// The diagonal of -V sigma = sum over the particles in a box holding them
-/// all and their contacts of (x_c - x_p) (x) f_c, rearranged without the
-/// contact forces between grains: the two sides of such a contact share x_c
-/// and their forces cancel, which leaves sum over wall contacts of x_c (x)
-/// f_c - sum over particles of x_p (x) F_p, F_p the contact force on p (its
-/// total force less its weight). The walls are planes through the origin
-/// and at `far` along each axis, so on the diagonal a wall's term is its
-/// plane's coordinate times the force it exerts along its normal.
-template <int D>
-Vec<D> rearranged_moment(const Simulation<D>& sim, double far) {
-  const auto& p = sim.particles;
-  Vec<D> moment = Vec<D>::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const Vec<D> contact = p.force[i] - sim.gravity / p.inv_mass[i];
-    moment -= p.position[i].cwiseProduct(contact);
-  }
-  for (const auto& w : sim.walls) {
-    for (int k = 0; k < D; ++k) {
-      if (w.normal[k] < -0.5) moment[k] += far * -w.force[k];
-    }
-  }
-  return moment;
-}
-
 /// A random bed of `count` grains (radii 0.4 to 0.6 mm) dropped into a
 /// box `far` wide with a floor and four (2D: two) side walls, settled for
 /// `settle` s with local damping 0.7; contacts between grains as `spec`, with
@@ -165,7 +141,7 @@ void expect_rearranged_sum(const Simulation<D>& sim, double far, const char* wha
   const Vec<D> hi = Vec<D>::Constant(10 * far);
   const double volume = (hi - lo).prod();
   const auto sigma = sim.contact_stress(lo, hi);
-  const Vec<D> moment = rearranged_moment(sim, far);
+  const Vec<D> moment = testing::rearranged_moment(sim, far);
   const double mean = sigma.trace() / D;
   double worst = 0.0;
   for (int k = 0; k < D; ++k) worst = std::max(worst, std::abs(sigma(k, k) + moment[k] / volume) / mean);

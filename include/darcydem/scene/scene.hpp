@@ -44,8 +44,8 @@ struct ProbeSpec {
   std::size_t wall = 0;
   std::vector<double> position;  ///< pore_pressure: the point, m
   int side = 0;                  ///< fluid_inflow: x_min, x_max, y_min, ...
-  std::vector<double> box_min,
-      box_max;  ///< particles_in_box, mean_particle_position, stress, porosity: the box, m
+  /// particles_in_box, mean_particle_position, stress, porosity: the box, m
+  std::vector<double> box_min, box_max;
   std::array<int, 2> tensor{0, 0};  ///< stress: the component (i, j); (-1, -1) the mean, trace / D
 };
 
