@@ -22,7 +22,7 @@ void Simulation<D>::for_each_contact_moment(Select&& selected, Add&& add) const 
       const std::uint32_t j = L.neighbour[k];
       const bool j_in = selected(j);
       if (!i_in && !j_in) continue;
-      const Vec<D> d = p.position[j] - p.position[i];
+      const Vec<D> d = periodic.shortest(p.position[j] - p.position[i]);
       const double reach = p.radius[i] + p.radius[j];
       const double inv_m = p.inv_mass[i] + p.inv_mass[j];
       const double dist = d.norm();

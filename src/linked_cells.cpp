@@ -7,7 +7,7 @@
 namespace darcydem {
 
 template <int D>
-void LinkedCells<D>::build(const std::vector<Vec<D>>& points, double cell_size) {
+void LinkedCells<D>::build(const std::vector<Vec<D>>& points, double cell_size, const PeriodicCell<D>& cell) {
   const std::size_t n = points.size();
   Vec<D> lo = Vec<D>::Constant(0.0);
   Vec<D> hi = Vec<D>::Constant(0.0);
@@ -22,20 +22,30 @@ void LinkedCells<D>::build(const std::vector<Vec<D>>& points, double cell_size) 
   if (!lo.allFinite() || !hi.allFinite()) {
     throw std::runtime_error("a particle position is not finite (the simulation blew up)");
   }
+  periodic_ = cell.periodic;
+  for (int k = 0; k < D; ++k) {
+    if (periodic_[k]) lo[k] = cell.lower[k];
+  }
+  // Cells along an axis: a periodic one is tiled exactly (cells at least
+  // `size` long), any other covers the points' spread.
+  auto cells_along = [&](int k, double size) {
+    if (periodic_[k]) return std::max(1.0, std::floor(cell.length[k] / size));
+    return std::floor((hi[k] - lo[k]) / size) + 1.0;
+  };
   // Limit the number of cells to a few per particle, whatever the spread.
   const double limit = std::max<double>(64.0, 4.0 * static_cast<double>(n));
   double size = cell_size;
   for (;;) {
     double count = 1.0;
-    for (int k = 0; k < D; ++k) count *= std::floor((hi[k] - lo[k]) / size) + 1.0;
+    for (int k = 0; k < D; ++k) count *= cells_along(k, size);
     if (count <= limit) break;
     size *= 1.5;
   }
   origin_ = lo;
-  inv_size_ = 1.0 / size;
   std::int64_t total = 1;
   for (int k = 0; k < D; ++k) {
-    dims_[k] = static_cast<int>(std::floor((hi[k] - lo[k]) * inv_size_)) + 1;
+    dims_[k] = static_cast<int>(cells_along(k, size));
+    inv_size_[k] = periodic_[k] ? dims_[k] / cell.length[k] : 1.0 / size;
     total *= dims_[k];
   }
   std::array<int, D> axes;
@@ -63,8 +73,8 @@ template <int D>
 std::array<int, D> LinkedCells<D>::cell_of(const Vec<D>& x) const {
   std::array<int, D> c;
   for (int k = 0; k < D; ++k) {
-    int v = static_cast<int>((x[k] - origin_[k]) * inv_size_);
-    c[k] = std::clamp(v, 0, dims_[k] - 1);
+    const int v = static_cast<int>(std::floor((x[k] - origin_[k]) * inv_size_[k]));
+    c[k] = periodic_[k] ? ((v % dims_[k]) + dims_[k]) % dims_[k] : std::clamp(v, 0, dims_[k] - 1);
   }
   return c;
 }

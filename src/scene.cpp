@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -17,8 +19,9 @@
 namespace darcydem {
 namespace {
 
-const std::vector<std::string> kTopLevel = {"simulation", "material", "contact", "wall",  "particles",
-                                            "output",     "probe",    "stage",   "fluid", "analysis"};
+const std::vector<std::string> kTopLevel = {"simulation", "periodic",  "material", "contact",
+                                            "wall",       "particles", "output",   "probe",
+                                            "stage",      "fluid",     "analysis"};
 
 template <int D>
 Vec<D> to_vec(const std::vector<double>& v) {
@@ -218,6 +221,90 @@ std::array<int, 2> tensor_component(TableReader& r, std::string_view key) {
   return {c[0] - 'x', c[1] - 'x'};
 }
 
+/// [periodic]: x = [min, max], ... for the axes that repeat.
+template <int D>
+void read_periodic(TableReader& r, PeriodicCell<D>& cell) {
+  for (int k = 0; k < D; ++k) {
+    const std::string axis(1, "xyz"[k]);
+    if (!r.has(axis)) continue;
+    const auto range = r.numbers(axis, 2);
+    if (!(std::isfinite(range[0]) && std::isfinite(range[1]) && range[1] > range[0])) {
+      r.fail(axis, fmt::format("must be [min, max] with max > min (m), got [{}, {}]",
+                               TableReader::format_number(range[0]), TableReader::format_number(range[1])));
+    }
+    cell.set_axis(k, range[0], range[1]);
+  }
+  r.finish();
+  if (!cell.any()) {
+    r.fail_table(fmt::format("names no axis; give {} = [min, max] for each axis that repeats",
+                             D == 2 ? "x or y" : "x, y or z"));
+  }
+}
+
+/// Walls are not repeated: a plane must run along every periodic axis and a
+/// box lie within the period, so that no particle meets a wall across a
+/// periodic boundary.
+template <int D>
+void check_wall_in_period(TableReader& r, const Wall<D>& w, const PeriodicCell<D>& cell) {
+  for (int k = 0; k < D; ++k) {
+    if (!cell.periodic[k]) continue;
+    if (!w.is_box && w.normal[k] != 0.0) {
+      r.fail("normal", fmt::format("a plane wall must be parallel to the periodic axis {} (normal[{}] = 0): "
+                                   "particles leave through the periodic boundaries instead",
+                                   "xyz"[k], k));
+    }
+    if (w.is_box) {
+      const double extent = w.axes.row(k).cwiseAbs().dot(w.half);
+      const double lo = cell.lower[k];
+      const double hi = lo + cell.length[k];
+      if (w.point[k] - extent < lo || w.point[k] + extent > hi) {
+        r.fail("box",
+               fmt::format("a box wall must lie within the periodic range [{}, {}] along {} (walls are "
+                           "not repeated across periodic boundaries); it spans [{:.6g}, {:.6g}]",
+                           TableReader::format_number(lo), TableReader::format_number(hi), "xyz"[k],
+                           w.point[k] - extent, w.point[k] + extent));
+      }
+    }
+  }
+}
+
+/// Every particle starts inside the period, and each period is longer than
+/// twice the list's reach (one image of a neighbour within it).
+template <int D>
+void check_periods(TableReader& r, const Simulation<D>& sim, const std::vector<std::string>& origin) {
+  const auto& p = sim.particles;
+  const auto& cell = sim.periodic;
+  double r_max = 0.0;
+  double r_min = std::numeric_limits<double>::max();
+  for (double radius : p.radius) {
+    r_max = std::max(r_max, radius);
+    r_min = std::min(r_min, radius);
+  }
+  const double skin = sim.skin > 0.0 ? sim.skin : 0.2 * r_min;  // Simulation::prepare's default
+  for (int k = 0; k < D; ++k) {
+    if (!cell.periodic[k]) continue;
+    const std::string axis(1, "xyz"[k]);
+    const double lo = cell.lower[k];
+    const double hi = lo + cell.length[k];
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.position[i][k] < lo || p.position[i][k] >= hi) {
+        throw SceneError(
+            fmt::format("{}: error: particle {} starts at {} = {:.6g} m, outside the periodic range "
+                        "[periodic] {} = [{}, {}) (allowed: min <= {} < max)",
+                        origin[i], i, axis, p.position[i][k], axis, TableReader::format_number(lo),
+                        TableReader::format_number(hi), axis));
+      }
+    }
+    const double shortest = 2.0 * (2.0 * r_max + skin);
+    if (!(cell.length[k] > shortest)) {
+      r.fail(axis,
+             fmt::format("the period {:.6g} m must exceed 2 x (2 x largest radius + skin) = {:.6g} m, so "
+                         "that a particle meets one image of each neighbour",
+                         cell.length[k], shortest));
+    }
+  }
+}
+
 template <int D>
 void check_initial_overlaps(const Simulation<D>& sim, double tolerance,
                             const std::vector<std::string>& origin) {
@@ -236,11 +323,12 @@ void check_initial_overlaps(const Simulation<D>& sim, double tolerance,
   if (p.size() < 2) return;
   LinkedCells<D> cells;
   double r_max = *std::max_element(p.radius.begin(), p.radius.end());
-  cells.build(p.position, 2.0 * r_max);
+  cells.build(p.position, 2.0 * r_max, sim.periodic);
   for (std::size_t i = 0; i < p.size(); ++i) {
     cells.for_each_near(cells.cell_of(p.position[i]), [&](std::uint32_t j) {
       if (j <= i) return;
-      const double overlap = p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm();
+      const double overlap =
+          p.radius[i] + p.radius[j] - sim.periodic.shortest(p.position[j] - p.position[i]).norm();
       const double allowed = tolerance * std::min(p.radius[i], p.radius[j]);
       if (overlap > allowed) {
         throw SceneError(
@@ -309,6 +397,15 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     overlap_tolerance = r.check("initial_overlap_tolerance", r.number_or("initial_overlap_tolerance", 0.01),
                                 is_non_negative, ">= 0 (a fraction of the radius)");
     r.finish();
+  }
+
+  // [periodic]
+  std::optional<TableReader> periodic_reader;
+  if (const toml::table* t = top.optional_table("periodic")) {
+    periodic_reader.emplace(*t, "[periodic]", file);
+    read_periodic<D>(*periodic_reader, sim.periodic);
+  } else if (top.has("periodic")) {
+    top.fail("periodic", "must be a table ([periodic] with x = [min, max], ...)");
   }
 
   // [[material]]
@@ -427,6 +524,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       wall_barriers.push_back(plate_barrier<D>(r, w, box_lo, box_hi));
     }
     wall_is_barrier.push_back(impermeable);
+    check_wall_in_period<D>(r, w, sim.periodic);
     wall_index[w.name] = sim.walls.size();
     wall_names.push_back(w.name);
     sim.walls.push_back(w);
@@ -500,6 +598,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   });
   if (sim.particles.size() == 0)
     top.fail_table("needs at least one [[particles]] generator that makes particles");
+  if (periodic_reader) check_periods<D>(*periodic_reader, sim, origin);
 
   // Every pair of materials that can meet needs a [[contact]].
   {
@@ -519,6 +618,11 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
 
   // [fluid]
   if (const toml::table* t = top.optional_table("fluid")) {
+    if (periodic_reader) {
+      top.fail("fluid",
+               "a pore fluid with periodic boundaries is not supported yet; remove [periodic] or "
+               "[fluid] (a fluid grid is bounded by its six sides' conditions)");
+    }
     scene.fluid = read_fluid<D>(*t, file, sim.particles, wall_barriers);
     sim.force_field = scene.fluid.get();
   } else if (top.has("fluid")) {

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include <fmt/format.h>
+
 #include "darcydem/contact/contact_batch.hpp"
 #include "darcydem/contact/contact_kernel.hpp"
 #include "darcydem/core/deterministic_sum.hpp"
@@ -37,6 +39,7 @@ void Simulation<D>::prepare() {
     skin = particles.size() > 0 ? 0.2 * r_min : 1e-3;
   }
   if (time_step <= 0.0) throw std::logic_error("time step not set");
+  check_periods();
   rebuild();
   compute_forces(Finish::none);
   prepared_ = true;
@@ -62,11 +65,28 @@ void Simulation<D>::advance(std::uint64_t count) {
 }
 
 template <int D>
+void Simulation<D>::check_periods() const {
+  if (!periodic.any()) return;
+  double r_max = 0.0;
+  for (double r : particles.radius) r_max = std::max(r_max, r);
+  for (int k = 0; k < D; ++k) {
+    if (periodic.periodic[k] && !(periodic.length[k] > 2.0 * (2.0 * r_max + skin))) {
+      throw std::invalid_argument(fmt::format(
+          "periodic axis {}: the period {:.6g} m must exceed 2 x (2 x largest radius + skin) = {:.6g} m",
+          "xyz"[k], periodic.length[k], 2.0 * (2.0 * r_max + skin)));
+    }
+  }
+}
+
+template <int D>
 void Simulation<D>::rebuild() {
   const std::vector<std::uint32_t>* old_index = nullptr;
   std::vector<std::uint32_t> order;
+  if (periodic.any()) {
+    for (auto& x : particles.position) x = periodic.wrap(x);
+  }
   if (particles.size() > sort_threshold) {
-    order = list_.spatial_order(particles.position, particles.radius, skin);
+    order = list_.spatial_order(particles.position, particles.radius, skin, periodic);
     bool identity = true;
     for (std::size_t k = 0; k < order.size() && identity; ++k) identity = order[k] == k;
     if (!identity) {
@@ -76,7 +96,7 @@ void Simulation<D>::rebuild() {
       if (field_force_.size() == order.size()) ParticleData<D>::reorder(field_force_, order);
     }
   }
-  list_.build(particles.position, particles.radius, skin, rolling_, old_index);
+  list_.build(particles.position, particles.radius, skin, rolling_, old_index, periodic);
   wall_list_.build(particles.position, particles.radius, walls, skin, rolling_, old_index);
   block_sums_.assign(static_cast<std::size_t>(list_.block_count()), {0.0, 0.0});
 }
@@ -146,7 +166,12 @@ double Simulation<D>::kick_drift() {
 template <int D>
 template <class Law>
 double Simulation<D>::compute_forces_for_law(Finish finish) {
-  return rolling_ ? compute_forces_with<Law, true>(finish) : compute_forces_with<Law, false>(finish);
+  if (periodic.any()) {
+    return rolling_ ? compute_forces_with<Law, true, true>(finish)
+                    : compute_forces_with<Law, false, true>(finish);
+  }
+  return rolling_ ? compute_forces_with<Law, true, false>(finish)
+                  : compute_forces_with<Law, false, false>(finish);
 }
 
 template <int D>
@@ -163,7 +188,7 @@ double Simulation<D>::compute_forces(Finish finish) {
 }
 
 template <int D>
-template <class Law, bool Rolling>
+template <class Law, bool Rolling, bool Periodic>
 double Simulation<D>::compute_forces_with(Finish finish) {
   auto& p = particles;
   auto& L = list_;
@@ -173,6 +198,15 @@ double Simulation<D>::compute_forces_with(Finish finish) {
   const bool measure = measure_contact_forces;
   // One material: every pair has the same parameters.
   const PairParameters* uniform = materials.size() == 1 ? &contact_table(0, 0) : nullptr;
+  // x_j - x_i, at j's nearest image across periodic boundaries.
+  const PeriodicCell<D> cell = periodic;
+  auto separation = [&cell](const Vec<D>& xj, const Vec<D>& xi) -> Vec<D> {
+    if constexpr (Periodic) {
+      return cell.shortest(xj - xi);
+    } else {
+      return xj - xi;
+    }
+  };
 
   // Wall contacts of particle i, added to its force f and torque t.
   auto wall_contacts = [&](std::int64_t i, const Vec<D>& xi, const Vec<D>& vi, const AngVec<D>& wi, Vec<D>& f,
@@ -234,7 +268,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
       for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
         const std::uint32_t j = L.neighbour[k];
         const bool is_cross = j >= hi;
-        const Vec<D> d = p.position[j] - xi;
+        const Vec<D> d = separation(p.position[j], xi);
         const double rj = p.radius[j];
         const double reach = ri + rj;
         const double dist2 = d.squaredNorm();
@@ -372,7 +406,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
         pair_i[q] = static_cast<std::uint32_t>(i);
         pair_k[q] = k;
         pair_slot[q] = pair_slot_k;
-        const Vec<D> d = x[j] - xi;
+        const Vec<D> d = separation(x[j], xi);
         const Vec<D> dv = vi - vel[j];
         const AngVec<D> wj = omega[j];
         const Vec<D> h = history[k];
@@ -587,11 +621,11 @@ double Simulation<D>::gravitational_energy() const {
 
 namespace {
 template <int D, class F>
-void for_each_touching(const ParticleData<D>& p, const VerletList<D>& L, F&& f) {
+void for_each_touching(const ParticleData<D>& p, const VerletList<D>& L, const PeriodicCell<D>& cell, F&& f) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
       const std::uint32_t j = L.neighbour[k];
-      const double overlap = p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm();
+      const double overlap = p.radius[i] + p.radius[j] - cell.shortest(p.position[j] - p.position[i]).norm();
       if (overlap > 0.0) f(i, j, k, overlap, false);
     }
   }
@@ -601,7 +635,7 @@ void for_each_touching(const ParticleData<D>& p, const VerletList<D>& L, F&& f) 
 template <int D>
 std::size_t Simulation<D>::contact_count() const {
   std::size_t count = 0;
-  for_each_touching(particles, list_,
+  for_each_touching(particles, list_, periodic,
                     [&](std::size_t, std::uint32_t, std::uint32_t, double, bool) { ++count; });
   for (std::size_t i = 0; i < particles.size(); ++i) {
     for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
@@ -615,7 +649,8 @@ template <int D>
 double Simulation<D>::mean_coordination() const {
   if (particles.size() == 0) return 0.0;
   std::size_t pp = 0;
-  for_each_touching(particles, list_, [&](std::size_t, std::uint32_t, std::uint32_t, double, bool) { ++pp; });
+  for_each_touching(particles, list_, periodic,
+                    [&](std::size_t, std::uint32_t, std::uint32_t, double, bool) { ++pp; });
   const std::size_t all = contact_count();
   return static_cast<double>(2 * pp + (all - pp)) / static_cast<double>(particles.size());
 }
@@ -623,7 +658,7 @@ double Simulation<D>::mean_coordination() const {
 template <int D>
 double Simulation<D>::max_overlap() const {
   double m = 0.0;
-  for_each_touching(particles, list_,
+  for_each_touching(particles, list_, periodic,
                     [&](std::size_t, std::uint32_t, std::uint32_t, double o, bool) { m = std::max(m, o); });
   for (std::size_t i = 0; i < particles.size(); ++i) {
     for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
@@ -675,7 +710,7 @@ double Simulation<D>::elastic_energy() const {
     for (std::uint32_t k = list_.row_offset[i]; k < list_.row_offset[i + 1]; ++k) {
       const std::uint32_t j = list_.neighbour[k];
       const double reach = p.radius[i] + p.radius[j];
-      const double overlap = reach - (p.position[j] - p.position[i]).norm();
+      const double overlap = reach - periodic.shortest(p.position[j] - p.position[i]).norm();
       if (overlap <= 0.0) continue;
       const auto& pp = contact_table(p.material[i], p.material[j]);
       e += normal_energy(pp, overlap, p.radius[i] * p.radius[j] / reach);

@@ -22,21 +22,23 @@ std::int64_t block_size_for(std::int64_t n) {
 
 template <int D>
 std::vector<std::uint32_t> VerletList<D>::spatial_order(const std::vector<Vec<D>>& position,
-                                                        const std::vector<double>& radius, double skin) {
+                                                        const std::vector<double>& radius, double skin,
+                                                        const PeriodicCell<D>& cell) {
   double r_max = 0.0;
   for (double r : radius) r_max = std::max(r_max, r);
-  cells_.build(position, 2.0 * r_max + skin);
+  cells_.build(position, 2.0 * r_max + skin, cell);
   return cells_.sorted();
 }
 
 template <int D>
 void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector<double>& radius, double skin,
-                          bool keep_rolling, const std::vector<std::uint32_t>* old_index) {
+                          bool keep_rolling, const std::vector<std::uint32_t>* old_index,
+                          const PeriodicCell<D>& cell) {
   const auto n = static_cast<std::int64_t>(position.size());
   double r_max = 0.0;
   for (double r : radius) r_max = std::max(r_max, r);
   cell_size_ = 2.0 * r_max + skin;
-  cells_.build(position, cell_size_);
+  cells_.build(position, cell_size_, cell);
   block_size_ = block_size_for(n);
   block_count_ = (n + block_size_ - 1) / block_size_;
 
@@ -46,7 +48,7 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
     cells_.for_each_near(cells_.cell_of(xi), [&](std::uint32_t j) {
       if (j <= i) return;
       const double range = ri + radius[j];
-      if ((position[j] - xi).squaredNorm() < range * range) emit(j);
+      if (cell.shortest(position[j] - xi).squaredNorm() < range * range) emit(j);
     });
   };
 

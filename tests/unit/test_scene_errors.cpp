@@ -564,5 +564,50 @@ TEST(SceneErrors, FluidWaterLevelIsReadAndChecked) {
   EXPECT_NE(msg.find("Did you mean 'water_level'?"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, PeriodicBoundariesAreChecked) {
+  // The column stands at x = 0 (discs of r = 0.5 mm, skin 0.1 mm): a period
+  // along x must hold it and exceed 2 x (2 r + skin) = 2.2 mm; the floor is
+  // parallel to x.
+  const std::string periodic = "\n[periodic]\nx = [-0.003, 0.003]\n";
+  const std::string good = replace(kGood, "\n[[material]]", periodic + "\n[[material]]");
+  ASSERT_EQ(load_error(good), "");
+  const auto scene = built_scene<2>(good);
+  EXPECT_TRUE(scene.simulation.periodic.periodic[0]);
+  EXPECT_FALSE(scene.simulation.periodic.periodic[1]);
+  EXPECT_DOUBLE_EQ(scene.simulation.periodic.length[0], 0.006);
+
+  auto msg = load_error(replace(good, "x = [-0.003, 0.003]", "x = [0.003, -0.003]"));
+  EXPECT_NE(msg.find("[periodic] key 'x': must be [min, max] with max > min"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;                        // file:line:column
+  msg = load_error(replace(good, "x = [-0.003, 0.003]", "z = [-0.003, 0.003]"));  // a 2D scene
+  EXPECT_NE(msg.find("unknown key 'z'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "x = [-0.003, 0.003]", ""));
+  EXPECT_NE(msg.find("[periodic]: names no axis"), std::string::npos) << msg;
+  msg = load_error(replace(good, "x = [-0.003, 0.003]", "x = [-0.001, 0.001]"));
+  EXPECT_NE(msg.find("key 'x': the period 0.002 m must exceed 2 x (2 x largest radius + skin) = 0.0022 m"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "x = [-0.003, 0.003]", "x = [0.0001, 0.006]"));
+  EXPECT_NE(
+      msg.find("particle 0 starts at x = 0 m, outside the periodic range [periodic] x = [0.0001, 0.006)"),
+      std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("[[particles]] #1"), std::string::npos) << msg;
+  msg = load_error(replace(good, "x = [-0.003, 0.003]", "y = [-0.003, 0.003]"));
+  EXPECT_NE(msg.find("key 'normal': a plane wall must be parallel to the periodic axis y"), std::string::npos)
+      << msg;
+  const std::string box =
+      "\n[[wall]]\nname = \"block\"\nbox = { min = [0.002, 0.0], max = [0.004, 0.001] }\n"
+      "material = \"sand\"\n";
+  msg = load_error(replace(good, "\n[[particles]]", box + "\n[[particles]]"));
+  EXPECT_NE(msg.find("key 'box': a box wall must lie within the periodic range [-0.003, 0.003] along x"),
+            std::string::npos)
+      << msg;
+  msg = load_error(good + "\n[fluid]\n");
+  EXPECT_NE(msg.find("key 'fluid': a pore fluid with periodic boundaries is not supported yet"),
+            std::string::npos)
+      << msg;
+}
+
 }  // namespace
 }  // namespace darcydem

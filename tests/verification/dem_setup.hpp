@@ -1,4 +1,6 @@
 #pragma once
+#include <omp.h>
+
 #include <cmath>
 
 // Small helpers to set up DEM cases through the library API.
@@ -16,6 +18,27 @@ Simulation<D> single_material(double density, const ContactSpec& spec, double yo
   sim.materials.push_back(m);
   sim.contact_table = ContactTable(1);
   sim.contact_table.set(0, 0, make_pair_parameters(m, m, spec));
+  return sim;
+}
+
+/// Prepares make()'s simulation and runs it for `steps` steps (a multiple
+/// of 10) on `threads` OpenMP threads: ten single steps at a time, or
+/// advance(10) (which fuses each step's last kick with the next one's first
+/// kick and drift). The thread count is restored afterwards.
+template <class Make>
+auto run_on_threads(Make&& make, int threads, bool single_steps, int steps) {
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  auto sim = make();
+  sim.prepare();
+  for (int s = 0; s < steps; s += 10) {
+    if (single_steps) {
+      for (int k = 0; k < 10; ++k) sim.step();
+    } else {
+      sim.advance(10);
+    }
+  }
+  omp_set_num_threads(saved);
   return sim;
 }
 

@@ -266,24 +266,11 @@ Simulation<3> settling_packing(double rolling_friction) {
 class Reproducibility : public ::testing::TestWithParam<double> {};
 
 TEST_P(Reproducibility, BitwiseIdenticalForAnyThreadCount) {
-  auto run = [&](int threads, bool single_steps) {
-    omp_set_num_threads(threads);
-    auto sim = settling_packing(GetParam());
-    sim.prepare();
-    for (int s = 0; s < 4000; s += 10) {
-      if (single_steps) {
-        for (int k = 0; k < 10; ++k) sim.step();
-      } else {
-        sim.advance(10);
-      }
-    }
-    return sim;
-  };
-  const int saved = omp_get_max_threads();
-  const auto a = run(1, true);
-  const auto b = run(2, false);
-  const auto c = run(3, false);
-  omp_set_num_threads(saved);
+  const double rolling = GetParam();
+  auto make = [rolling] { return settling_packing(rolling); };
+  const auto a = testing::run_on_threads(make, 1, true, 4000);
+  const auto b = testing::run_on_threads(make, 2, false, 4000);
+  const auto c = testing::run_on_threads(make, 3, false, 4000);
   ASSERT_GT(a.contact_count(), 1000U) << "the packing must be in contact";
   ASSERT_GT(a.list_builds(), 2U) << "the particles must have been reordered";
   bool reordered = false;

@@ -8,6 +8,7 @@
 // from i's centre to the contact point. v_rel is the velocity of i's surface
 // relative to j's at the contact point, so vn = v_rel . n > 0 when closing.
 #include <cmath>
+#include <limits>
 
 #include "darcydem/contact/contact_laws.hpp"
 #include "darcydem/core/vec.hpp"
@@ -35,7 +36,9 @@ template <int D, int K>
 [[gnu::always_inline]] inline void rotate_into_plane(Eigen::Matrix<double, K, 1>& h, const Vec<D>& n) {
   if constexpr (K == D) {
     const double before = h.squaredNorm();
-    if (before == 0.0) return;
+    // A history this small (below the smallest normal double, so also zero)
+    // is left as it is: 1 / before would overflow and turn it into NaN.
+    if (before < std::numeric_limits<double>::min()) return;
     const double inv_before = 1.0 / before;  // independent of n: off the critical path
     const double hn = h.dot(n);
     h -= hn * n;

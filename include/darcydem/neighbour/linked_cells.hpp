@@ -4,11 +4,14 @@
 // increasing index order (deterministic neighbour order). Cells are numbered
 // with the axis of fewest cells fastest and the axis of most cells slowest,
 // so that a run of consecutive cells (and of particles sorted along them) is
-// a compact slab across the domain's longest side, whatever its shape.
+// a compact slab across the domain's longest side, whatever its shape. Along
+// a periodic axis the cells tile the period exactly and the neighbours of
+// the last cell include the first.
 #include <array>
 #include <cstdint>
 #include <vector>
 
+#include "darcydem/core/periodic_cell.hpp"
 #include "darcydem/core/vec.hpp"
 
 namespace darcydem {
@@ -17,7 +20,8 @@ template <int D>
 class LinkedCells {
  public:
   /// Bins the points; cell_size must be >= the largest interaction range.
-  void build(const std::vector<Vec<D>>& points, double cell_size);
+  /// Along periodic axes the points must lie in the period (wrapped).
+  void build(const std::vector<Vec<D>>& points, double cell_size, const PeriodicCell<D>& cell = {});
 
   [[nodiscard]] std::array<int, D> cell_of(const Vec<D>& x) const;
   [[nodiscard]] std::int64_t flat(const std::array<int, D>& c) const;
@@ -30,27 +34,32 @@ class LinkedCells {
     return (start_.capacity() + sorted_.capacity() + cell_index_.capacity()) * sizeof(std::uint32_t);
   }
 
-  /// Calls f(j) for every particle j in the 3^D cells around cell c.
+  /// Calls f(j) for every particle j in the 3^D cells around cell c (each
+  /// cell once: a periodic axis of one or two cells has fewer neighbours).
   template <class F>
   void for_each_near(const std::array<int, D>& c, F&& f) const {
-    std::array<int, D> lo;
-    std::array<int, D> hi;
+    std::array<std::array<int, 3>, D> near{};
+    std::array<int, D> count{};
     for (int k = 0; k < D; ++k) {
-      lo[k] = c[k] > 0 ? c[k] - 1 : 0;
-      hi[k] = c[k] + 1 < dims_[k] ? c[k] + 1 : dims_[k] - 1;
+      if (!periodic_[k]) {
+        count[k] = 0;
+        for (int v = c[k] > 0 ? c[k] - 1 : 0; v <= c[k] + 1 && v < dims_[k]; ++v) near[k][count[k]++] = v;
+      } else if (dims_[k] >= 3) {
+        near[k] = {(c[k] + dims_[k] - 1) % dims_[k], c[k], (c[k] + 1) % dims_[k]};
+        count[k] = 3;
+      } else {
+        count[k] = dims_[k];
+        near[k] = {0, 1, 0};
+      }
     }
     if constexpr (D == 2) {
-      for (int y = lo[1]; y <= hi[1]; ++y) {
-        for (int x = lo[0]; x <= hi[0]; ++x) {
-          visit(flat({x, y}), f);
-        }
+      for (int y = 0; y < count[1]; ++y) {
+        for (int x = 0; x < count[0]; ++x) visit(flat({near[0][x], near[1][y]}), f);
       }
     } else {
-      for (int z = lo[2]; z <= hi[2]; ++z) {
-        for (int y = lo[1]; y <= hi[1]; ++y) {
-          for (int x = lo[0]; x <= hi[0]; ++x) {
-            visit(flat({x, y, z}), f);
-          }
+      for (int z = 0; z < count[2]; ++z) {
+        for (int y = 0; y < count[1]; ++y) {
+          for (int x = 0; x < count[0]; ++x) visit(flat({near[0][x], near[1][y], near[2][z]}), f);
         }
       }
     }
@@ -63,8 +72,9 @@ class LinkedCells {
   }
 
   Vec<D> origin_ = Vec<D>::Zero();
-  double inv_size_ = 1.0;
+  Vec<D> inv_size_ = Vec<D>::Ones();  ///< cells per metre along each axis
   std::array<int, D> dims_{};
+  std::array<bool, D> periodic_{};
   std::array<std::int64_t, D> stride_{};  ///< flat index = sum c[k] stride_[k]
   std::vector<std::uint32_t> start_;
   std::vector<std::uint32_t> sorted_;

@@ -26,13 +26,17 @@ class VerletList {
  public:
   /// Builds the list for the given particles, keeping old histories.
   /// old_index[i] (if given) is the index particle i had at the last build.
+  /// With periodic axes a pair is listed once, at its partners' nearest
+  /// images (the positions must be wrapped into the period).
   void build(const std::vector<Vec<D>>& position, const std::vector<double>& radius, double skin,
-             bool keep_rolling, const std::vector<std::uint32_t>* old_index = nullptr);
+             bool keep_rolling, const std::vector<std::uint32_t>* old_index = nullptr,
+             const PeriodicCell<D>& cell = {});
 
   /// The particles in linked-cell order (cell by cell, x fastest), a
   /// permutation that makes neighbours close in memory.
   [[nodiscard]] std::vector<std::uint32_t> spatial_order(const std::vector<Vec<D>>& position,
-                                                         const std::vector<double>& radius, double skin);
+                                                         const std::vector<double>& radius, double skin,
+                                                         const PeriodicCell<D>& cell = {});
 
   /// Positions at the last build (for the displacement check).
   [[nodiscard]] const std::vector<Vec<D>>& reference() const { return reference_; }

@@ -13,6 +13,7 @@
 
 #include "darcydem/contact/contact_laws.hpp"
 #include "darcydem/contact/material.hpp"
+#include "darcydem/core/periodic_cell.hpp"
 #include "darcydem/core/vec.hpp"
 #include "darcydem/neighbour/verlet_list.hpp"
 #include "darcydem/particles/particle_data.hpp"
@@ -48,6 +49,11 @@ class Simulation {
   double time_step = 0.0;  ///< s
   double time = 0.0;       ///< s
   std::uint64_t steps = 0;
+  /// Periodic boundaries (none by default): contacts across them take the
+  /// partner's nearest image, and every list build puts the particles back
+  /// into the period. Each period must exceed 2 (2 r_max + skin), so that a
+  /// pair within the list's reach has one image within it.
+  PeriodicCell<D> periodic;
   /// Optional body-force field (the pore fluid), evaluated every step; not owned.
   const ParticleForceField<D>* force_field = nullptr;
 
@@ -112,7 +118,7 @@ class Simulation {
   enum class Finish { none, kick, kick_kick_drift };
   /// Evaluates the forces; returns the largest displacement since the last
   /// list build after a drift (m), else 0.
-  template <class Law, bool Rolling>
+  template <class Law, bool Rolling, bool Periodic>
   double compute_forces_with(Finish finish);
   template <class Law>
   double compute_forces_for_law(Finish finish);
@@ -131,6 +137,8 @@ class Simulation {
   template <class Select, class Add>
   void for_each_contact_moment(Select&& selected, Add&& add) const;
   void rebuild_if_needed(double moved);
+  /// Throws if a period is too short for the particles and skin.
+  void check_periods() const;
   void rebuild();
 
   enum class LawChoice { linear, hertz, mixed };
