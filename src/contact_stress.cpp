@@ -16,6 +16,8 @@ void Simulation<D>::for_each_contact_moment(Select&& selected, Add&& add) const 
   const auto& p = particles;
   const auto& L = list_;
   const auto& W = wall_list_;
+  // Forces the last step stored as it applied them, if it did.
+  const bool recorded = pair_force_step_ == steps && pair_force_.size() == L.pair_count();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const bool i_in = selected(i);
     for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
@@ -27,29 +29,35 @@ void Simulation<D>::for_each_contact_moment(Select&& selected, Add&& add) const 
       const double inv_m = p.inv_mass[i] + p.inv_mass[j];
       const double dist = d.norm();
       if (dist >= reach || inv_m == 0.0) continue;
-      // The force of the last evaluation, recomputed: the positions are
-      // those it saw, and the tangential spring it left, xi, gives its
-      // tangential force -k_t xi - c_t v_t whether the contact stuck or
-      // slid (contact_kernel.hpp). The dashpots take the velocities of the
-      // step's end (the evaluation saw those of its middle).
       const Vec<D> nrm = d / dist;
       const double overlap = reach - dist;
       const double arm_i = p.radius[i] - 0.5 * overlap;
       const double arm_j = p.radius[j] - 0.5 * overlap;
-      const Vec<D> v_rel =
-          p.velocity[i] - p.velocity[j] +
-          cross(AngVec<D>(p.angular_velocity[i] * arm_i + p.angular_velocity[j] * arm_j), nrm);
-      const double vn = v_rel.dot(nrm);
-      const double sqrt_m = std::sqrt(1.0 / inv_m);
-      const PairParameters& pp = contact_table(p.material[i], p.material[j]);
-      const NormalResponse nr =
-          MixedNormalLaw::evaluate(pp, overlap, vn, sqrt_m, p.radius[i] * p.radius[j] / reach);
-      const Vec<D> vt = v_rel - vn * nrm;
-      Vec<D> f_on_i = -nr.force * nrm;
-      if (pp.friction > 0.0) {
-        f_on_i += -nr.tangential_stiffness * L.tangential[k] -
-                  pp.tangential_damping * sqrt_m * nr.sqrt_tangential_stiffness * vt;
-      }
+      // The force of the last evaluation: stored by it if the step recorded
+      // (Simulation::record_contact_forces), else recomputed: the positions
+      // are those it saw, and the tangential spring it left, xi, gives its
+      // tangential force -k_t xi - c_t v_t whether the contact stuck or
+      // slid (contact_kernel.hpp). Only the recomputed dashpots differ: they
+      // take the velocities of the step's end (the evaluation saw those of
+      // its middle).
+      auto recomputed = [&] {
+        const Vec<D> v_rel =
+            p.velocity[i] - p.velocity[j] +
+            cross(AngVec<D>(p.angular_velocity[i] * arm_i + p.angular_velocity[j] * arm_j), nrm);
+        const double vn = v_rel.dot(nrm);
+        const double sqrt_m = std::sqrt(1.0 / inv_m);
+        const PairParameters& pp = contact_table(p.material[i], p.material[j]);
+        const NormalResponse nr =
+            MixedNormalLaw::evaluate(pp, overlap, vn, sqrt_m, p.radius[i] * p.radius[j] / reach);
+        const Vec<D> vt = v_rel - vn * nrm;
+        Vec<D> f = -nr.force * nrm;
+        if (pp.friction > 0.0) {
+          f += -nr.tangential_stiffness * L.tangential[k] -
+               pp.tangential_damping * sqrt_m * nr.sqrt_tangential_stiffness * vt;
+        }
+        return f;
+      };
+      const Vec<D> f_on_i = recorded ? pair_force_[k] : recomputed();
       // The contact point is arm_i from i along n and arm_j from j against
       // it; the force on j is -f_on_i.
       if (i_in) add(i, Moment((arm_i * nrm) * f_on_i.transpose()));

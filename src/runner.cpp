@@ -381,6 +381,9 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     }
     return std::max<std::uint64_t>(run, 1);
   };
+  const bool stress_probes =
+      std::any_of(scene.output.probes.begin(), scene.output.probes.end(),
+                  [](const ProbeSpec& p) { return p.quantity == ProbeQuantity::stress; });
   std::string failure;
   try {
     const std::size_t first_stage = options.resume ? pos.stage : 0;
@@ -414,6 +417,11 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         // update, output, stop check, progress): the steps in between run
         // fused (Simulation::advance), with the same results as one by one.
         const std::uint64_t run = steps_to_next_event(s, n_steps, check_interval, next_probe, next_snapshot);
+        // Contact stresses at the output this run ends at use the forces
+        // its last step applies (Simulation::record_contact_forces).
+        const double end = sim.time + static_cast<double>(run) * dt;
+        sim.record_contact_forces = (stress_probes && end >= next_probe - 0.5 * dt) ||
+                                    (fluid != nullptr && end >= next_snapshot - 0.5 * dt);
         sim.advance(run);
         s += run - 1;
         since_update += run;

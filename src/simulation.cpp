@@ -59,8 +59,15 @@ void Simulation<D>::advance(std::uint64_t count) {
     for (auto& w : walls) w.advance(time_step);
     time += time_step;
     rebuild_if_needed(moved);
+    recording_ = record_contact_forces && s + 1 == count;
+    if (recording_) pair_force_.assign(list_.pair_count(), Vec<D>::Zero());
     moved = compute_forces(s + 1 < count ? Finish::kick_kick_drift : Finish::kick);
     ++steps;
+    if (recording_) {
+      pair_force_step_ = steps;
+      record_contact_forces = false;
+      recording_ = false;
+    }
   }
 }
 
@@ -196,6 +203,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
   const auto n = static_cast<std::int64_t>(p.size());
   const double dt = time_step;
   const bool measure = measure_contact_forces;
+  const bool recording = recording_;
   // One material: every pair has the same parameters.
   const PairParameters* uniform = materials.size() == 1 ? &contact_table(0, 0) : nullptr;
   // x_j - x_i, at j's nearest image across periodic boundaries.
@@ -299,6 +307,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
         t += c.torque_i;
         if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
         touching += 1.0;
+        if (recording) pair_force_[k] = c.force_on_i;
         if (is_cross) {
           L.cross_force[slot] = -c.force_on_i;
           L.cross_torque[slot] = c.torque_j;
@@ -360,6 +369,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
         }
         force[i] += fq;
         torque[i] += tiq;
+        if (recording) pair_force_[k] = fq;
         if (measure) magnitude_sum += std::sqrt(fq.squaredNorm());
         Vec<D>* fj = cross ? cross_force + slot : force + j;
         AngVec<D>* tj = cross ? cross_torque + slot : torque + j;

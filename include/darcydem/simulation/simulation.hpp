@@ -46,6 +46,12 @@ class Simulation {
   /// unbalanced_force_ratio(). One square root per contact: about 10 % of a
   /// step in a dense packing, so a run that never asks can turn it off.
   bool measure_contact_forces = true;
+  /// When set, the last step of the next advance() (or the next step())
+  /// stores each pair's force as it applies it, and clears the flag:
+  /// contact_stress and contact_moments then use those forces (dashpots
+  /// included) rather than recomputing them. The runner sets it before a
+  /// step that ends at a stress probe or a fluid snapshot.
+  bool record_contact_forces = false;
   double time_step = 0.0;  ///< s
   double time = 0.0;       ///< s
   std::uint64_t steps = 0;
@@ -148,6 +154,9 @@ class Simulation {
   VerletList<D> list_;
   WallContactList<D> wall_list_;
   std::vector<Vec<D>> field_force_;
+  bool recording_ = false;                                    ///< this force evaluation stores pair_force_
+  std::vector<Vec<D>> pair_force_;                            ///< force on i of each pair, as recorded
+  std::uint64_t pair_force_step_ = ~std::uint64_t{0};         ///< the step that recorded pair_force_
   const ParticleForceField<D>* field_forces_from_ = nullptr;  ///< the field that gave field_force_
   std::vector<std::array<double, 2>> block_sums_;  ///< per force block: sum of |F| of contacts, count
 };
