@@ -381,6 +381,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     }
     return std::max<std::uint64_t>(run, 1);
   };
+  // Whether time t has reached an output time (within half a step).
+  auto reached = [&](double t, double event) { return t >= event - 0.5 * dt; };
   const bool stress_probes =
       std::any_of(scene.output.probes.begin(), scene.output.probes.end(),
                   [](const ProbeSpec& p) { return p.quantity == ProbeQuantity::stress; });
@@ -420,8 +422,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         // Contact stresses at the output this run ends at use the forces
         // its last step applies (Simulation::record_contact_forces).
         const double end = sim.time + static_cast<double>(run) * dt;
-        sim.record_contact_forces = (stress_probes && end >= next_probe - 0.5 * dt) ||
-                                    (fluid != nullptr && end >= next_snapshot - 0.5 * dt);
+        sim.record_contact_forces =
+            (stress_probes && reached(end, next_probe)) || (fluid != nullptr && reached(end, next_snapshot));
         sim.advance(run);
         s += run - 1;
         since_update += run;
@@ -429,12 +431,12 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
           fluid_step();
         }
         if (seepage) seepage->after_step(scene);
-        if (sim.time >= next_probe - 0.5 * dt) {
+        if (reached(sim.time, next_probe)) {
           write_probes();
           next_probe += scene.output.probe_interval;
           if (next_probe < sim.time) next_probe = sim.time + scene.output.probe_interval;
         }
-        if (sim.time >= next_snapshot - 0.5 * dt) {
+        if (reached(sim.time, next_snapshot)) {
           write_snapshot();
           next_snapshot += scene.output.snapshot_interval;
         }

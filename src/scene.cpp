@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -274,13 +273,7 @@ template <int D>
 void check_periods(TableReader& r, const Simulation<D>& sim, const std::vector<std::string>& origin) {
   const auto& p = sim.particles;
   const auto& cell = sim.periodic;
-  double r_max = 0.0;
-  double r_min = std::numeric_limits<double>::max();
-  for (double radius : p.radius) {
-    r_max = std::max(r_max, radius);
-    r_min = std::min(r_min, radius);
-  }
-  const double skin = sim.skin > 0.0 ? sim.skin : 0.2 * r_min;  // Simulation::prepare's default
+  const double shortest = sim.shortest_period();
   for (int k = 0; k < D; ++k) {
     if (!cell.periodic[k]) continue;
     const std::string axis(1, "xyz"[k]);
@@ -295,7 +288,6 @@ void check_periods(TableReader& r, const Simulation<D>& sim, const std::vector<s
                         TableReader::format_number(hi), axis));
       }
     }
-    const double shortest = 2.0 * (2.0 * r_max + skin);
     if (!(cell.length[k] > shortest)) {
       r.fail(axis,
              fmt::format("the period {:.6g} m must exceed 2 x (2 x largest radius + skin) = {:.6g} m, so "

@@ -33,11 +33,7 @@ void Simulation<D>::prepare() {
                 : any_hertz               ? LawChoice::hertz
                                           : LawChoice::linear;
   rolling_ = contact_table.any_rolling();
-  if (skin <= 0.0) {
-    double r_min = std::numeric_limits<double>::max();
-    for (double r : particles.radius) r_min = std::min(r_min, r);
-    skin = particles.size() > 0 ? 0.2 * r_min : 1e-3;
-  }
+  skin = skin_or_default();
   if (time_step <= 0.0) throw std::logic_error("time step not set");
   check_periods();
   rebuild();
@@ -72,15 +68,26 @@ void Simulation<D>::advance(std::uint64_t count) {
 }
 
 template <int D>
-void Simulation<D>::check_periods() const {
-  if (!periodic.any()) return;
+double Simulation<D>::skin_or_default() const {
+  if (skin > 0.0) return skin;
+  if (particles.size() == 0) return 1e-3;
+  return 0.2 * *std::min_element(particles.radius.begin(), particles.radius.end());
+}
+
+template <int D>
+double Simulation<D>::shortest_period() const {
   double r_max = 0.0;
   for (double r : particles.radius) r_max = std::max(r_max, r);
+  return 2.0 * (2.0 * r_max + skin_or_default());
+}
+
+template <int D>
+void Simulation<D>::check_periods() const {
   for (int k = 0; k < D; ++k) {
-    if (periodic.periodic[k] && !(periodic.length[k] > 2.0 * (2.0 * r_max + skin))) {
+    if (periodic.periodic[k] && !(periodic.length[k] > shortest_period())) {
       throw std::invalid_argument(fmt::format(
           "periodic axis {}: the period {:.6g} m must exceed 2 x (2 x largest radius + skin) = {:.6g} m",
-          "xyz"[k], periodic.length[k], 2.0 * (2.0 * r_max + skin)));
+          "xyz"[k], periodic.length[k], shortest_period()));
     }
   }
 }

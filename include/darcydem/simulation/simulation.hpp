@@ -57,8 +57,7 @@ class Simulation {
   std::uint64_t steps = 0;
   /// Periodic boundaries (none by default): contacts across them take the
   /// partner's nearest image, and every list build puts the particles back
-  /// into the period. Each period must exceed 2 (2 r_max + skin), so that a
-  /// pair within the list's reach has one image within it.
+  /// into the period. Each period must exceed shortest_period().
   PeriodicCell<D> periodic;
   /// Optional body-force field (the pore fluid), evaluated every step; not owned.
   const ParticleForceField<D>* force_field = nullptr;
@@ -72,6 +71,12 @@ class Simulation {
   /// drift share one sweep over the particles. Nothing may look at or change
   /// the simulation in between, so callers advance to their next event.
   void advance(std::uint64_t count);
+
+  /// The skin prepare() uses: `skin`, or 0.2 x the smallest radius if it is 0.
+  [[nodiscard]] double skin_or_default() const;
+  /// The shortest period allowed: 2 (2 r_max + skin), so that a pair within
+  /// the list's reach has one image within it (skin_or_default()).
+  [[nodiscard]] double shortest_period() const;
 
   /// Critical time step: sqrt(m_min / k_max) for linear contacts, the
   /// Rayleigh step pi r sqrt(rho/G) / (0.1631 nu + 0.8766) for Hertz.
