@@ -1,4 +1,5 @@
-// Simulation::contact_stress and contact_moments: the contact forces'
+// Simulation::contact_forces, contact_stress and contact_moments: the
+// contacts of the last force evaluation with their forces, and the forces'
 // moments about the particles' centres, over a box (Love and Weber's mean
 // stress: the effective stress of a saturated bed) or particle by particle.
 #include <cmath>
@@ -10,9 +11,9 @@
 namespace darcydem {
 
 template <int D>
-template <class Select, class Add>
-void Simulation<D>::for_each_contact_moment(Select&& selected, Add&& add) const {
-  if (!prepared_) throw std::logic_error("Simulation: contact stresses before prepare");
+template <class Select, class Visit>
+void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) const {
+  if (!prepared_) throw std::logic_error("Simulation: contact forces before prepare");
   const auto& p = particles;
   const auto& L = list_;
   const auto& W = wall_list_;
@@ -57,11 +58,11 @@ void Simulation<D>::for_each_contact_moment(Select&& selected, Add&& add) const 
         }
         return f;
       };
-      const Vec<D> f_on_i = recorded ? pair_force_[k] : recomputed();
       // The contact point is arm_i from i along n and arm_j from j against
       // it; the force on j is -f_on_i.
-      if (i_in) add(i, Moment((arm_i * nrm) * f_on_i.transpose()));
-      if (j_in) add(j, Moment((arm_j * nrm) * f_on_i.transpose()));
+      visit(
+          ContactRecord<D>{i, j, -1, d, nrm, overlap, arm_i, arm_j, recorded ? pair_force_[k] : recomputed()},
+          i_in, j_in);
     }
     if (!i_in) continue;
     for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
@@ -69,9 +70,28 @@ void Simulation<D>::for_each_contact_moment(Select&& selected, Add&& add) const 
       const Vec<D>& f = W.force_on_particle[k];
       if (f.squaredNorm() == 0.0) continue;
       const auto touch = walls[W.wall[k]].touch(p.position[i]);
-      add(i, Moment((-touch.gap * touch.normal) * f.transpose()));
+      visit(ContactRecord<D>{i, i, static_cast<int>(W.wall[k]), -touch.gap * touch.normal, -touch.normal,
+                             p.radius[i] - touch.gap, touch.gap, 0.0, f},
+            true, false);
     }
   }
+}
+
+template <int D>
+template <class Select, class Add>
+void Simulation<D>::for_each_contact_moment(Select&& selected, Add&& add) const {
+  for_each_contact_force(selected, [&](const ContactRecord<D>& c, bool first_in, bool second_in) {
+    if (first_in) add(c.first, Moment((c.arm_first * c.normal) * c.force.transpose()));
+    if (second_in) add(c.second, Moment((c.arm_second * c.normal) * c.force.transpose()));
+  });
+}
+
+template <int D>
+std::vector<ContactRecord<D>> Simulation<D>::contact_forces() const {
+  std::vector<ContactRecord<D>> contacts;
+  for_each_contact_force([](std::size_t) { return true; },
+                         [&](const ContactRecord<D>& c, bool, bool) { contacts.push_back(c); });
+  return contacts;
 }
 
 template <int D>
@@ -96,6 +116,8 @@ std::vector<typename Simulation<D>::Moment> Simulation<D>::contact_moments() con
 template Simulation<2>::Moment Simulation<2>::contact_stress(const Vec<2>&, const Vec<2>&) const;
 template Simulation<3>::Moment Simulation<3>::contact_stress(const Vec<3>&, const Vec<3>&) const;
 template std::vector<Simulation<2>::Moment> Simulation<2>::contact_moments() const;
+template std::vector<ContactRecord<2>> Simulation<2>::contact_forces() const;
+template std::vector<ContactRecord<3>> Simulation<3>::contact_forces() const;
 template std::vector<Simulation<3>::Moment> Simulation<3>::contact_moments() const;
 
 }  // namespace darcydem

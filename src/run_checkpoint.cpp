@@ -12,7 +12,7 @@ namespace darcydem {
 namespace {
 
 constexpr const char* checkpoint_magic = "darcydem checkpoint";
-constexpr std::uint32_t format = 3;  // 2: the pore fluid's patches; 3: the walls' series
+constexpr std::uint32_t format = 4;  // 2: the pore fluid's patches; 3: the walls' series; 4: the contacts'
 constexpr const char* end_mark = "end of checkpoint";
 
 /// The header: what a reader must share with the writer.
@@ -59,7 +59,7 @@ void state_items(Archive& ar, const RunState<D>& state) {
   ar(state.position, state.simulation);
   if (state.fluid != nullptr) state.fluid->checkpoint(ar, &state.simulation.field_forces());
   if (state.analysis != nullptr) ar(*state.analysis);
-  ar(state.particle_series, state.fluid_series, state.wall_series);
+  ar(state.particle_series, state.fluid_series, state.wall_series, state.contact_series);
 }
 
 }  // namespace

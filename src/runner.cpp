@@ -217,12 +217,14 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   PvdSeries series((out / "particles.pvd").string());
   PvdSeries fluid_series((out / "fluid.pvd").string());
   PvdSeries wall_series((out / "walls.pvd").string());
+  PvdSeries contact_series((out / "contacts.pvd").string());
   PoreFluid<D>* fluid = scene.fluid.get();
   std::optional<SeepageColumnAnalysis<D>> seepage;
   if (scene.seepage_column) seepage.emplace(*scene.seepage_column, scene);
   // Where the run stands; a checkpoint stores it with the state.
   RunPosition pos;
-  const RunState<D> state{pos, sim, fluid, seepage ? &*seepage : nullptr, series, fluid_series, wall_series};
+  const RunState<D> state{pos,    sim,          fluid,       seepage ? &*seepage : nullptr,
+                          series, fluid_series, wall_series, contact_series};
   auto write_probes = [&] {
     probes << fmt::format("{:.10g}", sim.time);
     for (const auto& p : scene.output.probes)
@@ -248,6 +250,11 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       const std::string wname = fmt::format("walls_{:05d}.vtu", pos.snapshot_index);
       write_walls_vtu<D>((out / wname).string(), sim.walls, lo, hi);
       wall_series.add(sim.time, wname);
+    }
+    if (scene.output.contacts) {
+      const std::string cname = fmt::format("contacts_{:05d}.vtu", pos.snapshot_index);
+      write_contacts_vtu<D>((out / cname).string(), sim.particles, sim.contact_forces());
+      contact_series.add(sim.time, cname);
     }
     if (fluid != nullptr) {
       const std::string fname = fmt::format("fluid_{:05d}.vti", pos.snapshot_index);
@@ -419,11 +426,13 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         // update, output, stop check, progress): the steps in between run
         // fused (Simulation::advance), with the same results as one by one.
         const std::uint64_t run = steps_to_next_event(s, n_steps, check_interval, next_probe, next_snapshot);
-        // Contact stresses at the output this run ends at use the forces
-        // its last step applies (Simulation::record_contact_forces).
+        // Contact stresses and the contact network at the output this run
+        // ends at use the forces its last step applies
+        // (Simulation::record_contact_forces).
         const double end = sim.time + static_cast<double>(run) * dt;
         sim.record_contact_forces =
-            (stress_probes && reached(end, next_probe)) || (fluid != nullptr && reached(end, next_snapshot));
+            (stress_probes && reached(end, next_probe)) ||
+            ((fluid != nullptr || scene.output.contacts) && reached(end, next_snapshot));
         sim.advance(run);
         s += run - 1;
         since_update += run;

@@ -632,6 +632,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         r.check("probe_interval", r.number_or("probe_interval", 0.0), is_non_negative, ">= 0 s");
     scene.output.snapshot_interval =
         r.check("snapshot_interval", r.number_or("snapshot_interval", 0.0), is_non_negative, ">= 0 s");
+    scene.output.contacts = r.boolean_or("contacts", true);
     r.finish();
   }
   std::vector<std::string> probe_names;
@@ -907,9 +908,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       TableReader r(*t, "[simulation]", file);
       r.fail("time_step",
              fmt::format("{:.4g} s is larger than the critical time step {:.4g} s "
-                         "(sqrt(m_min/k_max) or the Rayleigh step, with the pore fluid's K_f/n and drag "
-                         "if any); use a smaller "
-                         "value or \"auto\"",
+                         "(1/omega of the fastest contact mode of the lightest grain, normal or with "
+                         "friction turning it, or the Rayleigh step; with the pore fluid's K_f/n and "
+                         "drag if any); use a smaller value or \"auto\"",
                          scene.time_step.value, critical));
     }
     sim.time_step = scene.time_step.value;

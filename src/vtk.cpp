@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include <fmt/format.h>
 #include <fmt/os.h>
@@ -17,6 +18,19 @@ void write_vector_array(fmt::ostream& out, const char* name, std::size_t n, Get&
   for (std::size_t i = 0; i < n; ++i) {
     const auto v = get(i);
     out.print("{:.17g} {:.17g} {:.17g}\n", v[0], v[1], D == 3 ? v[2] : 0.0);
+  }
+  out.print("        </DataArray>\n");
+}
+
+template <class Get>
+void write_scalar_array(fmt::ostream& out, const char* type, const char* name, std::size_t n, Get&& get) {
+  out.print("        <DataArray type=\"{}\" Name=\"{}\" format=\"ascii\">\n", type, name);
+  for (std::size_t i = 0; i < n; ++i) {
+    if constexpr (std::is_floating_point_v<decltype(get(i))>) {
+      out.print("{:.17g}\n", get(i));
+    } else {
+      out.print("{}\n", get(i));
+    }
   }
   out.print("        </DataArray>\n");
 }
@@ -219,8 +233,53 @@ void PvdSeries::add(double time, const std::string& file) {
   std::rename(tmp.c_str(), path_.c_str());
 }
 
+template <int D>
+void write_contacts_vtu(const std::string& path, const ParticleData<D>& p,
+                        const std::vector<ContactRecord<D>>& contacts) {
+  const std::size_t n = contacts.size();
+  auto normal_force = [&](std::size_t c) { return -contacts[c].force.dot(contacts[c].normal); };
+  try {
+    auto out = fmt::output_file(path);
+    out.print(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+        "byte_order=\"LittleEndian\">\n");
+    out.print("  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", 2 * n, n);
+    out.print("      <Points>\n");
+    // Each contact's two ends: the first particle's centre and the other's
+    // (its nearest periodic image) or the contact point on the wall.
+    write_vector_array<D>(out, "position", 2 * n, [&](std::size_t e) {
+      const auto& c = contacts[e / 2];
+      return Vec<D>(e % 2 == 0 ? p.position[c.first] : Vec<D>(p.position[c.first] + c.branch));
+    });
+    out.print("      </Points>\n      <CellData Scalars=\"normal_force\">\n");
+    write_scalar_array(out, "Float64", "normal_force", n, normal_force);
+    write_scalar_array(out, "Float64", "tangential_force", n, [&](std::size_t c) {
+      return (contacts[c].force + normal_force(c) * contacts[c].normal).norm();
+    });
+    write_vector_array<D>(out, "force", n, [&](std::size_t c) { return contacts[c].force; });
+    write_scalar_array(out, "Float64", "overlap", n, [&](std::size_t c) { return contacts[c].overlap; });
+    write_scalar_array(out, "Int64", "first_id", n, [&](std::size_t c) { return p.id[contacts[c].first]; });
+    write_scalar_array(out, "Int64", "second_id", n, [&](std::size_t c) {
+      return contacts[c].wall < 0 ? static_cast<std::int64_t>(p.id[contacts[c].second]) : std::int64_t{-1};
+    });
+    write_scalar_array(out, "Int32", "wall_id", n, [&](std::size_t c) { return contacts[c].wall; });
+    out.print("      </CellData>\n      <Cells>\n");
+    write_scalar_array(out, "Int64", "connectivity", 2 * n, [](std::size_t e) { return e; });
+    write_scalar_array(out, "Int64", "offsets", n, [](std::size_t c) { return 2 * (c + 1); });
+    write_scalar_array(out, "UInt8", "types", n, [](std::size_t) { return 3; });  // VTK_LINE
+    out.print("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+    out.close();
+  } catch (const std::system_error& e) {
+    throw std::runtime_error(fmt::format("{}: cannot write the contacts: {}", path, e.what()));
+  }
+}
+
 template void write_particles_vtu<2>(const std::string&, const ParticleData<2>&);
 template void write_particles_vtu<3>(const std::string&, const ParticleData<3>&);
+template void write_contacts_vtu<2>(const std::string&, const ParticleData<2>&,
+                                    const std::vector<ContactRecord<2>>&);
+template void write_contacts_vtu<3>(const std::string&, const ParticleData<3>&,
+                                    const std::vector<ContactRecord<3>>&);
 template void write_walls_vtu<2>(const std::string&, const std::vector<Wall<2>>&, const Vec<2>&,
                                  const Vec<2>&);
 template void write_walls_vtu<3>(const std::string&, const std::vector<Wall<3>>&, const Vec<3>&,

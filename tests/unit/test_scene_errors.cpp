@@ -2,6 +2,8 @@
 // the file, the line, the key and what is allowed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -241,7 +243,9 @@ TEST(SceneErrors, NegativeGapIsRefused) {
 TEST(SceneErrors, TimeStepAboveCriticalNamesBoth) {
   const auto msg = load_error(replace(kGood, "time_step = \"auto\"", "time_step = 0.01"));
   EXPECT_NE(msg.find("0.01 s is larger than the critical time step"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("0.0001443"), std::string::npos) << msg;  // sqrt(m/k) for d = 1 mm discs
+  // Friction 0.5, k_t = k_n: the tangential spring turning a disc of 1 mm
+  // (alpha = 1/2), sqrt(m / (3 k_t)) with m = 2650 pi (0.5e-3)^2 kg, k = 1e5.
+  EXPECT_NE(msg.find("8.329e-05"), std::string::npos) << msg;
 }
 
 TEST(SceneErrors, UnknownMaterialIsNamed) {
@@ -522,6 +526,16 @@ TEST(SceneErrors, TimeStepAboveTheCoupledCriticalStepIsRefused) {
   const auto msg = load_error(replace(with_fluid(), "time_step = \"auto\"", "time_step = 5e-5"));
   EXPECT_NE(msg.find("is larger than the critical time step"), std::string::npos) << msg;
   EXPECT_NE(msg.find("K_f/n"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, ContactNetworkSwitchIsABoolean) {
+  EXPECT_EQ(load_error(std::string(kGood) + "\n[output]\ncontacts = false\n"), "");
+  const auto msg = load_error(std::string(kGood) + "\n[output]\ncontacts = 1\n");
+  EXPECT_NE(msg.find("[output] key 'contacts': must be true or false"), std::string::npos) << msg;
+  // file:line: kGood's lines, the blank one and [output] come before it.
+  const std::string good(kGood);
+  const auto line = std::count(good.begin(), good.end(), '\n') + 3;
+  EXPECT_NE(msg.find(".toml:" + std::to_string(line) + ":"), std::string::npos) << msg;
 }
 
 TEST(SceneErrors, FluidCouplingIntervalIsChecked) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/vtk_text.hpp"
 #include "darcydem/output/vtk.hpp"
 
 namespace darcydem {
@@ -23,18 +24,6 @@ std::string read_all(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-/// The numbers of the DataArray named `name`.
-std::vector<double> array_of(const std::string& text, const std::string& name) {
-  const auto at = text.find("Name=\"" + name + "\"");
-  EXPECT_NE(at, std::string::npos) << name;
-  const auto begin = text.find('>', at) + 1;
-  const auto end = text.find("</DataArray>", begin);
-  std::stringstream s(text.substr(begin, end - begin));
-  std::vector<double> v;
-  for (double x; s >> x;) v.push_back(x);
-  return v;
 }
 
 std::string temp_file(const std::string& name) {
@@ -55,7 +44,7 @@ TEST(WallsVtu, PlateAndFloorIn3D) {
   const std::string text = read_all(path);
   std::filesystem::remove(path);
   EXPECT_NE(text.find("NumberOfPoints=\"12\" NumberOfCells=\"2\""), std::string::npos);
-  const auto p = array_of(text, "position");
+  const auto p = testing::vtk_array(text, "position");
   ASSERT_EQ(p.size(), 36U);
   const double plate_corners[8][3] = {{0, 0, 1}, {2, 0, 1}, {2, 3, 1}, {0, 3, 1},
                                       {0, 0, 1}, {2, 0, 1}, {2, 3, 1}, {0, 3, 1}};
@@ -68,9 +57,9 @@ TEST(WallsVtu, PlateAndFloorIn3D) {
     EXPECT_EQ(p[3 * c + 2], 0.0);
     EXPECT_NEAR(std::hypot(p[3 * c] - 1.0, p[3 * c + 1] - 1.0), half * std::sqrt(2.0), 1e-12);
   }
-  EXPECT_EQ(array_of(text, "offsets"), (std::vector<double>{8, 12}));
-  EXPECT_EQ(array_of(text, "types"), (std::vector<double>{12, 9}));  // hexahedron, quad
-  EXPECT_EQ(array_of(text, "force"), (std::vector<double>{0, 0, -2.5, 0, 0, 0}));
+  EXPECT_EQ(testing::vtk_array(text, "offsets"), (std::vector<double>{8, 12}));
+  EXPECT_EQ(testing::vtk_array(text, "types"), (std::vector<double>{12, 9}));  // hexahedron, quad
+  EXPECT_EQ(testing::vtk_array(text, "force"), (std::vector<double>{0, 0, -2.5, 0, 0, 0}));
 }
 
 TEST(WallsVtu, SegmentAndSlopeIn2D) {
@@ -93,7 +82,7 @@ TEST(WallsVtu, SegmentAndSlopeIn2D) {
   const std::string text = read_all(path);
   std::filesystem::remove(path);
   EXPECT_NE(text.find("NumberOfPoints=\"10\" NumberOfCells=\"3\""), std::string::npos);
-  const auto p = array_of(text, "position");
+  const auto p = testing::vtk_array(text, "position");
   ASSERT_EQ(p.size(), 30U);
   const double turned_corners[4][2] = {{1, -1}, {1, 1}, {1, 1}, {1, -1}};
   for (int c = 0; c < 4; ++c) {
@@ -112,7 +101,7 @@ TEST(WallsVtu, SegmentAndSlopeIn2D) {
   EXPECT_NEAR(b.dot(slope.normal), 0.0, 1e-15);
   EXPECT_NEAR((a - b).norm(), 1.1 * 0.05, 1e-15);
   EXPECT_NEAR((0.5 * (a + b) - Vec<2>(0.02, 0.015)).norm(), 0.0, 1e-15);
-  EXPECT_EQ(array_of(text, "types"), (std::vector<double>{9, 3, 9}));  // quad, line, quad
+  EXPECT_EQ(testing::vtk_array(text, "types"), (std::vector<double>{9, 3, 9}));  // quad, line, quad
 }
 
 }  // namespace

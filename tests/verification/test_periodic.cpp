@@ -280,8 +280,8 @@ Simulation<3> periodic_settling() {
 // across the periodic boundaries: 1 thread with single steps against 2
 // threads with advance().
 TEST(Periodic, BitwiseIdenticalForAnyThreadCount) {
-  const auto a = testing::run_on_threads(periodic_settling, 1, true, 2000);
-  const auto b = testing::run_on_threads(periodic_settling, 2, false, 2000);
+  const auto a = testing::run_on_threads(periodic_settling, 1, true, 3000);
+  const auto b = testing::run_on_threads(periodic_settling, 2, false, 3000);
   ASSERT_GT(a.contact_count(), 1000U) << "the packing must be in contact";
   ASSERT_GT(contacts_across_boundaries(a), 20U)
       << "contacts across the periodic boundaries must be exercised";

@@ -2,6 +2,8 @@
 // their closed forms.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "scene_loading.hpp"
 
 namespace darcydem {
@@ -39,6 +41,8 @@ TEST(SceneCases, PeriodicBedRestsOnTheFloorWithItsWholeWeight) {
   double weight = 0.0;
   for (double inv_m : sim.particles.inv_mass) weight += 9.81 / inv_m;
   EXPECT_NEAR(-sim.walls[0].force.z(), weight, 0.005 * weight);
+  std::printf("periodic bed at rest at t = %.4f s: floor %.6g N against the weight %.6g N (%+.2e)\n",
+              sim.time, -sim.walls[0].force.z(), weight, -sim.walls[0].force.z() / weight - 1.0);
 }
 
 }  // namespace

@@ -9,12 +9,24 @@
 
 #include "darcydem/fluid/pore_fluid.hpp"
 #include "darcydem/particles/particle_data.hpp"
+#include "darcydem/simulation/simulation.hpp"
 #include "darcydem/walls/wall.hpp"
 
 namespace darcydem {
 
 template <int D>
 void write_particles_vtu(const std::string& path, const ParticleData<D>& particles);
+
+/// The contact network as VTK lines (.vtu), one per contact: from the first
+/// particle's centre to the other's (its nearest periodic image) or to the
+/// contact point on a wall. Cell data: normal_force (N, compression
+/// positive), tangential_force (N, magnitude), force (N, on the first
+/// particle), overlap (m), first_id and second_id (particle ids; -1 for a
+/// wall), wall_id (-1 between particles). As ParaView's force chains: colour
+/// or "Tube" radius by normal_force.
+template <int D>
+void write_contacts_vtu(const std::string& path, const ParticleData<D>& particles,
+                        const std::vector<ContactRecord<D>>& contacts);
 
 /// The walls as VTK cells (.vtu), with their index (`wall_id`), force and
 /// velocity as cell data. A box is a hexahedron in 3D and a quad in 2D

@@ -52,6 +52,7 @@ struct ProbeSpec {
 struct OutputSpec {
   double probe_interval = 0.0;     ///< s (0: every step)
   double snapshot_interval = 0.0;  ///< s (0: only at the end of each stage)
+  bool contacts = true;            ///< the contact network with every snapshot (contacts_NNNNN.vtu)
   std::vector<ProbeSpec> probes;
 };
 

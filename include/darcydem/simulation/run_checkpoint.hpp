@@ -47,6 +47,7 @@ struct RunState {
   PvdSeries& particle_series;
   PvdSeries& fluid_series;
   PvdSeries& wall_series;
+  PvdSeries& contact_series;
 };
 
 /// Writes the checkpoint to `path` (through a temporary file renamed over

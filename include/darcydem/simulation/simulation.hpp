@@ -27,6 +27,20 @@ struct DampingSettings {
   double viscous = 0.0;  ///< global viscous damping rate beta, 1/s (F = -beta m v)
 };
 
+/// A contact of the last force evaluation (Simulation::contact_forces).
+template <int D>
+struct ContactRecord {
+  std::size_t first = 0;   ///< particle index
+  std::size_t second = 0;  ///< the other particle's index (first's own for a wall contact)
+  int wall = -1;           ///< the wall's index, or -1 between two particles
+  Vec<D> branch;  ///< m: from first's centre to the other's (nearest image) or to the point on the wall
+  Vec<D> normal;  ///< unit, from first towards the contact
+  double overlap = 0.0;     ///< m
+  double arm_first = 0.0;   ///< m: from first's centre to the contact point, along normal
+  double arm_second = 0.0;  ///< m: from the other's centre to it, against normal (0 for a wall)
+  Vec<D> force;             ///< N, on first (on the other: -force)
+};
+
 template <int D>
 class Simulation {
  public:
@@ -78,7 +92,11 @@ class Simulation {
   /// the list's reach has one image within it (skin_or_default()).
   [[nodiscard]] double shortest_period() const;
 
-  /// Critical time step: sqrt(m_min / k_max) for linear contacts, the
+  /// Critical time step: 1/omega of the fastest mode of one grain of the
+  /// smallest mass on a linear contact against a wall: sqrt(m_min / k_n), or
+  /// with friction sqrt(m_min / (k_t (1 + 1/alpha))) (the tangential spring
+  /// turns the grain, I = alpha m r^2), the rolling spring's
+  /// 2.25 mu_r^2 k_n / alpha added to that stiffness if any; the
   /// Rayleigh step pi r sqrt(rho/G) / (0.1631 nu + 0.8766) for Hertz.
   [[nodiscard]] double critical_time_step() const;
 
@@ -102,6 +120,10 @@ class Simulation {
   /// contact_stress is -1/V times the symmetric part of their sum over a
   /// volume's particles (e.g. per fluid cell, write_fluid_vti).
   [[nodiscard]] std::vector<Moment> contact_moments() const;
+  /// The contacts of the last force evaluation, each pair once and each
+  /// touching wall, with their forces: as applied if the last step recorded
+  /// them (record_contact_forces), else recomputed as contact_stress does.
+  [[nodiscard]] std::vector<ContactRecord<D>> contact_forces() const;
   [[nodiscard]] const VerletList<D>& pair_list() const { return list_; }
   [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
   /// Bytes held by the particle, list and wall-contact arrays (capacity).
@@ -143,6 +165,10 @@ class Simulation {
   /// First half kick and drift; returns the largest displacement since the
   /// last list build (m).
   double kick_drift();
+  /// Calls visit(contact, first selected, second selected) for each contact
+  /// of a particle for which selected(p) holds (src/contact_stress.cpp).
+  template <class Select, class Visit>
+  void for_each_contact_force(Select&& selected, Visit&& visit) const;
   /// Calls add(p, (x_c - x_p) (x) f_c) for each contact c of each particle
   /// p for which selected(p) holds (src/contact_stress.cpp).
   template <class Select, class Add>
