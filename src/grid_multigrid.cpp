@@ -27,6 +27,10 @@ Eigen::VectorXd conductance_sums(const GridOperator& a) {
     sums.head(m) += a.upper[k].head(m);
     sums.segment(s, m) += a.upper[k].head(m);
   }
+  for (const auto& e : a.extra) {
+    sums[e.a] += e.g;
+    sums[e.b] += e.g;
+  }
   return sums;
 }
 
@@ -108,6 +112,14 @@ void GridMultigrid::build() const {
         const int p = fine.parent[c];
         if (p != fine.parent[c + s]) up[p] += coarse_scale * t[c];
       }
+    }
+    // Couplings between cells that are not stencil neighbours (a periodic
+    // grid's ends): between two aggregates, a coupling of theirs, as above.
+    coarse.op.extra.clear();
+    for (const auto& e : fine_op.extra) {
+      const int pa = fine.parent[static_cast<std::size_t>(e.a)];
+      const int pb = fine.parent[static_cast<std::size_t>(e.b)];
+      if (pa != pb) coarse.op.extra.push_back({pa, pb, coarse_scale * e.g});
     }
     coarse.op.diagonal = held + conductance_sums(coarse.op);
     if (!(coarse.op.diagonal.minCoeff() > 0.0)) {

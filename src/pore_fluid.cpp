@@ -248,12 +248,19 @@ void PoreFluid<D>::compute_cell_properties() {
     });
   }
   close_barrier_faces(face_lambda_);
+  for (std::size_t w = 0; w < wrap_faces_.size(); ++w) {
+    const WrapFace& f = wrap_faces_[w];
+    const double ka = kappa_[f.low][f.axis];
+    const double kb = kappa_[f.high][f.axis];
+    wrap_lambda_[w] = 2.0 * ka * kb / (ka + kb) / fluid.viscosity;
+  }
 }
 
 template <int D>
 void PoreFluid<D>::build_pattern() {
   const std::size_t n = grid.size();
   faces_.clear();
+  wrap_faces_.clear();
   boundary_faces_.clear();
   std::vector<Eigen::Triplet<double>> triplets;
   for (std::size_t c = 0; c < n; ++c) {
@@ -267,6 +274,23 @@ void PoreFluid<D>::build_pattern() {
         faces_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(b), k, 0, 0});
         triplets.emplace_back(static_cast<int>(c), static_cast<int>(b), 1.0);
         triplets.emplace_back(static_cast<int>(b), static_cast<int>(c), 1.0);
+      }
+      if (grid.periodic[k]) {
+        // No boundary along k: the last layer's cells meet the first's
+        // (a cell meets itself with one cell along k, which couples nothing).
+        if (cc[k] + 1 == grid.cells[k] && grid.cells[k] > 1) {
+          auto first = cc;
+          first[k] = 0;
+          auto end = cc;
+          end[k] = grid.cells[k];
+          const auto b = grid.index(first);
+          wrap_faces_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(b), k,
+                                 grid.face_index(k, first), grid.face_index(k, end), 0, 0,
+                                 grid.cells[k] == 2});
+          triplets.emplace_back(static_cast<int>(c), static_cast<int>(b), 1.0);
+          triplets.emplace_back(static_cast<int>(b), static_cast<int>(c), 1.0);
+        }
+        continue;
       }
       if (cc[k] == 0)
         boundary_faces_.push_back({static_cast<std::uint32_t>(c), 2 * k, grid.face_index(k, cc), -1});
@@ -293,6 +317,12 @@ void PoreFluid<D>::build_pattern() {
     f.pos_ab = pos(f.a, f.b);
     f.pos_ba = pos(f.b, f.a);
   }
+  for (auto& w : wrap_faces_) {
+    w.pos_lh = pos(w.low, w.high);
+    w.pos_hl = pos(w.high, w.low);
+  }
+  wrap_lambda_.assign(wrap_faces_.size(), 0.0);
+  wrap_carried_.assign(wrap_faces_.size(), 0.0);
   rhs_.resize(static_cast<Eigen::Index>(n));
   std::vector<std::size_t> strides(D);
   std::size_t stride = 1;
@@ -301,6 +331,7 @@ void PoreFluid<D>::build_pattern() {
     stride *= static_cast<std::size_t>(grid.cells[k]);
   }
   operator_.resize(n, strides);
+  for (const auto& w : wrap_faces_) operator_.extra.push_back({w.low, w.high, 0.0});
 }
 
 template <int D>
@@ -406,6 +437,20 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     });
   }
   if (carry_with_solid) close_barrier_faces(carried_);
+  // The same across a periodic grid's ends. A grain's section on the face
+  // there is at face 0 or at face `cells`, whichever side its centre is on.
+  for (std::size_t w = 0; w < wrap_faces_.size(); ++w) {
+    const WrapFace& f = wrap_faces_[w];
+    const int k = f.axis;
+    const double area = grid.face_area(k);
+    operator_.extra[w].g = dt * area / grid.spacing[k] * wrap_lambda_[w];
+    wrap_carried_[w] = 0.0;
+    if (!carry_with_solid) continue;
+    const double vs = solid_[f.low] + solid_[f.high];
+    const double v_mix = vs > 0.0 ? (solid_flux_[f.low][k] + solid_flux_[f.high][k]) / vs : 0.0;
+    const double section_flux = solid_face_flux_[k][f.face_first] + solid_face_flux_[k][f.face_last];
+    wrap_carried_[w] = dt * (v_mix * area - section_flux);
+  }
   // Per cell, into the grid's stencil (GridOperator): the storage and the
   // conductances of its faces on the diagonal; the stored pressure, the
   // Biot source and what its faces carry in on the right-hand side. A
@@ -445,6 +490,14 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   } else {
     for (std::int64_t b = 0; b < blocks; ++b) cells_of_block(b);
   }
+  for (std::size_t w = 0; w < wrap_faces_.size(); ++w) {
+    const WrapFace& f = wrap_faces_[w];
+    const double g = operator_.extra[w].g;
+    diagonal[f.low] += g;
+    diagonal[f.high] += g;
+    rhs_[f.low] -= wrap_carried_[w];
+    rhs_[f.high] += wrap_carried_[w];
+  }
   double solid_change = 0.0;
   double solid_moved = 0.0;  // sum of |dVs|, for the balance's gross flow
   for (std::size_t c = 0; c < n; ++c) {
@@ -481,6 +534,13 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
       const double t = operator_.upper[static_cast<std::size_t>(f.axis)][f.a];
       values[f.pos_ab] = -t;
       values[f.pos_ba] = -t;
+    }
+    for (std::size_t w = 0; w < wrap_faces_.size(); ++w) {
+      const WrapFace& f = wrap_faces_[w];
+      const double g = operator_.extra[w].g;
+      // With two cells along the axis the entry also holds the stencil face.
+      values[f.pos_lh] = (f.shared ? values[f.pos_lh] : 0.0) - g;
+      values[f.pos_hl] = (f.shared ? values[f.pos_hl] : 0.0) - g;
     }
   }
   last_times_.assembly = lap();
@@ -537,6 +597,12 @@ void PoreFluid<D>::compute_face_fields(double time) {
     });
   }
   close_barrier_fields();
+  for (std::size_t w = 0; w < wrap_faces_.size(); ++w) {
+    const WrapFace& f = wrap_faces_[w];
+    const double g = (pressure_[f.high] - pressure_[f.low]) * inv_spacing_[f.axis];
+    face_gq_[f.axis][f.face_first] = {g, -wrap_lambda_[w] * g};
+    face_gq_[f.axis][f.face_last] = face_gq_[f.axis][f.face_first];
+  }
   side_inflow_.fill(0.0);
   std::fill(patch_inflow_.begin(), patch_inflow_.end(), 0.0);
   for (const auto& bf : boundary_faces_) {
@@ -588,10 +654,81 @@ void PoreFluid<D>::interpolate(const Stencil& st, std::array<double, D>& grad,
 }
 
 template <int D>
+void PoreFluid<D>::centre_pair(int k, double s, std::array<int, 2>& layer, double& frac) const {
+  int face_cell = 0;
+  int below = 0;
+  double face_frac = 0.0;
+  stencil_axis(k, s, face_cell, face_frac, below, frac);
+  layer = {below, grid.cells[k] > 1 ? below + 1 : below};
+  if (grid.periodic[k] && grid.cells[k] > 1) {
+    const double t = s - 0.5;
+    below = std::clamp(static_cast<int>(std::floor(t)), -1, grid.cells[k] - 1);
+    layer = {grid.wrapped(k, below), grid.wrapped(k, below + 1)};
+    frac = std::clamp(t - below, 0.0, 1.0);
+  }
+}
+
+namespace {
+/// f(cell or face coordinates, weight) for the 2^D corners of a multilinear
+/// interpolation between two layers per axis, with the fraction towards
+/// the second.
+template <int D, class F>
+void for_each_corner(const std::array<std::array<int, 2>, D>& layer, const std::array<double, D>& frac,
+                     F&& f) {
+  for (int corner = 0; corner < (1 << D); ++corner) {
+    double w = 1.0;
+    std::array<int, D> c{};
+    for (int k = 0; k < D; ++k) {
+      const bool up = ((corner >> k) & 1) != 0;
+      w *= up ? frac[k] : 1.0 - frac[k];
+      c[k] = layer[k][up ? 1 : 0];
+    }
+    f(c, w);
+  }
+}
+}  // namespace
+
+template <int D>
+void PoreFluid<D>::interpolate_wrapped(std::array<double, D> s, std::array<double, D>& grad,
+                                       std::array<double, D>& flux) const {
+  s = wrap_cell_units(s);
+  for (int a = 0; a < D; ++a) {
+    // Per axis, the two layers of the stencil (faces along a, cell centres
+    // along the others) and the fraction between them.
+    std::array<std::array<int, 2>, D> layer{};
+    std::array<double, D> frac{};
+    for (int k = 0; k < D; ++k) {
+      if (k == a) {
+        int face_cell = 0;
+        int centre_cell = 0;
+        double centre_frac = 0.0;
+        stencil_axis(k, s[k], face_cell, frac[k], centre_cell, centre_frac);
+        layer[k] = {face_cell, face_cell + 1};
+      } else {
+        centre_pair(k, s[k], layer[k], frac[k]);
+      }
+    }
+    double g = 0.0;
+    double q = 0.0;
+    for_each_corner<D>(layer, frac, [&](const std::array<int, D>& c, double w) {
+      const auto& v = face_gq_[a][grid.face_index(a, c)];
+      g += w * v[0];
+      q += w * v[1];
+    });
+    grad[a] = g;
+    flux[a] = q;
+  }
+}
+
+template <int D>
 Vec<D> PoreFluid<D>::gradient_at(const Vec<D>& x) const {
   std::array<double, D> grad{};
   std::array<double, D> flux{};
-  interpolate(cell_units(x), grad, flux);
+  if (grid.any_periodic()) {
+    interpolate_wrapped(cell_units(x), grad, flux);
+  } else {
+    interpolate(cell_units(x), grad, flux);
+  }
   Vec<D> g;
   for (int k = 0; k < D; ++k) g[k] = grad[k];
   return g;
@@ -599,26 +736,16 @@ Vec<D> PoreFluid<D>::gradient_at(const Vec<D>& x) const {
 
 template <int D>
 double PoreFluid<D>::pressure_at(const Vec<D>& x) const {
-  // Between the cell centres around x (the stencil's centre pairs).
-  std::array<int, D> base{};
+  // Between the cell centres around x (the stencil's centre pairs; along a
+  // periodic axis, across an end the last layer and the first).
+  std::array<std::array<int, 2>, D> layer{};
   std::array<double, D> frac{};
-  for (int k = 0; k < D; ++k) {
-    int face_cell = 0;
-    double face_frac = 0.0;
-    stencil_axis(k, (x[k] - grid.origin[k]) * inv_spacing_[k], face_cell, face_frac, base[k], frac[k]);
-  }
+  const auto s = wrap_cell_units(cell_units(x));
+  for (int k = 0; k < D; ++k) centre_pair(k, s[k], layer[k], frac[k]);
   double sum = 0.0;
-  for (int corner = 0; corner < (1 << D); ++corner) {
-    double w = 1.0;
-    std::array<int, D> c = base;
-    for (int k = 0; k < D; ++k) {
-      const bool up = ((corner >> k) & 1) != 0;
-      w *= up ? frac[k] : 1.0 - frac[k];
-      if (up) ++c[k];
-    }
-    if (w == 0.0) continue;
-    sum += w * pressure_[grid.index(c)];
-  }
+  for_each_corner<D>(layer, frac, [&](const std::array<int, D>& c, double w) {
+    if (w != 0.0) sum += w * pressure_[grid.index(c)];
+  });
   return sum;
 }
 
@@ -651,6 +778,7 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
   constexpr std::int64_t chunk = 64;
   const auto count = static_cast<std::int64_t>(p.size());
   const bool free_water = !std::isnan(water_level);
+  const bool periodic = grid.any_periodic();
   // Ergun/Wen-Yu or the Darcy law: each compiled on its own, so that a
   // grain does only its law's work.
   auto run = [&]<bool Ergun>(std::int64_t b) {
@@ -665,10 +793,19 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
     for (int k = 0; k < D; ++k) {
       const double cells = grid.cells[k];
 #pragma omp simd
-      for (std::int64_t j = 0; j < n; ++j) {
+      for (std::int64_t j = 0; j < n; ++j)
         s[k][j] = (p.position[begin + j][k] - grid.origin[k]) * inv_spacing_[k];
-        stencil_axis(k, s[k][j], face_cell[k][j], face_frac[k][j], centre_cell[k][j], centre_frac[k][j]);
+      if (grid.periodic[k]) {
+        // The grain's image in the period (the grid spans it).
+#pragma omp simd
+        for (std::int64_t j = 0; j < n; ++j) {
+          const double w = s[k][j] - cells * std::floor(s[k][j] / cells);
+          s[k][j] = w >= cells ? w - cells : w;
+        }
       }
+#pragma omp simd
+      for (std::int64_t j = 0; j < n; ++j)
+        stencil_axis(k, s[k][j], face_cell[k][j], face_frac[k][j], centre_cell[k][j], centre_frac[k][j]);
       for (std::int64_t j = 0; j < n; ++j) {
         const bool in = s[k][j] >= 0.0 && s[k][j] < cells;
         inside[j] = (k == 0 || inside[j] > 0.0) && in ? 1.0 : 0.0;
@@ -693,10 +830,22 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
     for (std::int64_t j = 0; j < n; ++j) {
       const std::int64_t i = begin + j;
       const CellDrag& cd = cell_drag_[cell[j]];
+      // Within half a cell of a periodic end the stencil wraps: corner by
+      // corner (interpolate_wrapped).
+      std::array<double, D> wrapped_grad{};
+      std::array<double, D> wrapped_flux{};
+      bool wrap = false;
+      if (periodic) {
+        std::array<double, D> sj{};
+        for (int k = 0; k < D; ++k) sj[k] = s[k][j];
+        wrap = near_periodic_end(sj);
+        if (wrap) interpolate_wrapped(sj, wrapped_grad, wrapped_flux);
+      }
       auto component = [&]<int A>() {
         std::array<double, D> fr{};
         for (int k = 0; k < D; ++k) fr[k] = k == A ? face_frac[k][j] : centre_frac[k][j];
-        const auto v = interpolate_component<A>(base[A][j], fr);
+        const auto v = wrap ? std::array<double, 2>{wrapped_grad[A], wrapped_flux[A]}
+                            : interpolate_component<A>(base[A][j], fr);
         grad[A][j] = v[0];
         slip[A][j] = cd.solid_velocity[A] + v[1] * cd.inv_n - p.velocity[i][A];
         if constexpr (!Ergun) darcy[A][j] = cd.law[A];
@@ -792,12 +941,11 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
 
 template <int D>
 bool PoreFluid<D>::in_grid(const Vec<D>& x) const {
-  // As particle_forces locates grains: in cell units, inside if in [0, cells).
+  // As particle_forces locates grains: in cell units, inside if in [0, cells)
+  // (always along a periodic axis).
+  const auto s = wrap_cell_units(cell_units(x));
   bool in = true;
-  for (int k = 0; k < D; ++k) {
-    const double s = (x[k] - grid.origin[k]) * inv_spacing_[k];
-    in = in && s >= 0.0 && s < grid.cells[k];
-  }
+  for (int k = 0; k < D; ++k) in = in && s[k] >= 0.0 && s[k] < grid.cells[k];
   return in;
 }
 

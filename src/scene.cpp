@@ -610,12 +610,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
 
   // [fluid]
   if (const toml::table* t = top.optional_table("fluid")) {
-    if (periodic_reader) {
-      top.fail("fluid",
-               "a pore fluid with periodic boundaries is not supported yet; remove [periodic] or "
-               "[fluid] (a fluid grid is bounded by its six sides' conditions)");
-    }
-    scene.fluid = read_fluid<D>(*t, file, sim.particles, wall_barriers);
+    scene.fluid = read_fluid<D>(*t, file, sim.particles, wall_barriers, sim.periodic);
     sim.force_field = scene.fluid.get();
   } else if (top.has("fluid")) {
     top.fail("fluid", "must be a table ([fluid])");

@@ -81,6 +81,14 @@ std::string side_choices() {
 /// A patch's place: 'side', and 'from' and 'to' along the side's other
 /// axes. Checked against the grid: inside the side, from < to, holding at
 /// least one face centre and none of an earlier patch's faces.
+/// Why a side of a periodic axis takes no condition.
+std::string periodic_side_message(const std::string& side) {
+  return fmt::format(
+      "the scene is periodic along {} ([periodic]): the fluid grid spans the period and its two {} sides "
+      "are one face between its last and first cells, which takes no condition",
+      side.substr(0, 1), side.substr(0, 1));
+}
+
 template <int D>
 FluidPatch<D> read_patch_place(TableReader& r, const std::string& name, const FluidGrid<D>& grid,
                                const std::vector<FluidPatch<D>>& earlier) {
@@ -90,6 +98,7 @@ FluidPatch<D> read_patch_place(TableReader& r, const std::string& name, const Fl
   const std::string side = r.choice("side", names);
   patch.side = static_cast<int>(std::find(names.begin(), names.end(), side) - names.begin());
   const int axis = patch.side / 2;
+  if (grid.periodic[axis]) r.fail("side", periodic_side_message(side));
   std::string along;  // the side's other axes, e.g. "x, y"
   for (int k = 0; k < D; ++k) {
     if (k != axis) along += std::string(along.empty() ? "" : ", ") + "xyz"[k];
@@ -248,6 +257,9 @@ FluidBoundaryChanges read_fluid_boundary_changes(const toml::table& table, const
                          "[...], type = ... }");
     }
     TableReader sr(*t, fmt::format("{}.{}", where, name), file);
+    if (is_side && defined != nullptr && defined->grid.periodic[(side_at - names.begin()) / 2]) {
+      r.fail(name, periodic_side_message(name));
+    }
     if (is_side) {
       const FluidBoundary b = read_condition(sr, "side");
       sr.finish();
@@ -302,7 +314,8 @@ int read_steps_per_update(TableReader& r) {
 template <int D>
 std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::string& file,
                                          const ParticleData<D>& particles,
-                                         const std::vector<WallBarrier<D>>& wall_barriers) {
+                                         const std::vector<WallBarrier<D>>& wall_barriers,
+                                         const PeriodicCell<D>& periodic) {
   TableReader r(table, "[fluid]", file);
   const std::string solver = r.optional_choice("solver", {"cholesky", "cg"}).value_or("cg");
   const double tolerance =
@@ -357,6 +370,25 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
                            size[k], "xyz"[k], 2.0 * r_max));
       }
       fluid->grid.spacing[k] = size[k];
+    }
+    // Along a periodic axis the grid spans the period: its ends meet.
+    for (int k = 0; k < D; ++k) {
+      if (!periodic.periodic[k]) continue;
+      const double lo = periodic.lower[k];
+      const double length = periodic.length[k];
+      const auto& grid = fluid->grid;
+      const double end = grid.origin[k] + grid.spacing[k] * grid.cells[k];
+      if (std::abs(grid.origin[k] - lo) > 1e-9 * length || std::abs(end - (lo + length)) > 1e-9 * length) {
+        g.fail(
+            std::abs(grid.origin[k] - lo) > 1e-9 * length ? "origin" : "size",
+            fmt::format("the scene is periodic along {} ([periodic] {} = [{}, {}]): the grid must span the "
+                        "period, from {} m over cells x size = {} m along {}; it spans [{}, {}] m",
+                        "xyz"[k], "xyz"[k], TableReader::format_number(lo),
+                        TableReader::format_number(lo + length), TableReader::format_number(lo),
+                        TableReader::format_number(length), "xyz"[k],
+                        TableReader::format_number(grid.origin[k]), TableReader::format_number(end)));
+      }
+      fluid->grid.periodic[k] = true;
     }
     if (fluid->grid.size() > 50'000'000) g.fail("cells", "more than 5e7 cells");
     g.finish();
@@ -453,9 +485,11 @@ template FluidBoundaryChanges read_fluid_boundary_changes<3>(const toml::table&,
                                                              std::vector<FluidPatch<3>>*);
 template std::unique_ptr<PoreFluid<2>> read_fluid<2>(const toml::table&, const std::string&,
                                                      const ParticleData<2>&,
-                                                     const std::vector<WallBarrier<2>>&);
+                                                     const std::vector<WallBarrier<2>>&,
+                                                     const PeriodicCell<2>&);
 template std::unique_ptr<PoreFluid<3>> read_fluid<3>(const toml::table&, const std::string&,
                                                      const ParticleData<3>&,
-                                                     const std::vector<WallBarrier<3>>&);
+                                                     const std::vector<WallBarrier<3>>&,
+                                                     const PeriodicCell<3>&);
 
 }  // namespace darcydem

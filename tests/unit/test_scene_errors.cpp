@@ -617,10 +617,44 @@ TEST(SceneErrors, PeriodicBoundariesAreChecked) {
   EXPECT_NE(msg.find("key 'box': a box wall must lie within the periodic range [-0.003, 0.003] along x"),
             std::string::npos)
       << msg;
-  msg = load_error(good + "\n[fluid]\n");
-  EXPECT_NE(msg.find("key 'fluid': a pore fluid with periodic boundaries is not supported yet"),
-            std::string::npos)
+}
+
+// A pore fluid in a scene periodic along x: the grid spans the period, and
+// its x sides take no condition (they are one face between its ends).
+TEST(SceneErrors, PeriodicFluidGridIsChecked) {
+  const std::string periodic = "\n[periodic]\nx = [-0.003, 0.003]\n";
+  const std::string fluid = replace(with_fluid(), "\n[[material]]", periodic + "\n[[material]]");
+  const std::string good = replace(replace(fluid, "origin = [-0.0005, 0.0]", "origin = [-0.003, 0.0]"),
+                                   "cells = [1, 2]", "cells = [6, 2]");
+  ASSERT_EQ(load_error(good), "");
+  const auto scene = built_scene<2>(good);
+  EXPECT_TRUE(scene.fluid->grid.periodic[0]);
+  EXPECT_FALSE(scene.fluid->grid.periodic[1]);
+
+  auto msg = load_error(replace(good, "origin = [-0.003, 0.0]", "origin = [-0.0025, 0.0]"));
+  EXPECT_NE(
+      msg.find("[fluid.grid] key 'origin': the scene is periodic along x ([periodic] x = [-0.003, 0.003]): "
+               "the grid must span the period, from -0.003 m over cells x size = 0.006 m along x; it "
+               "spans [-0.0025, 0.0035] m"),
+      std::string::npos)
       << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, "cells = [6, 2]", "cells = [5, 2]"));
+  EXPECT_NE(msg.find("[fluid.grid] key 'size': the scene is periodic along x"), std::string::npos) << msg;
+  const std::string side = "y_max = { type = \"drained\", pressure = 0.0 }\n";
+  msg = load_error(replace(good, side, side + "x_min = { type = \"no_flow\" }\n"));
+  EXPECT_NE(
+      msg.find("[fluid.boundary] key 'x_min': the scene is periodic along x ([periodic]): the fluid grid "
+               "spans the period and its two x sides are one face between its last and first cells, "
+               "which takes no condition"),
+      std::string::npos)
+      << msg;
+  msg = load_error(replace(
+      good, side, side + "vent = { side = \"x_max\", from = [0.0], to = [0.002], type = \"no_flow\" }\n"));
+  EXPECT_NE(msg.find("key 'side': the scene is periodic along x"), std::string::npos) << msg;
+  const std::string stage = "gravity = [0.0, -9.81]\n";
+  msg = load_error(replace(good, stage, stage + "[stage.fluid.boundary]\nx_max = { type = \"no_flow\" }\n"));
+  EXPECT_NE(msg.find("key 'x_max': the scene is periodic along x"), std::string::npos) << msg;
 }
 
 }  // namespace

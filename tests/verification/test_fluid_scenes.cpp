@@ -276,28 +276,51 @@ TEST(FluidScenes, HydrostaticBed) {
   }
 }
 
-TEST(FluidScenes, UpwardSeepageThroughABed) {
-  // Steady upward flow through a settled bed: the floor carries the
-  // submerged weight minus the seepage force, W' - u_b A, u_b the excess
-  // pressure on the bottom face (cell value plus the half-cell drop that
-  // carries the inflow). 1 %: the force balance of the drag and pressure
-  // forces over the grains holds to ~0.75 % (test_pore_fluid.cpp).
-  auto scene = darcydem::testing::load_scene<3>("examples/fluid_cases/upward_seepage_bed.toml");
+/// Runs an upward-seepage scene (upward_seepage_bed.toml or its periodic
+/// twin) and checks the steady state: the floor carries the submerged
+/// weight minus the seepage force, W' - u_b A, u_b the excess pressure on
+/// the bottom face (cell value plus the half-cell drop that carries the
+/// inflow). 1 %: the force balance of the drag and pressure forces over the
+/// grains holds to ~0.75 % (test_pore_fluid.cpp). Returns the thrust u_b A.
+double expect_upward_seepage_balance(Scene<3>& scene, const char* what) {
   RunOptions options;
-  options.out_dir = temp_dir("upward_seepage");
+  options.out_dir = temp_dir(what);
   run_scene(scene, options);
   const auto& sim = scene.simulation;
   const auto& f = *scene.fluid;
   const double submerged = submerged_weight(sim, f);
   const double thrust = floor_thrust(f, f.sides[4].value.at(sim.time), [](int, int) { return true; });
   const double floor = -sim.walls[0].force.z();
-  std::printf(
-      "upward seepage: floor %.6e N, submerged weight %.6e N - seepage %.6e N = %.6e N (%.3f %% of W')\n",
-      floor, submerged, thrust, submerged - thrust, 100.0 * (floor - (submerged - thrust)) / submerged);
-  EXPECT_GT(thrust, 0.3 * submerged);  // a real load: the gradient is about half the critical one
-  EXPECT_NEAR(floor, submerged - thrust, 0.01 * thrust);
+  std::printf("%s: floor %.6e N, submerged weight %.6e N - seepage %.6e N = %.6e N (%.3f %% of W')\n", what,
+              floor, submerged, thrust, submerged - thrust,
+              100.0 * (floor - (submerged - thrust)) / submerged);
+  EXPECT_GT(thrust, 0.3 * submerged) << what;  // a real load: the gradient is about half the critical one
+  EXPECT_NEAR(floor, submerged - thrust, 0.01 * thrust) << what;
   // In = out once steady.
-  EXPECT_NEAR(f.side_inflow(5), -f.side_inflow(4), 1e-6 * f.side_inflow(4));
+  EXPECT_NEAR(f.side_inflow(5), -f.side_inflow(4), 1e-6 * f.side_inflow(4)) << what;
+  return thrust;
+}
+
+// The same bed periodic along x and y (no side walls; its first row and
+// column of grains straddle the ends, half of each in the grid's last layer
+// of cells and half in its first): the same balance.
+TEST(FluidScenes, PeriodicUpwardSeepage) {
+  auto scene = darcydem::testing::load_scene<3>("examples/fluid_cases/periodic_upward_seepage.toml");
+  ASSERT_TRUE(scene.fluid->grid.periodic[0] && scene.fluid->grid.periodic[1]);
+  ASSERT_EQ(scene.simulation.walls.size(), 1U) << "the floor only";
+  std::size_t straddling = 0;
+  for (std::size_t i = 0; i < scene.simulation.particles.size(); ++i)
+    straddling += scene.simulation.particles.position[i].x() < 0.00049 ? 1U : 0U;
+  EXPECT_EQ(straddling, 48U) << "a row of 6 x 8 grains on the end x = 0";
+  expect_upward_seepage_balance(scene, "periodic upward seepage");
+}
+
+TEST(FluidScenes, UpwardSeepageThroughABed) {
+  auto scene = darcydem::testing::load_scene<3>("examples/fluid_cases/upward_seepage_bed.toml");
+  const double thrust = expect_upward_seepage_balance(scene, "upward seepage");
+  const auto& sim = scene.simulation;
+  const auto& f = *scene.fluid;
+  const double submerged = submerged_weight(sim, f);
   // Terzaghi's principle through the contacts: the seepage force takes
   // over part of the submerged weight, so the grains' contacts carry less.
   // With a uniform gradient i, the seepage force on each grain is

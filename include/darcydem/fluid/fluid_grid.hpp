@@ -16,6 +16,10 @@ struct FluidGrid {
   Vec<D> origin = Vec<D>::Zero();   ///< m, lower corner
   Vec<D> spacing = Vec<D>::Ones();  ///< m, cell size along each axis
   std::array<int, D> cells{};       ///< number of cells along each axis
+  /// Along a periodic axis the grid spans the period: its last layer of
+  /// cells and its first are neighbours across the face at either end
+  /// (face 0 and face `cells`, the same face), which is then not a boundary.
+  std::array<bool, D> periodic{};
 
   [[nodiscard]] std::size_t size() const {
     std::size_t n = 1;
@@ -59,6 +63,18 @@ struct FluidGrid {
   /// Clamps a (possibly huge) floating cell coordinate into [lo, hi] and converts it.
   [[nodiscard]] static int clamp_cell(double s, int lo, int hi) {
     return static_cast<int>(std::clamp(s, static_cast<double>(lo), static_cast<double>(hi)));
+  }
+  /// A cell coordinate along `axis` one step beyond the grid, -1 or
+  /// cells, wrapped onto the other end if the axis is periodic.
+  [[nodiscard]] int wrapped(int axis, int c) const {
+    if (!periodic[axis]) return c;
+    return c < 0 ? c + cells[axis] : (c >= cells[axis] ? c - cells[axis] : c);
+  }
+  [[nodiscard]] bool any_periodic() const {
+    for (bool p : periodic) {
+      if (p) return true;
+    }
+    return false;
   }
   [[nodiscard]] bool inside(const std::array<int, D>& c) const {
     for (int k = 0; k < D; ++k) {

@@ -6,7 +6,9 @@
 // layer along k):
 //   (A x)_c = diag_c x_c - sum_k (upper_k[c] x_{c+s_k} + upper_k[c-s_k] x_{c-s_k}).
 // A x is then one vectorised pass over the coefficients (apply), where a
-// stored sparse matrix reads an index and a value per entry.
+// stored sparse matrix reads an index and a value per entry. Couplings
+// between cells that are not stencil neighbours (`extra`: a periodic grid's
+// last layer and its first) are added after that pass.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -38,7 +40,15 @@ class GridOperator : public Eigen::EigenBase<GridOperator> {
     stride = strides;
     diagonal.setZero(static_cast<Eigen::Index>(n));
     upper.assign(strides.size(), Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n)));
+    extra.clear();
   }
+
+  /// A symmetric coupling of two cells besides the stencil's:
+  /// (A x)_a -= g x_b and (A x)_b -= g x_a (their diagonals hold g as well).
+  struct Coupling {
+    Eigen::Index a = 0, b = 0;
+    double g = 0.0;
+  };
 
   [[nodiscard]] Eigen::Index rows() const { return diagonal.size(); }
   [[nodiscard]] Eigen::Index cols() const { return diagonal.size(); }
@@ -67,6 +77,29 @@ class GridOperator : public Eigen::EigenBase<GridOperator> {
   /// reads and writes the result seven times).
   template <class Out>
   void apply(const Eigen::Ref<const Eigen::VectorXd>& x, Out&& out) const {
+    if (extra.empty()) {
+      apply_stencil(x, out);
+      return;
+    }
+    // The stencil's product into a vector, the extra couplings added, then
+    // passed on cell by cell.
+    Eigen::VectorXd ax(diagonal.size());
+    apply_stencil(x, [&](Eigen::Index c, double v) { ax[c] = v; });
+    for (const Coupling& e : extra) {
+      ax[e.a] -= e.g * x[e.b];
+      ax[e.b] -= e.g * x[e.a];
+    }
+    for (Eigen::Index c = 0; c < ax.size(); ++c) out(c, ax[c]);
+  }
+
+  Eigen::VectorXd diagonal;
+  std::vector<Eigen::VectorXd> upper;  ///< per axis, indexed by the lower cell
+  std::vector<std::size_t> stride;
+  std::vector<Coupling> extra;
+
+ private:
+  template <class Out>
+  void apply_stencil(const Eigen::Ref<const Eigen::VectorXd>& x, Out&& out) const {
     switch (stride.size()) {
       case 1:
         apply_with<1>(x, out);
@@ -80,11 +113,6 @@ class GridOperator : public Eigen::EigenBase<GridOperator> {
     }
   }
 
-  Eigen::VectorXd diagonal;
-  std::vector<Eigen::VectorXd> upper;  ///< per axis, indexed by the lower cell
-  std::vector<std::size_t> stride;
-
- private:
   template <int D, class Out>
   void apply_with(const Eigen::Ref<const Eigen::VectorXd>& x, Out& out) const {
     const Eigen::Index n = diagonal.size();

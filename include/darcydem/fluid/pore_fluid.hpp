@@ -128,7 +128,7 @@ class PoreFluid final : public ParticleForceField<D> {
     ar(steps_per_update, hold_forces, sides, permeability_frozen, pressure_, pressure_old_, pressure_older_,
        porosity_, solid_, solid_old_, porosity_used_, solid_flux_, solid_velocity_, kappa_, cell_drag_,
        blend_atan_, n_power_, face_lambda_, carried_, face_gq_, solid_face_flux_, side_inflow_, last_solve_,
-       last_, total_, updates_, time_, initialized_);
+       last_, total_, updates_, time_, initialized_, wrap_lambda_, wrap_carried_);
     std::size_t patch_count = patches.size();
     ar(patch_count);
     if constexpr (Archive::loading) {
@@ -315,6 +315,34 @@ class PoreFluid final : public ParticleForceField<D> {
   /// s is x in cell units, (x - origin) / spacing.
   void interpolate(const std::array<double, D>& s, std::array<double, D>& grad,
                    std::array<double, D>& flux) const;
+  /// The same interpolation corner by corner, where the pair of cell
+  /// centres around s along a periodic axis may be the grid's last layer
+  /// and its first (s wrapped into [0, cells) along periodic axes first):
+  /// for grains within half a cell of a periodic end.
+  void interpolate_wrapped(std::array<double, D> s, std::array<double, D>& grad,
+                           std::array<double, D>& flux) const;
+  /// The two cell layers along axis k whose centres the stencil
+  /// interpolates between at s (cell units, wrapped), and the fraction
+  /// towards the second: across a periodic end, the last layer and the first.
+  void centre_pair(int k, double s, std::array<int, 2>& layer, double& frac) const;
+  /// s along periodic axes wrapped into [0, cells).
+  [[nodiscard]] std::array<double, D> wrap_cell_units(std::array<double, D> s) const {
+    for (int k = 0; k < D; ++k) {
+      if (!grid.periodic[k]) continue;
+      const double n = grid.cells[k];
+      s[k] -= n * std::floor(s[k] / n);
+      if (s[k] >= n) s[k] -= n;  // rounding
+    }
+    return s;
+  }
+  /// Whether the staggered stencil at s (wrapped) reaches across a periodic
+  /// end: within half a cell of it.
+  [[nodiscard]] bool near_periodic_end(const std::array<double, D>& s) const {
+    bool near = false;
+    for (int k = 0; k < D; ++k)
+      near = near || (grid.periodic[k] && (s[k] < 0.5 || s[k] > grid.cells[k] - 0.5));
+    return near;
+  }
   void interpolate(const Stencil& stencil, std::array<double, D>& grad, std::array<double, D>& flux) const;
   [[nodiscard]] std::array<double, D> cell_units(const Vec<D>& x) const {
     std::array<double, D> s{};
@@ -387,6 +415,20 @@ class PoreFluid final : public ParticleForceField<D> {
   Vec<D> inv_spacing_ = Vec<D>::Ones();
   std::array<std::vector<double>, D> solid_face_flux_;  ///< m^3/s of solid through each face
   std::vector<Face> faces_;
+  /// A face across a periodic end of the grid: between the cell `low` on
+  /// the last layer along `axis` and `high` on the first (flow from low to
+  /// high is along +axis); its fields are at both face_first (face 0 along
+  /// the axis) and face_last (face `cells`).
+  struct WrapFace {
+    std::uint32_t low, high;
+    int axis;
+    std::size_t face_first, face_last;
+    std::size_t pos_lh = 0, pos_hl = 0;  ///< in the stored matrix (Cholesky)
+    bool shared = false;                 ///< two cells along the axis: also a stencil face
+  };
+  std::vector<WrapFace> wrap_faces_;
+  std::vector<double> wrap_lambda_;   ///< kappa/mu of each wrap face, m^2/(Pa s)
+  std::vector<double> wrap_carried_;  ///< fluid carried across each, from low to high, m^3
   std::vector<BoundaryFace> boundary_faces_;
   std::vector<std::size_t> diag_pos_;
   std::array<std::array<std::size_t, D>, D> face_stride_{};  ///< [axis][j]: index step along j

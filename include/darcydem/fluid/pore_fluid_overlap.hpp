@@ -154,9 +154,10 @@ inline Reach cell_reach(const FluidGrid<D>& grid, const GridStrides<D>& strides,
   }
   for (int j = 0; j < K; ++j) {
     const int k = axes[j];
-    reach.shift[j] = static_cast<std::int64_t>(cut.other[k] - cut.home[k]) * strides.cell[k];
+    const int other = grid.wrapped(k, cut.other[k]);  // across a periodic end: the other end's layer
+    reach.shift[j] = static_cast<std::int64_t>(other - cut.home[k]) * strides.cell[k];
     reach.home_l[j] = cut.home[k] >= 0 && cut.home[k] < grid.cells[k];
-    reach.other_l[j] = cut.other[k] >= 0 && cut.other[k] < grid.cells[k];
+    reach.other_l[j] = other >= 0 && other < grid.cells[k];
   }
   return reach;
 }
@@ -164,7 +165,9 @@ inline Reach cell_reach(const FluidGrid<D>& grid, const GridStrides<D>& strides,
 /// The faces normal to crossed axis J that the grain's section lies on:
 /// the face between home and its neighbour along axes[J], moved across the
 /// other crossed planes (inside the grid there if 0..cells-1; the face
-/// itself is inside if 0..cells along its own axis).
+/// itself is inside if 0..cells along its own axis). On a periodic axis the
+/// face at an end is face 0 or face `cells`, whichever side the centre is
+/// on: the two are one face, and each grain's section lands on one of them.
 template <int D, int K, int J>
 inline Reach face_reach(const FluidGrid<D>& grid, const GridStrides<D>& strides, const GrainCut<D>& cut,
                         const std::array<int, 3>& axes) {
@@ -185,9 +188,10 @@ inline Reach face_reach(const FluidGrid<D>& grid, const GridStrides<D>& strides,
   for (int j = 0; j < K; ++j) {
     if (j == J) continue;
     const int a = axes[j];
-    reach.shift[t] = static_cast<std::int64_t>(cut.other[a] - cut.home[a]) * fs[a];
+    const int other = grid.wrapped(a, cut.other[a]);
+    reach.shift[t] = static_cast<std::int64_t>(other - cut.home[a]) * fs[a];
     reach.home_l[t] = cut.home[a] >= 0 && cut.home[a] < grid.cells[a];
-    reach.other_l[t] = cut.other[a] >= 0 && cut.other[a] < grid.cells[a];
+    reach.other_l[t] = other >= 0 && other < grid.cells[a];
     ++t;
   }
   return reach;
@@ -380,20 +384,30 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, std::size_t begin,
       const double h = grid.spacing[k];
       const double inv_h = 1.0 / h;
       const double last = grid.cells[k];
+      // Along a periodic axis the grain is taken at its image in the
+      // period [origin, origin + period) (a grain may be up to half the
+      // Verlet skin outside between list builds).
+      const double period = grid.periodic[k] ? last * h : 0.0;
+      const double inv_period = grid.periodic[k] ? 1.0 / period : 0.0;
+      // The image's cell, in [0, cells) even where rounding puts it on an end.
+      const double lowest = grid.periodic[k] ? 0.0 : -1.0;
+      const double highest = grid.periodic[k] ? last - 1.0 : last;
       int* home = cuts->home[k].data();
       int* other = cuts->other[k].data();
       double* dist = cuts->dist[k].data();
       int* mask = cuts->mask.data();
 #pragma omp simd
       for (std::size_t g = 0; g < n; ++g) {
-        const double x = p.position[start + g][k];
+        const double x0 = p.position[start + g][k];
+        const double x = x0 - period * std::floor((x0 - origin) * inv_period);
         const double r = radius[g];
         // As grid.cell_along, with the inverse spacing: a grain on a face
         // may land on either side, where its distance to it is +0.
-        // Clamped to [-1, cells] (a NaN position to -1, outside the grid),
+        // Clamped to [-1, cells] (a NaN position to -1, outside the grid;
+        // [0, cells - 1] along a periodic axis),
         // so that the conversion to int is defined.
         const double raw = std::floor((x - origin) * inv_h);
-        const double cell = raw >= -1.0 ? (raw > last ? last : raw) : -1.0;
+        const double cell = raw >= lowest ? (raw > highest ? highest : raw) : lowest;
         const double lo = origin + cell * h;
         const double below = x - lo;
         const double above = lo + h - x;

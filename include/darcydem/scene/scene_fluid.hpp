@@ -10,6 +10,7 @@
 
 #include <toml++/toml.h>
 
+#include "darcydem/core/periodic_cell.hpp"
 #include "darcydem/fluid/pore_fluid.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 
@@ -47,10 +48,12 @@ struct WallBarrier {
 };
 
 /// The pore fluid of a [fluid] table with the impermeable walls' barriers,
-/// initialised on the particles.
+/// initialised on the particles; along the periodic axes of `periodic` the
+/// grid must span the period, and its ends meet.
 template <int D>
 std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::string& file,
                                          const ParticleData<D>& particles,
-                                         const std::vector<WallBarrier<D>>& wall_barriers = {});
+                                         const std::vector<WallBarrier<D>>& wall_barriers = {},
+                                         const PeriodicCell<D>& periodic = {});
 
 }  // namespace darcydem
