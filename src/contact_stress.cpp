@@ -98,9 +98,9 @@ template <int D>
 typename Simulation<D>::Moment Simulation<D>::contact_stress(const Vec<D>& lo, const Vec<D>& hi) const {
   const auto& x = particles.position;
   Moment moment = Moment::Zero();
-  for_each_contact_moment(
-      [&](std::size_t i) { return (x[i].array() >= lo.array()).all() && (x[i].array() <= hi.array()).all(); },
-      [&](std::size_t, const Moment& m) { moment += m; });
+  // Along a periodic axis a particle is in the box if its image there is.
+  for_each_contact_moment([&](std::size_t i) { return periodic.image_in_box(x[i], lo, hi); },
+                          [&](std::size_t, const Moment& m) { moment += m; });
   const double volume = (hi - lo).prod();  // 2D: area x 1 m
   return -0.5 * (moment + moment.transpose()) / volume;
 }

@@ -17,31 +17,58 @@ std::size_t topmost_particle(const ParticleData<D>& particles) {
 }
 
 template <int D>
-double box_porosity(const ParticleData<D>& particles, const Vec<D>& lo, const Vec<D>& hi) {
+double box_porosity(const ParticleData<D>& particles, const Vec<D>& lo, const Vec<D>& hi,
+                    const PeriodicCell<D>& periodic) {
   std::array<double, D> a{};
   std::array<double, D> b{};
   for (int k = 0; k < D; ++k) {
     a[k] = lo[k];
     b[k] = hi[k];
   }
-  double solid = 0.0;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    const double r = particles.radius[i];
-    const Vec<D>& x = particles.position[i];
+  // The solid of one grain (or image) centred at x.
+  auto in_box = [&](const Vec<D>& x, double r) {
     bool apart = false;
     bool within = true;
     for (int k = 0; k < D; ++k) {
       apart = apart || x[k] + r <= lo[k] || x[k] - r >= hi[k];
       within = within && x[k] - r >= lo[k] && x[k] + r <= hi[k];
     }
-    if (apart) continue;
-    if (within) {
-      solid += particle_volume<D>(r);
-      continue;
-    }
+    if (apart) return 0.0;
+    if (within) return particle_volume<D>(r);
     std::array<double, D> c{};
     for (int k = 0; k < D; ++k) c[k] = x[k];
-    solid += ball_overlap::in_box<D>(r, c, a, b);
+    return ball_overlap::in_box<D>(r, c, a, b);
+  };
+  double solid = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const double r = particles.radius[i];
+    const Vec<D>& x = particles.position[i];
+    if (!periodic.any()) {
+      solid += in_box(x, r);
+      continue;
+    }
+    // Along each periodic axis the whole periods n that bring an image
+    // within reach of the box; every combination of them.
+    std::array<int, D> first{};
+    std::array<int, D> count{};
+    int images = 1;
+    for (int k = 0; k < D; ++k) {
+      count[k] = 1;
+      if (!periodic.periodic[k]) continue;
+      const double L = periodic.length[k];
+      first[k] = static_cast<int>(std::ceil((lo[k] - r - x[k]) / L));
+      count[k] = std::max(0, static_cast<int>(std::floor((hi[k] + r - x[k]) / L)) - first[k] + 1);
+      images *= count[k];
+    }
+    for (int m = 0; m < images; ++m) {
+      Vec<D> image = x;
+      int rest = m;
+      for (int k = 0; k < D; ++k) {
+        image[k] += (first[k] + rest % count[k]) * periodic.length[k];
+        rest /= count[k];
+      }
+      solid += in_box(image, r);
+    }
   }
   return 1.0 - solid / (hi - lo).prod();
 }
@@ -54,7 +81,8 @@ std::vector<typename Simulation<D>::Moment> cell_contact_stress(const Simulation
   const auto moments = sim.contact_moments();
   for (std::size_t i = 0; i < moments.size(); ++i) {
     std::array<int, D> c{};
-    for (int k = 0; k < D; ++k) c[k] = grid.cell_along(k, sim.particles.position[i][k]);
+    const Vec<D> x = sim.periodic.wrap(sim.particles.position[i]);
+    for (int k = 0; k < D; ++k) c[k] = grid.cell_along(k, x[k]);
     if (grid.inside(c)) sum[grid.index(c)] += moments[i];
   }
   const double volume = grid.cell_volume();
@@ -108,7 +136,7 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
         lo[k] = probe.box_min[k];
         hi[k] = probe.box_max[k];
       }
-      if (probe.quantity == ProbeQuantity::porosity) return box_porosity<D>(p, lo, hi);
+      if (probe.quantity == ProbeQuantity::porosity) return box_porosity<D>(p, lo, hi, sim.periodic);
       const auto s = sim.contact_stress(lo, hi);
       return probe.tensor[0] < 0 ? s.trace() / D : s(probe.tensor[0], probe.tensor[1]);
     }
@@ -116,14 +144,18 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
     case ProbeQuantity::mean_particle_position: {
       double count = 0.0;
       double sum = 0.0;
+      Vec<D> lo;
+      Vec<D> hi;
+      for (int k = 0; k < D; ++k) {
+        lo[k] = probe.box_min[k];
+        hi[k] = probe.box_max[k];
+      }
+      // Along a periodic axis, the centre's image in the box.
+      Vec<D> image;
       for (std::size_t i = 0; i < p.size(); ++i) {
-        bool inside = true;
-        for (int k = 0; k < D; ++k) {
-          inside = inside && p.position[i][k] >= probe.box_min[k] && p.position[i][k] <= probe.box_max[k];
-        }
-        if (inside) {
+        if (sim.periodic.image_in_box(p.position[i], lo, hi, &image)) {
           count += 1.0;
-          sum += p.position[i][probe.component];
+          sum += image[probe.component];
         }
       }
       if (probe.quantity == ProbeQuantity::particles_in_box) return count;
@@ -135,8 +167,8 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
 
 template double evaluate_probe<2>(const ProbeSpec&, const Simulation<2>&, const PoreFluid<2>*);
 template double evaluate_probe<3>(const ProbeSpec&, const Simulation<3>&, const PoreFluid<3>*);
-template double box_porosity<2>(const ParticleData<2>&, const Vec<2>&, const Vec<2>&);
-template double box_porosity<3>(const ParticleData<3>&, const Vec<3>&, const Vec<3>&);
+template double box_porosity<2>(const ParticleData<2>&, const Vec<2>&, const Vec<2>&, const PeriodicCell<2>&);
+template double box_porosity<3>(const ParticleData<3>&, const Vec<3>&, const Vec<3>&, const PeriodicCell<3>&);
 template std::vector<Simulation<2>::Moment> cell_contact_stress<2>(const Simulation<2>&, const FluidGrid<2>&);
 template std::vector<Simulation<3>::Moment> cell_contact_stress<3>(const Simulation<3>&, const FluidGrid<3>&);
 template std::size_t topmost_particle<2>(const ParticleData<2>&);

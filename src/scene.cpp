@@ -693,6 +693,16 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                              "xyz"[k], TableReader::format_number(p.box_min[k]),
                              TableReader::format_number(p.box_max[k])));
         }
+        // Along a periodic axis each particle counts once, at its image in
+        // the box: the box may lie anywhere but be no longer than the period.
+        if (sim.periodic.periodic[k] &&
+            p.box_max[k] - p.box_min[k] > sim.periodic.length[k] * (1.0 + 1e-12)) {
+          r.fail("max",
+                 fmt::format("the box is {} m long along {}, longer than the period {} m ([periodic] {}); "
+                             "along a periodic axis it may lie anywhere but hold at most one period",
+                             TableReader::format_number(p.box_max[k] - p.box_min[k]), "xyz"[k],
+                             TableReader::format_number(sim.periodic.length[k]), "xyz"[k]));
+        }
       }
       if (q == "mean_particle_position") {
         p.component = static_cast<int>(axis_component<D>(r, "component", false));

@@ -46,6 +46,39 @@ TEST(BoxPorosity, AWholeNumberOfLatticePeriodsAnywhere) {
   }
 }
 
+// The same lattices filling a period along every axis (12 and 10 spacings):
+// a box of whole lattice periods across the period's ends holds the grains
+// beyond them at their images, and so the same solid as anywhere else.
+// Without the images it would be up to half empty.
+TEST(BoxPorosity, AcrossThePeriodicEnds) {
+  const double s = 1e-3;
+  const double r = 0.45e-3;
+  {
+    const auto p = lattice<2>(Vec<2>::Zero(), Vec<2>::Constant(12 * s), s, r);
+    PeriodicCell<2> periodic;
+    periodic.set_axis(0, 0.0, 12 * s);
+    periodic.set_axis(1, 0.0, 12 * s);
+    const double expected = 1.0 - std::numbers::pi * r * r / (s * s);
+    for (const Vec<2>& lo :
+         {Vec<2>(9.3 * s, 10.71 * s), Vec<2>(-2.5 * s, 4.5 * s), Vec<2>(0.13 * s, 0.97 * s)}) {
+      const Vec<2> hi = lo + Vec<2>(5 * s, 3 * s);
+      EXPECT_NEAR(box_porosity<2>(p, lo, hi, periodic), expected, 1e-11) << lo.transpose();
+    }
+    // One whole period anywhere.
+    EXPECT_NEAR(box_porosity<2>(p, Vec<2>(5.5 * s, 7.2 * s), Vec<2>(17.5 * s, 19.2 * s), periodic), expected,
+                1e-11);
+  }
+  {
+    const auto p = lattice<3>(Vec<3>::Zero(), Vec<3>::Constant(10 * s), s, r);
+    PeriodicCell<3> periodic;
+    for (int k = 0; k < 3; ++k) periodic.set_axis(k, 0.0, 10 * s);
+    const double expected = 1.0 - 4.0 / 3.0 * std::numbers::pi * r * r * r / (s * s * s);
+    const Vec<3> lo(8.3 * s, -1.71 * s, 7.05 * s);  // across three ends
+    EXPECT_NEAR(box_porosity<3>(p, lo, lo + Vec<3>(4 * s, 3 * s, 5 * s), periodic), expected, 1e-11);
+    EXPECT_GT(box_porosity<3>(p, lo, lo + Vec<3>(4 * s, 3 * s, 5 * s)), expected + 0.2) << "without images";
+  }
+}
+
 // A box between the grains holds no solid (porosity 1 exactly); a box
 // inside one grain is all solid; a box holding one grain whole and nothing
 // else has the grain's volume.

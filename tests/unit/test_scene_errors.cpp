@@ -617,6 +617,15 @@ TEST(SceneErrors, PeriodicBoundariesAreChecked) {
   EXPECT_NE(msg.find("key 'box': a box wall must lie within the periodic range [-0.003, 0.003] along x"),
             std::string::npos)
       << msg;
+  // A probe's box may lie across the ends but hold at most one period.
+  const std::string probe =
+      "\n[[probe]]\nname = \"n\"\nquantity = \"porosity\"\nmin = [0.001, 0.0]\nmax = [0.007, 0.003]\n";
+  EXPECT_EQ(load_error(good + probe), "");
+  msg = load_error(good + replace(probe, "max = [0.007, 0.003]", "max = [0.008, 0.003]"));
+  EXPECT_NE(
+      msg.find("key 'max': the box is 0.007 m long along x, longer than the period 0.006 m ([periodic] x)"),
+      std::string::npos)
+      << msg;
 }
 
 // A pore fluid in a scene periodic along x: the grid spans the period, and

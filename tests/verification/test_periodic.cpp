@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "darcydem/generation/generators.hpp"
+#include "darcydem/output/probes.hpp"
 #include "dem_setup.hpp"
 
 namespace darcydem {
@@ -90,15 +91,26 @@ void check_compressed_lattice(int n) {
   double worst_force = 0.0;
   for (std::size_t i = 0; i < N; ++i) worst_force = std::max(worst_force, sim.particles.force[i].norm());
   EXPECT_LT(worst_force, 1e-9 * kd) << "the neighbours' forces cancel on every grain";
-  const Vec<D> lo = Vec<D>::Constant(lower);
-  const Vec<D> hi = Vec<D>::Constant(lower + n * s);
-  const auto sigma = sim.contact_stress(lo, hi);
+  // Over the period, and over a box of the same size across its ends (the
+  // grains beyond an end counted at their images in the box), and over one
+  // of a few lattice periods across them: every box of whole lattice
+  // periods holds the same stress.
   const double expected = kd / std::pow(s, D - 1);
-  for (int a = 0; a < D; ++a) {
-    EXPECT_NEAR(sigma(a, a), expected, 1e-9 * expected) << "axis " << a;
-    for (int b = 0; b < D; ++b) {
-      if (b != a) {
-        EXPECT_NEAR(sigma(a, b), 0.0, 1e-9 * expected);
+  const Vec<D> straddling = Vec<D>::Constant(lower + (n / 2 + 0.37) * s);
+  const std::array<std::pair<Vec<D>, Vec<D>>, 3> boxes = {
+      std::pair{Vec<D>::Constant(lower), Vec<D>::Constant(lower + n * s)},
+      std::pair{straddling, Vec<D>(straddling + Vec<D>::Constant(n * s))},
+      std::pair{Vec<D>::Constant(lower + (n - 2.5) * s), Vec<D>::Constant(lower + (n + 1.5) * s)}};
+  double worst_stress = 0.0;
+  for (const auto& [lo, hi] : boxes) {
+    const auto sigma = sim.contact_stress(lo, hi);
+    worst_stress = std::max(worst_stress, std::abs(sigma(0, 0) / expected - 1.0));
+    for (int a = 0; a < D; ++a) {
+      EXPECT_NEAR(sigma(a, a), expected, 1e-9 * expected) << "axis " << a << ", box from " << lo[0];
+      for (int b = 0; b < D; ++b) {
+        if (b != a) {
+          EXPECT_NEAR(sigma(a, b), 0.0, 1e-9 * expected);
+        }
       }
     }
   }
@@ -121,8 +133,7 @@ void check_compressed_lattice(int n) {
   std::printf(
       "%dD lattice: %zu contacts across boundaries; largest force %.3e of k delta; stress %.3e of k "
       "delta / s^(D-1) off; largest move %.3e of delta\n",
-      D, contacts_across_boundaries(sim), worst_force / kd, std::abs(sigma(0, 0) / expected - 1.0),
-      worst_move / delta);
+      D, contacts_across_boundaries(sim), worst_force / kd, worst_stress, worst_move / delta);
 }
 
 TEST(Periodic, CompressedSquareLatticeHasTheStaticsOfAnInfiniteOne) { check_compressed_lattice<2>(70); }
@@ -298,6 +309,34 @@ TEST(Periodic, BitwiseIdenticalForAnyThreadCount) {
       EXPECT_LT(a.particles.position[i][k], 0.015 + 0.5 * a.skin);
     }
   }
+}
+
+}  // namespace
+}  // namespace darcydem
+
+namespace darcydem {
+namespace {
+
+// Box probes across the ends of a period along x, [0, 10 mm): a box from 8
+// to 12 mm holds the grains at 9 mm and at 1 mm (whose image is at 11 mm),
+// not the one at 5 mm; their mean x is that of the images in the box,
+// (9 + 11) / 2 mm. Exact: whole periods added to millimetres.
+TEST(Periodic, BoxProbesCountTheImagesInTheBox) {
+  ContactSpec spec;
+  spec.normal_stiffness = 1e3;
+  auto sim = testing::single_material<2>(2650.0, spec);
+  for (double x : {0.001, 0.005, 0.009}) sim.particles.add(Vec<2>(x, 0.002), 0.0004, 2650.0, 0, false);
+  sim.periodic.set_axis(0, 0.0, 0.01);
+  sim.time_step = 0.1 * sim.critical_time_step();
+  sim.prepare();
+  ProbeSpec probe;
+  probe.quantity = ProbeQuantity::particles_in_box;
+  probe.box_min = {0.008, 0.0};
+  probe.box_max = {0.012, 0.004};
+  EXPECT_EQ(evaluate_probe(probe, sim), 2.0);
+  probe.quantity = ProbeQuantity::mean_particle_position;
+  probe.component = 0;
+  EXPECT_NEAR(evaluate_probe(probe, sim), 0.010, 1e-15);
 }
 
 }  // namespace

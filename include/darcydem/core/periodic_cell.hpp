@@ -38,6 +38,18 @@ struct PeriodicCell {
     for (int k = 0; k < D; ++k) d[k] -= length[k] * std::nearbyint(d[k] * inv_length[k]);
     return d;
   }
+  /// The image of x (moved by whole periods along the periodic axes) in
+  /// the box [lo, hi], if one is: the first at or above lo along each
+  /// periodic axis (the only one for a box no longer than the period).
+  [[nodiscard]] bool image_in_box(Vec<D> x, const Vec<D>& lo, const Vec<D>& hi,
+                                  Vec<D>* image = nullptr) const {
+    for (int k = 0; k < D; ++k) {
+      if (periodic[k]) x[k] -= length[k] * std::floor((x[k] - lo[k]) * inv_length[k]);
+      if (!(x[k] >= lo[k] && x[k] <= hi[k])) return false;
+    }
+    if (image != nullptr) *image = x;
+    return true;
+  }
   /// x moved by whole periods into [lower, lower + length) on the periodic axes.
   [[nodiscard]] Vec<D> wrap(Vec<D> x) const {
     for (int k = 0; k < D; ++k) {

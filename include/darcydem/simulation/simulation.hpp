@@ -111,7 +111,8 @@ class Simulation {
   [[nodiscard]] double elastic_energy() const;  ///< J, normal springs of linear contacts
   /// The mean stress of the contact forces in the box [lo, hi] (Love and
   /// Weber), Pa, compression positive: -(1/V) sum over the particles whose
-  /// centres lie in the box and over their contacts (with particles and
+  /// centres lie in the box (along a periodic axis: whose image does; the
+  /// box no longer than the period) and over their contacts (with particles and
   /// walls) of (x_c - x_p) (x) f_c, symmetrised; V is the box's volume (2D:
   /// area x 1 m). In a saturated bed the contacts carry the effective
   /// stress. Forces as in the last evaluation (src/contact_stress.cpp).
