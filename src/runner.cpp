@@ -421,6 +421,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       const double t_end = sim.time + static_cast<double>(n_steps - std::min(first_step, n_steps)) * dt;
       bool stopped_early = false;
       const auto check_interval = static_cast<std::uint64_t>(stage.check_interval);
+      const bool stops = stage.kinetic_energy_below.has_value() || stage.unbalanced_force_below.has_value();
       for (std::uint64_t s = first_step; s < n_steps; ++s) {
         // Advance to the next step at which anything below may act (fluid
         // update, output, stop check, progress): the steps in between run
@@ -428,11 +429,13 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         const std::uint64_t run = steps_to_next_event(s, n_steps, check_interval, next_probe, next_snapshot);
         // Contact stresses and the contact network at the output this run
         // ends at use the forces its last step applies
-        // (Simulation::record_contact_forces).
+        // (Simulation::record_contact_forces): a probe or snapshot time, or
+        // where the stage may end (its last step, or a stop check).
         const double end = sim.time + static_cast<double>(run) * dt;
+        const bool stage_may_end = s + run == n_steps || (stops && (s + run) % check_interval == 0);
         sim.record_contact_forces =
-            (stress_probes && reached(end, next_probe)) ||
-            ((fluid != nullptr || scene.output.contacts) && reached(end, next_snapshot));
+            (stress_probes && (stage_may_end || reached(end, next_probe))) ||
+            ((fluid != nullptr || scene.output.contacts) && (stage_may_end || reached(end, next_snapshot)));
         sim.advance(run);
         s += run - 1;
         since_update += run;

@@ -3,13 +3,16 @@
 // bitwise reproducibility across thread counts.
 #include <gtest/gtest.h>
 #include <omp.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 
 #include "darcydem/generation/generators.hpp"
+#include "darcydem/simulation/runner.hpp"
 #include "dem_setup.hpp"
 #include "scene_loading.hpp"
 
@@ -209,6 +212,38 @@ TEST(ContactStress, RecordedForcesIncludeTheDashpotsAsApplied) {
   std::printf("recomputed dashpots: %.2g of the mean stress %.6g Pa\n", recomputed, mean);
   sim.step();  // a step that does not record: contact_stress recomputes again
   EXPECT_GT(rearranged_mismatch(sim, 6e-3).first, 1e-4);
+}
+
+// The runner records the forces of a stage's last step, so that its end's
+// stress probes and contact network use the forces applied: the bed above,
+// still moving, run by run_scene through a stage that a stop condition ends
+// at its first check (100 steps). The contact stress after it equals the
+// rearranged sum to round-off (1e-9, as above); recomputed, the dashpots
+// would be off by more than 1e-4 (the test above).
+TEST(ContactStress, TheRunnerRecordsTheForcesWhereAStageEnds) {
+  ContactSpec rattling;
+  rattling.normal_stiffness = 1e3;
+  rattling.restitution = 0.3;
+  rattling.friction = 0.5;
+  Scene<3> scene;
+  scene.simulation = random_bed<3>(rattling, 0.0, 0.0, 100, 6e-3, 0.1);
+  ASSERT_GT(rearranged_mismatch(scene.simulation, 6e-3).first, 1e-4) << "recomputed forces must differ";
+  Stage<3> stage;
+  stage.name = "moving";
+  stage.duration = 0.1;
+  stage.gravity = Vec<3>(0.0, 0.0, -9.81);
+  stage.kinetic_energy_below = 1.0;  // J: met at the first check
+  scene.stages.push_back(stage);
+  RunOptions options;
+  options.out_dir =
+      (std::filesystem::temp_directory_path() / ("darcydem_stage_end_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::remove_all(options.out_dir);
+  const std::uint64_t before = scene.simulation.steps;
+  run_scene(scene, options);
+  EXPECT_EQ(scene.simulation.steps - before, 100U) << "stopped at the first check";
+  expect_rearranged_sum(scene.simulation, 6e-3, "3D linear, moving, at a stage's early end");
+  std::filesystem::remove_all(options.out_dir);
 }
 
 // Undamped, frictionless discs bouncing in a box under gravity: velocity
