@@ -10,6 +10,7 @@ packages=(
   libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-matplotlib python3-numpy
+  pybind11-dev python3-dev
 )
 case "${1:-}" in
   "") ;;

@@ -5,7 +5,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 if [ "${1:-}" = "--sanitize" ]; then
-  "$root/scripts/build.sh" "$root/build-sanitize" -DDARCYDEM_SANITIZE=ON -DDARCYDEM_BUILD_BENCH=OFF \
+  "$root/scripts/build.sh" "$root/build-sanitize" -DDARCYDEM_SANITIZE=ON -DDARCYDEM_BUILD_BENCH=OFF -DDARCYDEM_BUILD_PYTHON=OFF \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo
   cd "$root/build-sanitize"
   # One thread: the sanitizers do not see through OpenMP's runtime reliably.

@@ -42,33 +42,6 @@ std::string json_string(const std::string& s) {
 }
 
 template <int D>
-void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage) {
-  if (fluid != nullptr) {
-    if (stage.freeze_permeability) fluid->permeability_frozen = *stage.freeze_permeability;
-    if (stage.fluid_steps_per_update) fluid->steps_per_update = *stage.fluid_steps_per_update;
-    if (stage.fluid_hold_forces) fluid->hold_forces = *stage.fluid_hold_forces;
-    for (const auto& [side, b] : stage.fluid_sides) {
-      fluid->sides[side] = b;
-      fluid->sides[side].value.start = sim.time;
-    }
-    for (const auto& [patch, b] : stage.fluid_patches) {
-      auto& condition = fluid->patches[static_cast<std::size_t>(patch)].condition;
-      condition = b;
-      condition.value.start = sim.time;
-    }
-  }
-  if (stage.gravity) sim.gravity = *stage.gravity;
-  if (stage.local_damping) sim.damping.local = *stage.local_damping;
-  if (stage.viscous_damping) sim.damping.viscous = *stage.viscous_damping;
-  for (const auto& c : stage.walls) {
-    auto& w = sim.walls[c.wall];
-    w.motion = c.motion;
-    w.velocity = c.motion == WallMotion::velocity ? c.velocity : Vec<D>::Zero();
-    w.servo = c.servo;
-  }
-}
-
-template <int D>
 bool stop_condition_met(const Simulation<D>& sim, const Stage<D>& stage) {
   if (stage.kinetic_energy_below && sim.kinetic_energy() < *stage.kinetic_energy_below) return true;
   if (stage.unbalanced_force_below && sim.unbalanced_force_ratio() < *stage.unbalanced_force_below)
@@ -193,6 +166,34 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
 }
 
 }  // namespace
+
+template <int D>
+void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage) {
+  if (fluid != nullptr) {
+    if (stage.freeze_permeability) fluid->permeability_frozen = *stage.freeze_permeability;
+    if (stage.fluid_steps_per_update) fluid->steps_per_update = *stage.fluid_steps_per_update;
+    if (stage.fluid_hold_forces) fluid->hold_forces = *stage.fluid_hold_forces;
+    for (const auto& [side, b] : stage.fluid_sides) {
+      fluid->sides[side] = b;
+      fluid->sides[side].value.start = sim.time;
+    }
+    for (const auto& [patch, b] : stage.fluid_patches) {
+      auto& condition = fluid->patches[static_cast<std::size_t>(patch)].condition;
+      condition = b;
+      condition.value.start = sim.time;
+    }
+  }
+  if (stage.gravity) sim.gravity = *stage.gravity;
+  if (stage.local_damping) sim.damping.local = *stage.local_damping;
+  if (stage.viscous_damping) sim.damping.viscous = *stage.viscous_damping;
+  for (const auto& c : stage.walls) {
+    auto& w = sim.walls[c.wall];
+    w.motion = c.motion;
+    w.velocity = c.motion == WallMotion::velocity ? c.velocity : Vec<D>::Zero();
+    w.servo = c.servo;
+  }
+}
+
 
 std::string describe_critical_step(double seconds) {
   // Only fixed particles (or none free to move): nothing limits the step.
@@ -553,6 +554,8 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid) {
 
 template std::string describe_patches_and_barriers<2>(const PoreFluid<2>&);
 template std::string describe_patches_and_barriers<3>(const PoreFluid<3>&);
+template void apply_stage<2>(Simulation<2>&, PoreFluid<2>*, const Stage<2>&);
+template void apply_stage<3>(Simulation<3>&, PoreFluid<3>*, const Stage<3>&);
 template RunSummary run_scene<2>(Scene<2>&, const RunOptions&);
 template RunSummary run_scene<3>(Scene<3>&, const RunOptions&);
 

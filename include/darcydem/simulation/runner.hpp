@@ -47,6 +47,12 @@ struct RunSummary {
   std::optional<SeepageColumnResult> seepage_column;  ///< with [analysis] kind = "seepage_column"
 };
 
+/// Applies a stage's settings (gravity, damping, wall motions, the pore
+/// fluid's conditions and coupling), as a run does when the stage starts;
+/// the fluid's time series count from now.
+template <int D>
+void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage);
+
 /// Throws std::runtime_error when the output directory cannot be written.
 template <int D>
 RunSummary run_scene(Scene<D>& scene, const RunOptions& options);

@@ -1,0 +1,374 @@
+// darcydem from Python (pybind11), over the same library as the program:
+//
+//   import darcydem
+//   darcydem.run("scene.toml", out="out/run")   # as `darcydem run`, returns a summary dict
+//   model = darcydem.load("scene.toml")         # as `darcydem check`, at the first stage's start
+//   model.apply_stage("settle")                 # a stage's settings, as a run starts it
+//   model.step(1000)                            # DEM steps, with the fluid's steps among them
+//   model.positions, model.velocities           # numpy arrays (N, D), particles in creation order
+//   model.fluid.pressure                        # numpy array over the cells, indexed [i, j(, k)]
+//
+// A bad scene raises darcydem.SceneError (a ValueError) with the file, line,
+// key and what is allowed. Ctrl-C stops a step() or run() between steps,
+// keeping what was computed (run() writes its checkpoint, as the program does).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <csignal>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "darcydem/output/checkpoint_archive.hpp"
+#include "darcydem/scene/scene.hpp"
+#include "darcydem/scene/toml_reader.hpp"
+#include "darcydem/simulation/runner.hpp"
+#include "darcydem/version.hpp"
+
+namespace py = pybind11;
+
+namespace darcydem::python {
+namespace {
+
+/// Steps between checks for Ctrl-C in step(), with the interpreter's lock
+/// released in between.
+constexpr std::uint64_t kSignalCheckSteps = 256;
+
+/// Rows of D values per particle, in creation order (the simulation keeps
+/// its particles sorted in space; `id` is the creation index).
+template <int D, class V>
+py::array_t<double> per_particle(const ParticleData<D>& p, const std::vector<V>& values, int width) {
+  py::array_t<double> out({static_cast<py::ssize_t>(p.size()), static_cast<py::ssize_t>(width)});
+  auto a = out.template mutable_unchecked<2>();
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    for (int c = 0; c < width; ++c) a(p.id[k], c) = values[k][c];
+  }
+  return out;
+}
+
+/// A cell field as an array indexed [i, j(, k)] (cell index i + nx (j + ny k)).
+template <int D, class Value>
+py::array_t<double> cell_field(const FluidGrid<D>& grid, const std::vector<Value>& values, int width) {
+  std::vector<py::ssize_t> shape(grid.cells.begin(), grid.cells.end());
+  if (width > 1) shape.push_back(width);
+  py::array_t<double, py::array::f_style> out(shape);
+  double* data = out.mutable_data();
+  const std::size_t n = grid.size();
+  for (std::size_t c = 0; c < n; ++c) {
+    if constexpr (std::is_same_v<Value, double>) {
+      data[c] = values[c];
+    } else {
+      for (int k = 0; k < width; ++k) data[c + n * static_cast<std::size_t>(k)] = values[c][k];
+    }
+  }
+  return out;
+}
+
+template <int D>
+py::tuple as_tuple(const Vec<D>& v) {
+  py::tuple t(D);
+  for (int k = 0; k < D; ++k) t[k] = v[k];
+  return t;
+}
+
+template <int D>
+Vec<D> as_vec(const std::vector<double>& v, const char* what) {
+  if (v.size() != static_cast<std::size_t>(D))
+    throw py::value_error(fmt::format("{}: {} numbers expected, {} given", what, D, v.size()));
+  Vec<D> x;
+  for (int k = 0; k < D; ++k) x[k] = v[static_cast<std::size_t>(k)];
+  return x;
+}
+
+/// A scene built from its file and stepped from Python.
+template <int D>
+class Model {
+ public:
+  Model(const toml::table& root, const std::string& file, const std::string& text)
+      : scene_(build_scene<D>(root, file, text)) {
+    // As a run starts: the first stage's settings, and the contact forces'
+    // magnitudes summed (for unbalanced_force_ratio).
+    if (!scene_.stages.empty()) darcydem::apply_stage(sim(), fluid(), scene_.stages.front());
+    sim().measure_contact_forces = true;
+    sim().prepare();
+  }
+
+  [[nodiscard]] Simulation<D>& sim() { return scene_.simulation; }
+  [[nodiscard]] const Simulation<D>& sim() const { return scene_.simulation; }
+  [[nodiscard]] PoreFluid<D>* fluid() { return scene_.fluid.get(); }
+  [[nodiscard]] const Scene<D>& scene() const { return scene_; }
+
+  [[nodiscard]] std::vector<std::string> stage_names() const {
+    std::vector<std::string> names;
+    for (const auto& s : scene_.stages) names.push_back(s.name);
+    return names;
+  }
+
+  void apply_stage(const std::string& name) {
+    for (const auto& s : scene_.stages) {
+      if (s.name == name) {
+        // A new coupling interval starts afresh, as in a run: the steps
+        // since the last fluid step get theirs first.
+        if (fluid() != nullptr && s.fluid_steps_per_update &&
+            *s.fluid_steps_per_update != fluid()->steps_per_update && since_update_ > 0)
+          fluid_step();
+        darcydem::apply_stage(sim(), fluid(), s);
+        return;
+      }
+    }
+    std::string allowed;
+    for (const auto& n : stage_names()) allowed += (allowed.empty() ? "" : ", ") + ("'" + n + "'");
+    throw py::value_error(fmt::format("{}: no stage '{}' (the scene's stages: {})", scene_.file, name,
+                                      allowed.empty() ? "none" : allowed));
+  }
+
+  /// `count` DEM steps, with a fluid step after every steps_per_update of
+  /// them, as a run takes them.
+  void step(std::uint64_t count) {
+    while (count > 0) {
+      std::uint64_t run = std::min(count, kSignalCheckSteps);
+      if (fluid() != nullptr)
+        run = std::clamp<std::uint64_t>(static_cast<std::uint64_t>(fluid()->steps_per_update) - since_update_,
+                                        1, run);
+      {
+        py::gil_scoped_release unlocked;
+        sim().advance(run);
+        since_update_ += run;
+        if (fluid() != nullptr && since_update_ >= static_cast<std::uint64_t>(fluid()->steps_per_update))
+          fluid_step();
+      }
+      count -= run;
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+  }
+
+ private:
+  void fluid_step() {
+    fluid()->update(sim().particles, static_cast<double>(since_update_) * sim().time_step, sim().time);
+    since_update_ = 0;
+  }
+
+  Scene<D> scene_;
+  std::uint64_t since_update_ = 0;  ///< DEM steps since the last fluid step
+};
+
+/// The pore fluid of a model, read through it (it lives as long as the model).
+template <int D>
+struct FluidView {
+  py::object owner;  ///< keeps the model alive
+  PoreFluid<D>* fluid = nullptr;
+};
+
+/// Reads and parses the scene file, then calls f.template operator()<D>(root, file, text).
+template <class F>
+py::object with_scene(const std::string& file, F&& f) {
+  std::string text;
+  const toml::table root = parse_toml_file(file, text);
+  const int dim = scene_dimension(root, file);
+  return dim == 2 ? f.template operator()<2>(root, file, text) : f.template operator()<3>(root, file, text);
+}
+
+/// The one process-wide flag a signal handler may set, as in the program.
+std::atomic<bool>& interrupt_flag() {
+  static std::atomic<bool> flag{false};
+  return flag;
+}
+
+extern "C" void on_interrupt(int) { interrupt_flag().store(true); }
+
+template <int D>
+py::dict run_one(Scene<D>& scene, RunOptions options) {
+  interrupt_flag().store(false);
+  options.interrupt = &interrupt_flag();
+  // SIGINT stops the run between steps, as in the program; Python's own
+  // handler is back once the run ends.
+  auto* previous = std::signal(SIGINT, on_interrupt);
+  RunSummary summary;
+  try {
+    py::gil_scoped_release unlocked;
+    summary = run_scene<D>(scene, options);
+  } catch (...) {
+    std::signal(SIGINT, previous);
+    throw;
+  }
+  std::signal(SIGINT, previous);
+  py::dict d;
+  d["steps"] = summary.steps;
+  d["simulated_time"] = summary.simulated_time;
+  d["wall_time"] = summary.wall_time;
+  d["status"] = summary.interrupted ? "interrupted" : "completed";
+  d["checkpoint_written"] = summary.checkpoint_written;
+  d["stages_completed"] = summary.stages_completed;
+  d["out"] = options.out_dir;
+  if (summary.seepage_column) {
+    const auto& s = *summary.seepage_column;
+    py::dict c;
+    c["uplift_rms_error"] = s.uplift_rms_error;
+    c["pressure_max_error"] = s.pressure_max_error;
+    c["passed"] = s.passed;
+    d["seepage_column"] = c;
+  }
+  return d;
+}
+
+template <int D>
+void bind_model(py::module_& m, const char* model_name, const char* fluid_name) {
+  using M = Model<D>;
+  using F = FluidView<D>;
+  py::class_<F>(m, fluid_name, "The pore fluid of a model: its grid and cell fields (copies).")
+      .def_property_readonly("cells", [](const F& f) { return f.fluid->grid.cells; })
+      .def_property_readonly(
+          "origin", [](const F& f) { return as_tuple<D>(f.fluid->grid.origin); },
+          "lower corner of the grid, m")
+      .def_property_readonly(
+          "spacing", [](const F& f) { return as_tuple<D>(f.fluid->grid.spacing); },
+          "cell size along each axis, m")
+      .def_property_readonly(
+          "pressure", [](const F& f) { return cell_field<D>(f.fluid->grid, f.fluid->pressure(), 1); },
+          "excess pore pressure per cell, Pa, indexed [i, j(, k)]")
+      .def_property_readonly(
+          "porosity", [](const F& f) { return cell_field<D>(f.fluid->grid, f.fluid->porosity(), 1); },
+          "porosity per cell")
+      .def_property_readonly(
+          "permeability",
+          [](const F& f) { return cell_field<D>(f.fluid->grid, f.fluid->permeability_field(), D); },
+          "intrinsic permeability per cell and axis, m^2, indexed [i, j(, k), axis]")
+      .def_property_readonly(
+          "darcy_velocity",
+          [](const F& f) { return cell_field<D>(f.fluid->grid, f.fluid->darcy_velocity(), D); },
+          "Darcy (superficial) velocity per cell, m/s, the mean of its faces', indexed [i, j(, k), axis]")
+      .def(
+          "pressure_at",
+          [](const F& f, const std::vector<double>& x) {
+            return f.fluid->pressure_at(as_vec<D>(x, "point"));
+          },
+          py::arg("point"), "excess pore pressure at a point, Pa, between the cell centres")
+      .def_property_readonly(
+          "balance",
+          [](const F& f) {
+            const FluidBalance& b = f.fluid->total_balance();
+            py::dict d;
+            d["inflow"] = b.inflow;
+            d["stored"] = b.stored;
+            d["pore_change"] = b.pore_change;
+            d["imbalance"] = b.imbalance();
+            return d;
+          },
+          "volumes since the start, m^3 (2D: per metre): inflow = stored + pore change + imbalance");
+
+  py::class_<M>(m, model_name, "A scene built from its file, stepped from Python.")
+      .def_property_readonly("dimension", [](const M&) { return D; })
+      .def_property_readonly("file", [](const M& s) { return s.scene().file; })
+      .def_property_readonly(
+          "time", [](const M& s) { return s.sim().time; }, "simulated time, s")
+      .def_property_readonly(
+          "time_step", [](const M& s) { return s.sim().time_step; }, "s")
+      .def_property_readonly("steps", [](const M& s) { return s.sim().steps; })
+      .def_property_readonly("stages", &M::stage_names, "the scene's stage names, in order")
+      .def_property_readonly("particle_count", [](const M& s) { return s.sim().particles.size(); })
+      .def_property_readonly(
+          "positions",
+          [](const M& s) { return per_particle<D>(s.sim().particles, s.sim().particles.position, D); },
+          "particle centres, m, (N, D), in creation order")
+      .def_property_readonly(
+          "velocities",
+          [](const M& s) { return per_particle<D>(s.sim().particles, s.sim().particles.velocity, D); },
+          "particle velocities, m/s, (N, D), in creation order")
+      .def_property_readonly(
+          "radii",
+          [](const M& s) {
+            const auto& p = s.sim().particles;
+            py::array_t<double> out(static_cast<py::ssize_t>(p.size()));
+            auto a = out.mutable_unchecked<1>();
+            for (std::size_t k = 0; k < p.size(); ++k) a(p.id[k]) = p.radius[k];
+            return out;
+          },
+          "particle radii, m, (N,), in creation order")
+      .def_property(
+          "gravity", [](const M& s) { return as_tuple<D>(s.sim().gravity); },
+          [](M& s, const std::vector<double>& g) { s.sim().gravity = as_vec<D>(g, "gravity"); }, "m/s^2")
+      .def_property_readonly(
+          "walls",
+          [](const M& s) {
+            py::list walls;
+            for (const auto& w : s.sim().walls) {
+              py::dict d;
+              d["name"] = w.name;
+              d["point"] = as_tuple<D>(w.point);
+              d["force"] = as_tuple<D>(w.force);
+              walls.append(d);
+            }
+            return walls;
+          },
+          "each wall's name, point (a box: its centre), m, and the force the particles exert on it, N")
+      .def(
+          "kinetic_energy", [](const M& s) { return s.sim().kinetic_energy(); }, "J")
+      .def(
+          "unbalanced_force_ratio", [](M& s) { return s.sim().unbalanced_force_ratio(); },
+          "mean unbalanced force / mean contact force of the last step")
+      .def("apply_stage", &M::apply_stage, py::arg("name"),
+           "applies a stage's settings (gravity, damping, walls, fluid conditions), as a run starts it")
+      .def("step", &M::step, py::arg("count") = 1,
+           "advances count DEM steps, with the pore fluid's steps among them as in a run")
+      .def_property_readonly(
+          "fluid",
+          [](py::object self) -> py::object {
+            M& s = self.cast<M&>();
+            if (s.fluid() == nullptr) return py::none();
+            return py::cast(F{self, s.fluid()});
+          },
+          "the pore fluid ([fluid]), or None");
+}
+
+}  // namespace
+}  // namespace darcydem::python
+
+PYBIND11_MODULE(darcydem, m) {
+  using namespace darcydem::python;
+  m.doc() = "darcydem: DEM of discs and spheres coupled with Darcy pore-fluid flow";
+  m.attr("__version__") = darcydem::version_string;
+  py::register_exception<darcydem::SceneError>(m, "SceneError", PyExc_ValueError);
+  py::register_exception<darcydem::CheckpointError>(m, "CheckpointError", PyExc_RuntimeError);
+  bind_model<2>(m, "Model2D", "Fluid2D");
+  bind_model<3>(m, "Model3D", "Fluid3D");
+  m.def(
+      "load",
+      [](const std::string& file) {
+        return with_scene(file,
+                          [&]<int D>(const toml::table& root, const std::string& f, const std::string& text) {
+                            return py::cast(std::make_unique<Model<D>>(root, f, text));
+                          });
+      },
+      py::arg("scene"),
+      "builds a scene from its TOML file (checked as `darcydem check` does); raises SceneError on bad input");
+  m.def(
+      "run",
+      [](const std::string& file, const std::string& out, bool force, bool resume, double checkpoint_every,
+         int threads) {
+        if (force && resume) throw py::value_error("run: force and resume exclude each other");
+        if (!force && !resume && !darcydem::output_dir_is_free(out))
+          throw py::value_error(
+              fmt::format("output directory '{}' is not empty; use force=True to write into it", out));
+        if (threads < 0) throw py::value_error("run: threads must be >= 0 (0: all cores)");
+        if (threads > 0) omp_set_num_threads(threads);
+        darcydem::RunOptions options;
+        options.out_dir = out;
+        options.resume = resume;
+        options.checkpoint_every = checkpoint_every;
+        return with_scene(file,
+                          [&]<int D>(const toml::table& root, const std::string& f, const std::string& text) {
+                            auto scene = darcydem::build_scene<D>(root, f, text);
+                            return py::object(run_one<D>(scene, options));
+                          });
+      },
+      py::arg("scene"), py::arg("out"), py::arg("force") = false, py::arg("resume") = false,
+      py::arg("checkpoint_every") = 0.0, py::arg("threads") = 0,
+      "runs a scene as `darcydem run` does, writing its output directory; returns a summary");
+}

@@ -1,0 +1,257 @@
+"""The Python module against closed forms and against the program's own run.
+
+Run by ctest with PYTHONPATH set to the module's folder (build/python) and
+the source tree as the first argument.
+"""
+import csv
+import math
+import os
+import signal
+import sys
+import tempfile
+import threading
+import tomllib
+import unittest
+
+import numpy as np
+
+import darcydem
+
+SOURCE = sys.argv.pop(1) if len(sys.argv) > 1 else os.getcwd()
+G = 9.80665
+
+
+def write_scene(folder, text, name="scene.toml"):
+    path = os.path.join(folder, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+ONE_SPHERE = """
+[simulation]
+dimension = 3
+time_step = 1e-5
+
+[[material]]
+name = "sand"
+density = 2650.0
+
+[[contact]]
+materials = ["sand", "sand"]
+law = "linear"
+normal_stiffness = 1e3
+restitution = 0.5
+
+[[particles]]
+generator = "csv"
+material = "sand"
+file = "one.csv"
+
+[[stage]]
+name = "fall"
+duration = 0.1
+gravity = [0.0, 0.0, -9.80665]
+
+[[stage]]
+name = "float"
+duration = 0.1
+gravity = [0.0, 0.0, 0.0]
+"""
+
+
+class FreeFall(unittest.TestCase):
+    def setUp(self):
+        self.folder = tempfile.mkdtemp()
+        with open(os.path.join(self.folder, "one.csv"), "w") as f:
+            f.write("x,y,z,radius\n0.01,0.02,1.0,0.0005\n")
+        self.model = darcydem.load(write_scene(self.folder, ONE_SPHERE))
+
+    def test_falls_as_a_body_under_gravity(self):
+        m = self.model
+        self.assertEqual(m.dimension, 3)
+        self.assertEqual(m.stages, ["fall", "float"])
+        # load() starts at the first stage: its gravity applies.
+        self.assertEqual(m.gravity, (0.0, 0.0, -G))
+        m.step(10000)
+        t = 10000 * 1e-5
+        self.assertEqual(m.steps, 10000)
+        # The time is the step summed 10 000 times: round-off of at most
+        # n eps t = 1.1e-13 s.
+        self.assertAlmostEqual(m.time, t, delta=1.1e-13)
+        # The half-kick / drift / half-kick scheme is exact for a constant
+        # force: z = z0 - g t^2 / 2 and v = -g t up to round-off, which
+        # over 10 000 steps stays within 1e-12 m of the 0.049 m fallen.
+        x = m.positions[0]
+        self.assertAlmostEqual(x[0], 0.01, delta=1e-15)
+        self.assertAlmostEqual(x[1], 0.02, delta=1e-15)
+        self.assertAlmostEqual(x[2], 1.0 - 0.5 * G * t * t, delta=1e-12)
+        self.assertAlmostEqual(m.velocities[0][2], -G * t, delta=1e-12)
+        mass = 2650.0 * 4.0 / 3.0 * math.pi * 0.0005**3
+        self.assertAlmostEqual(m.kinetic_energy(), 0.5 * mass * (G * t) ** 2, delta=1e-12 * mass * (G * t) ** 2)
+
+    def test_a_stage_applied_from_python_changes_the_motion(self):
+        m = self.model
+        m.step(500)
+        v = m.velocities[0][2]
+        m.apply_stage("float")
+        m.step(500)
+        # Without gravity the sphere keeps its speed (nothing else acts),
+        # after the first half kick, which applies the force evaluated
+        # before the change (gravity), as at a stage change in a run:
+        # v - g dt / 2.
+        self.assertAlmostEqual(m.velocities[0][2], v - 0.5 * G * 1e-5, delta=1e-15)
+        m.gravity = (0.0, 0.0, -1.0)
+        self.assertEqual(m.gravity, (0.0, 0.0, -1.0))
+        with self.assertRaises(ValueError):
+            m.gravity = (0.0, -1.0)
+
+    def test_an_unknown_stage_names_those_there_are(self):
+        with self.assertRaises(ValueError) as caught:
+            self.model.apply_stage("settle")
+        self.assertIn("no stage 'settle'", str(caught.exception))
+        self.assertIn("'fall', 'float'", str(caught.exception))
+
+
+class BadInput(unittest.TestCase):
+    def test_a_bad_scene_raises_scene_error_with_file_line_and_key(self):
+        folder = tempfile.mkdtemp()
+        text = ONE_SPHERE.replace("restitution = 0.5", "restitution = 1.5")
+        path = write_scene(folder, text, "bad.toml")
+        with open(os.path.join(folder, "one.csv"), "w") as f:
+            f.write("x,y,z,radius\n0.0,0.0,1.0,0.0005\n")
+        line = text.splitlines().index("restitution = 1.5") + 1
+        with self.assertRaises(darcydem.SceneError) as caught:
+            darcydem.load(path)
+        message = str(caught.exception)
+        self.assertIn(f"bad.toml:{line}", message)
+        self.assertIn("restitution", message)
+        self.assertTrue(issubclass(darcydem.SceneError, ValueError))
+
+    def test_a_missing_file_is_named(self):
+        with self.assertRaises(Exception) as caught:
+            darcydem.load("/nonexistent/scene.toml")
+        self.assertIn("/nonexistent/scene.toml", str(caught.exception))
+
+    def test_run_refuses_a_used_output_directory(self):
+        folder = tempfile.mkdtemp()
+        with open(os.path.join(folder, "one.csv"), "w") as f:
+            f.write("x,y,z,radius\n0.0,0.0,1.0,0.0005\n")
+        with self.assertRaises(ValueError) as caught:
+            darcydem.run(write_scene(folder, ONE_SPHERE), out=folder)
+        self.assertIn("not empty", str(caught.exception))
+
+
+class HydrostaticBed(unittest.TestCase):
+    """examples/fluid_cases/hydrostatic_bed.toml from Python (issue 3's
+    verification 3), and the same scene run as the program runs it."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.scene = os.path.join(SOURCE, "examples", "fluid_cases", "hydrostatic_bed.toml")
+        cls.out = os.path.join(tempfile.mkdtemp(), "out")
+        cls.summary = darcydem.run(cls.scene, out=cls.out)
+        cls.model = darcydem.load(cls.scene)
+        cls.model.step(cls.summary["steps"])
+
+    def test_run_returns_its_summary(self):
+        s = self.summary
+        self.assertEqual(s["status"], "completed")
+        self.assertEqual(s["stages_completed"], ["settle"])
+        self.assertEqual(s["steps"], round(0.1 / self.model.time_step))
+        self.assertTrue(os.path.exists(os.path.join(self.out, "run.json")))
+
+    def test_stepping_from_python_gives_the_run_of_the_program(self):
+        # The same steps and fluid steps as the run: its particles_final.csv
+        # (creation order, 17 digits) is these positions exactly.
+        with open(os.path.join(self.out, "particles_final.csv")) as f:
+            rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))][1:]
+        final = np.array([[float(v) for v in r] for r in rows])
+        self.assertEqual(final.shape, (self.model.particle_count, 4))
+        np.testing.assert_array_equal(self.model.positions, final[:, :3])
+        np.testing.assert_array_equal(self.model.radii, final[:, 3])
+
+    def test_the_floor_carries_the_submerged_weight(self):
+        with open(self.scene, "rb") as f:
+            spec = tomllib.load(f)
+        rho_s = spec["material"][0]["density"]
+        rho_f = spec["fluid"]["density"]
+        volumes = 4.0 / 3.0 * np.pi * self.model.radii**3
+        submerged = float(np.sum((rho_s - rho_f) * volumes)) * G
+        floor = next(w for w in self.model.walls if w["name"] == "floor")
+        # Issue 3: within 0.5 %.
+        self.assertAlmostEqual(-floor["force"][2], submerged, delta=0.005 * submerged)
+        # The excess pressure of settling has drained: below 1e-6 of the
+        # bed's submerged stress at the floor (as the C++ test bounds it).
+        stress = submerged / (0.006 * 0.006)
+        self.assertLess(np.max(np.abs(self.model.fluid.pressure)), 1e-6 * stress)
+
+    def test_an_interrupted_run_resumes_to_the_same_end(self):
+        # Ctrl-C (SIGINT) a second into the run: it stops between steps,
+        # keeps its output and checkpoint, and resume=True ends where the
+        # run that never stopped ended, particle for particle.
+        out = os.path.join(tempfile.mkdtemp(), "out")
+        timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+        timer.start()
+        first = darcydem.run(self.scene, out=out)
+        timer.join()
+        self.assertEqual(first["status"], "interrupted")
+        self.assertTrue(first["checkpoint_written"])
+        self.assertLess(first["steps"], self.summary["steps"])
+        second = darcydem.run(self.scene, out=out, resume=True)
+        self.assertEqual(second["status"], "completed")
+        self.assertEqual(second["steps"], self.summary["steps"])
+        with open(os.path.join(out, "particles_final.csv")) as a, open(
+            os.path.join(self.out, "particles_final.csv")
+        ) as b:
+            rows = lambda f: [line for line in f if not line.startswith("#")]
+            self.assertEqual(rows(a), rows(b))
+
+    def test_ctrl_c_stops_a_step_between_steps(self):
+        model = darcydem.load(self.scene)
+        timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+        timer.start()
+        with self.assertRaises(KeyboardInterrupt):
+            model.step(10**9)
+        timer.join()
+        done = model.steps
+        self.assertGreater(done, 0)
+        self.assertLess(done, 10**9)
+        model.step(10)
+        self.assertEqual(model.steps, done + 10)
+
+    def test_fluid_fields_are_indexed_by_cell(self):
+        f = self.model.fluid
+        self.assertEqual(f.cells, [3, 3, 4])
+        self.assertEqual(f.spacing, (0.002, 0.002, 0.002))
+        self.assertEqual(f.pressure.shape, (3, 3, 4))
+        self.assertEqual(f.permeability.shape, (3, 3, 4, 3))
+        self.assertEqual(f.darcy_velocity.shape, (3, 3, 4, 3))
+        # The solid volume the porosities give equals the grains' own: the
+        # settled bed lies within the grid, whose cells hold every grain
+        # whole or in parts (exact overlaps, to round-off).
+        # Grains pressed against the floor and the side walls (all on the
+        # grid's sides) stick out of the grid by their contact overlap: the
+        # caps beyond, pi h^2 (3 r - h) / 3, are not in any cell.
+        cell_volume = 0.002**3
+        solid = float(np.sum(1.0 - f.porosity)) * cell_volume
+        r = self.model.radii
+        x = self.model.positions
+        outside = 0.0
+        for beyond in (-x[:, 0], x[:, 0] - 0.006, -x[:, 1], x[:, 1] - 0.006, -x[:, 2]):
+            h = np.maximum(0.0, r + beyond)
+            outside += float(np.sum(np.pi * h**2 * (3.0 * r - h) / 3.0))
+        grains = float(np.sum(4.0 / 3.0 * np.pi * r**3))
+        self.assertGreater(outside, 0.0)
+        self.assertAlmostEqual(solid, grains - outside, delta=1e-12 * grains)
+        # The top layer holds fewer grains than the bottom one (the bed has
+        # settled below the grid's top).
+        self.assertGreater(f.porosity[:, :, 3].mean(), f.porosity[:, :, 0].mean())
+        # Balance since the start: inflow = stored + pore change, to round-off.
+        b = f.balance
+        self.assertLess(abs(b["imbalance"]), 1e-12 * grains)
+        self.assertAlmostEqual(f.pressure_at((0.003, 0.003, 0.001)), f.pressure[1, 1, 0], delta=1e-9)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
