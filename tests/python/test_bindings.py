@@ -10,6 +10,7 @@ import signal
 import sys
 import tempfile
 import threading
+import time
 import tomllib
 import unittest
 
@@ -187,11 +188,19 @@ class HydrostaticBed(unittest.TestCase):
         self.assertLess(np.max(np.abs(self.model.fluid.pressure)), 1e-6 * stress)
 
     def test_an_interrupted_run_resumes_to_the_same_end(self):
-        # Ctrl-C (SIGINT) a second into the run: it stops between steps,
+        # Ctrl-C (SIGINT) once the run has started stepping (its probes.csv
+        # is there; the whole run takes seconds): it stops between steps,
         # keeps its output and checkpoint, and resume=True ends where the
         # run that never stopped ended, particle for particle.
         out = os.path.join(tempfile.mkdtemp(), "out")
-        timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+
+        def interrupt_once_running():
+            while not os.path.exists(os.path.join(out, "probes.csv")):
+                time.sleep(0.01)
+            time.sleep(0.2)
+            os.kill(os.getpid(), signal.SIGINT)
+
+        timer = threading.Thread(target=interrupt_once_running)
         timer.start()
         first = darcydem.run(self.scene, out=out)
         timer.join()
