@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -351,7 +352,7 @@ PYBIND11_MODULE(darcydem, m) {
   m.def(
       "run",
       [](const std::string& file, const std::string& out, bool force, bool resume, double checkpoint_every,
-         int threads) {
+         int threads, bool log) {
         if (force && resume) throw py::value_error("run: force and resume exclude each other");
         if (!force && !resume && !darcydem::output_dir_is_free(out))
           throw py::value_error(
@@ -362,6 +363,7 @@ PYBIND11_MODULE(darcydem, m) {
         options.out_dir = out;
         options.resume = resume;
         options.checkpoint_every = checkpoint_every;
+        options.log = log ? &std::cerr : nullptr;  // the program's run log and progress lines
         return with_scene(file,
                           [&]<int D>(const toml::table& root, const std::string& f, const std::string& text) {
                             auto scene = darcydem::build_scene<D>(root, f, text);
@@ -369,6 +371,7 @@ PYBIND11_MODULE(darcydem, m) {
                           });
       },
       py::arg("scene"), py::arg("out"), py::arg("force") = false, py::arg("resume") = false,
-      py::arg("checkpoint_every") = 0.0, py::arg("threads") = 0,
-      "runs a scene as `darcydem run` does, writing its output directory; returns a summary");
+      py::arg("checkpoint_every") = 0.0, py::arg("threads") = 0, py::arg("log") = false,
+      "runs a scene as `darcydem run` does, writing its output directory; returns a summary; with "
+      "log=True the program's run log and progress lines go to stderr");
 }
