@@ -194,7 +194,6 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
   }
 }
 
-
 std::string describe_critical_step(double seconds) {
   // Only fixed particles (or none free to move): nothing limits the step.
   if (std::isinf(seconds)) return "none (no particle is free to move)";
