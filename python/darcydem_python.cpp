@@ -115,11 +115,7 @@ class Model {
   void apply_stage(const std::string& name) {
     for (const auto& s : scene_.stages) {
       if (s.name == name) {
-        // A new coupling interval starts afresh, as in a run: the steps
-        // since the last fluid step get theirs first.
-        if (fluid() != nullptr && s.fluid_steps_per_update &&
-            *s.fluid_steps_per_update != fluid()->steps_per_update && since_update_ > 0)
-          fluid_step();
+        if (starts_new_coupling_interval(fluid(), s) && since_update_ > 0) fluid_step();
         darcydem::apply_stage(sim(), fluid(), s);
         return;
       }

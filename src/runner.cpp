@@ -401,12 +401,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       // A resumed stage has had its start (held in the checkpoint).
       const bool resumed_here = options.resume && k == first_stage;
       if (!resumed_here) {
-        // A new coupling interval starts afresh: the steps since the last
-        // fluid step get theirs first.
-        if (fluid != nullptr && stage.fluid_steps_per_update &&
-            *stage.fluid_steps_per_update != fluid->steps_per_update && since_update > 0) {
-          fluid_step();
-        }
+        if (starts_new_coupling_interval(fluid, stage) && since_update > 0) fluid_step();
         apply_stage(sim, fluid, stage);
         if (fluid != nullptr && options.log != nullptr &&
             (stage.fluid_steps_per_update || stage.fluid_hold_forces)) {

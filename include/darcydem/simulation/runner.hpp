@@ -53,6 +53,15 @@ struct RunSummary {
 template <int D>
 void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage);
 
+/// Whether the stage sets a coupling interval other than the fluid's
+/// current one: a new interval starts afresh, so the DEM steps since the
+/// last fluid step get theirs before the stage applies.
+template <int D>
+[[nodiscard]] bool starts_new_coupling_interval(const PoreFluid<D>* fluid, const Stage<D>& stage) {
+  return fluid != nullptr && stage.fluid_steps_per_update &&
+         *stage.fluid_steps_per_update != fluid->steps_per_update;
+}
+
 /// Throws std::runtime_error when the output directory cannot be written.
 template <int D>
 RunSummary run_scene(Scene<D>& scene, const RunOptions& options);
