@@ -148,7 +148,8 @@ class Model {
 
  private:
   void fluid_step() {
-    fluid()->update(sim().particles, static_cast<double>(since_update_) * sim().time_step, sim().time);
+    fluid()->update(sim().particles, static_cast<double>(since_update_) * sim().time_step, sim().time,
+                    sim().walls);
     since_update_ = 0;
   }
 

@@ -47,7 +47,7 @@ PoreFluid<D>::PoreFluid(PressureSolverKind solver, double tolerance, CgPrecondit
     : solver_(solver, tolerance, preconditioner) {}
 
 template <int D>
-void PoreFluid<D>::initialize(const ParticleData<D>& particles) {
+void PoreFluid<D>::initialize(const ParticleData<D>& particles, const std::vector<Wall<D>>& walls) {
   held_ = {};
   const std::size_t n = grid.size();
   pressure_.assign(n, 0.0);
@@ -69,6 +69,8 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles) {
   build_pattern();
   compute_solid(particles);
   solid_old_ = solid_;
+  compute_wall_solid(walls);
+  wall_solid_old_ = wall_solid_;
   compute_cell_properties();
   compute_face_fields(0.0);
   solution_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
@@ -166,6 +168,45 @@ void PoreFluid<D>::compute_solid(const ParticleData<D>& particles) {
 }
 
 template <int D>
+void PoreFluid<D>::compute_wall_solid(const std::vector<Wall<D>>& walls) {
+  const std::size_t n = grid.size();
+  wall_solid_.assign(n, 0.0);
+  for (std::size_t w : solid_walls) {
+    if (w >= walls.size() || !walls[w].is_box)
+      throw std::logic_error("PoreFluid: a solid wall that is not among the box walls given");
+    const Wall<D>& wall = walls[w];
+    const SolidBox<D> box{wall.point, wall.half, wall.axes};
+    // The cells the box's bounding box reaches (a box beyond the grid's
+    // ends takes up no cell there, also on a periodic axis).
+    const Vec<D> reach = box.bounding_half();
+    std::array<int, D> lo{};
+    std::array<int, D> hi{};
+    bool any = true;
+    for (int k = 0; k < D; ++k) {
+      lo[k] = FluidGrid<D>::clamp_cell(
+          std::floor((box.centre[k] - reach[k] - grid.origin[k]) / grid.spacing[k]), 0, grid.cells[k] - 1);
+      hi[k] = FluidGrid<D>::clamp_cell(
+          std::floor((box.centre[k] + reach[k] - grid.origin[k]) / grid.spacing[k]), 0, grid.cells[k] - 1);
+      any = any && box.centre[k] + reach[k] > grid.origin[k] &&
+            box.centre[k] - reach[k] < grid.origin[k] + grid.cells[k] * grid.spacing[k];
+    }
+    if (!any) continue;
+    std::array<int, D> c = lo;
+    while (true) {
+      const Vec<D> corner = grid.centre(c) - 0.5 * grid.spacing;
+      const Vec<D> far = corner + grid.spacing;
+      wall_solid_[grid.index(c)] += box_cell_volume(box, corner, far);
+      int k = 0;
+      while (k < D && ++c[k] > hi[k]) {
+        c[k] = lo[k];
+        ++k;
+      }
+      if (k == D) break;
+    }
+  }
+}
+
+template <int D>
 void PoreFluid<D>::compute_cell_properties() {
   // Every cell (and face) on its own: in parallel on a large grid, with the
   // same result for any number of threads.
@@ -189,7 +230,7 @@ void PoreFluid<D>::compute_cell_properties() {
     const std::size_t begin = static_cast<std::size_t>(r) * run;
     const std::size_t end = std::min(n, begin + run);
     for (std::size_t c = begin; c < end; ++c) {
-      porosity_[c] = 1.0 - solid_[c] / volume;
+      porosity_[c] = 1.0 - (solid_[c] + wall_solid_[c]) / volume;
       porosity_used_[c] = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
       const double inv_solid = solid_[c] > 1e-12 * volume ? 1.0 / solid_[c] : 0.0;
       solid_velocity_[c] = solid_flux_[c] * inv_solid;
@@ -389,7 +430,8 @@ double PoreFluid<D>::side_lambda(int axis, std::size_t cell) const {
 }
 
 template <int D>
-void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double time) {
+void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double time,
+                          const std::vector<Wall<D>>& walls) {
   if (!initialized_) throw std::logic_error("PoreFluid::update before initialize");
   held_ = {};  // new fields: the grains' forces are due again
   const std::size_t n = grid.size();
@@ -401,6 +443,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     return s;
   };
   compute_solid(particles);
+  compute_wall_solid(walls);
   last_times_.overlaps = lap();
   compute_cell_properties();
   last_times_.properties = lap();
@@ -470,7 +513,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     for (std::size_t c = begin; c < end; ++c) {
       const double storage = storage_of(c);
       diag[c] = storage;
-      rhs[c] = storage * pressure_[c] + (solid_[c] - solid_old_[c]);
+      rhs[c] = storage * pressure_[c] + (solid_[c] - solid_old_[c]) + (wall_solid_[c] - wall_solid_old_[c]);
     }
     for (int k = 0; k < D; ++k) {
       const std::size_t s = grid.stride(k);
@@ -501,7 +544,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   double solid_change = 0.0;
   double solid_moved = 0.0;  // sum of |dVs|, for the balance's gross flow
   for (std::size_t c = 0; c < n; ++c) {
-    const double d_solid = solid_[c] - solid_old_[c];
+    const double d_solid = (solid_[c] - solid_old_[c]) + (wall_solid_[c] - wall_solid_old_[c]);
     solid_change += d_solid;
     solid_moved += std::abs(d_solid);
   }
@@ -576,6 +619,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   total_.stored += b.stored;
   total_.pore_change += b.pore_change;
   solid_old_ = solid_;
+  wall_solid_old_ = wall_solid_;
   time_ = time;
   ++updates_;
   last_times_.fields = lap();

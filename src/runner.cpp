@@ -360,7 +360,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     last_checkpoint = Clock::now();
   };
   auto fluid_step = [&] {
-    fluid->update(sim.particles, static_cast<double>(since_update) * dt, sim.time);
+    fluid->update(sim.particles, static_cast<double>(since_update) * dt, sim.time, sim.walls);
     since_update = 0;
     fluid_iterations += static_cast<std::uint64_t>(fluid->last_solve().iterations);
     fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);

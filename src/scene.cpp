@@ -466,6 +466,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   std::vector<std::string> wall_names;
   std::vector<WallBarrier<D>> wall_barriers;
   std::vector<bool> wall_is_barrier;
+  std::vector<std::size_t> solid_walls;  // box walls that take up pore volume
+  std::string solid_wall_prefix;         // where the first was asked for
   for_each_table(top, "wall", "wall", [&](TableReader& r, int) {
     Wall<D> w;
     w.name = r.string("name");
@@ -516,6 +518,22 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       wall_barriers.push_back(plate_barrier<D>(r, w, box_lo, box_hi));
     }
     wall_is_barrier.push_back(impermeable);
+    if (r.boolean_or("displaces_fluid", false)) {
+      if (!w.is_box) {
+        r.fail("displaces_fluid",
+               "only a box wall takes up pore volume; a plane wall is a side of the domain (the fluid grid's "
+               "sides take their conditions from [fluid.boundary])");
+      }
+      if (w.half.minCoeff() == 0.0) {
+        r.fail("displaces_fluid",
+               "a plate (min = max along an axis) has no volume to take up; give it a thickness");
+      }
+      if (solid_walls.empty()) {
+        solid_wall_prefix = fmt::format("{}: error: {} key 'displaces_fluid': ",
+                                        r.location(r.raw("displaces_fluid")->source()), r.where());
+      }
+      solid_walls.push_back(sim.walls.size());
+    }
     check_wall_in_period<D>(r, w, sim.periodic);
     wall_index[w.name] = sim.walls.size();
     wall_names.push_back(w.name);
@@ -610,11 +628,13 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
 
   // [fluid]
   if (const toml::table* t = top.optional_table("fluid")) {
-    scene.fluid = read_fluid<D>(*t, file, sim.particles, wall_barriers, sim.periodic);
+    scene.fluid = read_fluid<D>(*t, file, sim.particles, wall_barriers, sim.periodic, sim.walls, solid_walls);
     sim.force_field = scene.fluid.get();
   } else if (top.has("fluid")) {
     top.fail("fluid", "must be a table ([fluid])");
   }
+  if (!scene.fluid && !solid_walls.empty())
+    throw SceneError(solid_wall_prefix + "needs a pore fluid to take up: the scene has no [fluid] table");
   if (!scene.fluid && !wall_barriers.empty()) {
     throw SceneError(wall_barriers.front().error_prefix +
                      "needs a pore fluid to keep out: the scene has no [fluid] table");

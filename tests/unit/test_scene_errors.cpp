@@ -405,50 +405,52 @@ TEST(SceneErrors, FluidBarriersAreChecked) {
   EXPECT_NE(msg.find("unknown key 'thickness'"), std::string::npos) << msg;
 }
 
+/// The good scene with one more wall (a [[wall]] table), with its pore fluid or without.
+std::string with_wall(const std::string& wall, bool fluid = true) {
+  const std::string dem = replace(kGood, "[[particles]]", wall + "\n[[particles]]");
+  if (!fluid) return dem;
+  return with_fluid().replace(0, std::string(kGood).size(), dem);
+}
+
 TEST(SceneErrors, ImpermeableWallsAreChecked) {
   // A plate on the one plane of faces between the grid's cells (y = 2 mm),
   // across the grid's width; the discs of the column touch it, no more.
   const std::string plate =
       "\n[[wall]]\nname = \"pile\"\nbox = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }\n"
       "material = \"sand\"\nimpermeable = true\n";
-  auto with_plate = [&](const std::string& wall, bool fluid = true) {
-    const std::string dem = replace(kGood, "[[particles]]", wall + "\n[[particles]]");
-    if (!fluid) return dem;
-    return with_fluid().replace(0, std::string(kGood).size(), dem);
-  };
-  EXPECT_EQ(load_error(with_plate(plate)), "");
-  auto msg = load_error(with_plate(replace(plate, "min = [-0.0005, 0.002]", "min = [-0.0005, 0.0015]")));
+  EXPECT_EQ(load_error(with_wall(plate)), "");
+  auto msg = load_error(with_wall(replace(plate, "min = [-0.0005, 0.002]", "min = [-0.0005, 0.0015]")));
   EXPECT_NE(
       msg.find("[[wall]] #2 key 'impermeable': needs a plate: a box with min = max along exactly one axis"),
       std::string::npos)
       << msg;
   EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
-  msg = load_error(with_plate(replace(plate, "box = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }",
-                                      "point = [0.0, 0.002]\nnormal = [0.0, -1.0]")));
+  msg = load_error(with_wall(replace(plate, "box = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }",
+                                     "point = [0.0, 0.002]\nnormal = [0.0, -1.0]")));
   EXPECT_NE(msg.find("key 'impermeable': only a box wall flat along one axis (a plate) can be impermeable"),
             std::string::npos)
       << msg;
-  msg = load_error(with_plate(plate + "velocity = [0.0, 0.01]\n"));
+  msg = load_error(with_wall(plate + "velocity = [0.0, 0.01]\n"));
   EXPECT_NE(msg.find("key 'impermeable': an impermeable wall cannot move"), std::string::npos) << msg;
-  msg = load_error(replace(with_plate(plate), "gravity = [0.0, -9.81]",
+  msg = load_error(replace(with_wall(plate), "gravity = [0.0, -9.81]",
                            "gravity = [0.0, -9.81]\nwalls.pile = { velocity = [0.0, 0.01] }"));
   EXPECT_NE(msg.find("walls.pile key 'velocity': an impermeable wall cannot move"), std::string::npos) << msg;
-  msg = load_error(with_plate(plate, false));
+  msg = load_error(with_wall(plate, false));
   EXPECT_NE(msg.find("key 'impermeable': needs a pore fluid to keep out: the scene has no [fluid] table"),
             std::string::npos)
       << msg;
-  msg = load_error(with_plate(replace(replace(plate, "0.002]", "0.003]"), "0.002]", "0.003]")));
+  msg = load_error(with_wall(replace(replace(plate, "0.002]", "0.003]"), "0.002]", "0.003]")));
   EXPECT_NE(
       msg.find("key 'impermeable': the plate at y = 0.003 m: must be on a plane of faces between two cells "
                "inside the grid: along y they are at 0 + n x 0.002 m, n = 1 .. 1 (the nearest: 0.002 m)"),
       std::string::npos)
       << msg;
-  msg = load_error(with_plate(replace(plate, "min = [-0.0005, 0.002]", "min = [0.0001, 0.002]")));
+  msg = load_error(with_wall(replace(plate, "min = [-0.0005, 0.002]", "min = [0.0001, 0.002]")));
   EXPECT_NE(msg.find("key 'impermeable': the plate at y = 0.002 m: the barrier holds no face"),
             std::string::npos)
       << msg;
-  msg = load_error(with_plate(replace(plate, "box = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }",
-                                      "box = { min = [0.0006, 0.0], max = [0.0006, 0.004] }")));
+  msg = load_error(with_wall(replace(plate, "box = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }",
+                                     "box = { min = [0.0006, 0.0], max = [0.0006, 0.004] }")));
   EXPECT_NE(msg.find("key 'impermeable': the plate at x = 0.0006 m: the grid has one cell along x"),
             std::string::npos)
       << msg;
@@ -664,6 +666,30 @@ TEST(SceneErrors, PeriodicFluidGridIsChecked) {
   const std::string stage = "gravity = [0.0, -9.81]\n";
   msg = load_error(replace(good, stage, stage + "[stage.fluid.boundary]\nx_max = { type = \"no_flow\" }\n"));
   EXPECT_NE(msg.find("key 'x_max': the scene is periodic along x"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, WallsThatDisplaceTheFluidAreChecked) {
+  // A box beside the column of discs (x from 0.6 mm; the discs reach 0.5 mm).
+  const std::string box =
+      "\n[[wall]]\nname = \"block\"\nbox = { min = [0.0006, 0.0], max = [0.0016, 0.004] }\n"
+      "material = \"sand\"\ndisplaces_fluid = true\n";
+  EXPECT_EQ(load_error(with_wall(box)), "");
+  auto msg = load_error(with_wall(replace(box, "box = { min = [0.0006, 0.0], max = [0.0016, 0.004] }",
+                                          "point = [0.0, 0.004]\nnormal = [0.0, -1.0]")));
+  EXPECT_NE(
+      msg.find("[[wall]] #2 key 'displaces_fluid': only a box wall takes up pore volume; a plane wall is "
+               "a side of the domain"),
+      std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(with_wall(replace(box, "max = [0.0016, 0.004]", "max = [0.0006, 0.004]")));
+  EXPECT_NE(msg.find("key 'displaces_fluid': a plate (min = max along an axis) has no volume to take up"),
+            std::string::npos)
+      << msg;
+  msg = load_error(with_wall(box, false));
+  EXPECT_NE(msg.find("key 'displaces_fluid': needs a pore fluid to take up: the scene has no [fluid] table"),
+            std::string::npos)
+      << msg;
 }
 
 }  // namespace

@@ -27,12 +27,14 @@
 
 #include "darcydem/core/lanes.hpp"
 #include "darcydem/core/vec.hpp"
+#include "darcydem/fluid/box_cell_overlap.hpp"
 #include "darcydem/fluid/fluid_boundary.hpp"
 #include "darcydem/fluid/fluid_grid.hpp"
 #include "darcydem/fluid/fluid_laws.hpp"
 #include "darcydem/fluid/pressure_solver.hpp"
 #include "darcydem/particles/particle_data.hpp"
 #include "darcydem/simulation/force_field.hpp"
+#include "darcydem/walls/wall.hpp"
 
 namespace darcydem {
 
@@ -76,6 +78,12 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Impermeable walls inside the grid. Set before initialize(), which
   /// finds their faces.
   std::vector<FluidBarrier<D>> barriers;
+  /// Box walls that take up pore volume, as indices into the walls given
+  /// to initialize() and update(): in each cell the box's exact volume
+  /// there (box_cell_overlap.hpp) is solid, like the grains' (porosity,
+  /// storage, permeability); a moving one changes it, which the Biot term
+  /// turns into pressure and flow, so it pushes the pore water ahead of it.
+  std::vector<std::size_t> solid_walls;
   /// Count the pore fluid carried across faces by the moving skeleton, so
   /// that Darcy's flux is relative to the grains (false: the paper's scheme).
   bool carry_with_solid = true;
@@ -96,14 +104,16 @@ class PoreFluid final : public ParticleForceField<D> {
 
   /// Solid volumes, porosity and permeability from the particles; pressure
   /// zero. Call once before the first update.
-  void initialize(const ParticleData<D>& particles);
+  void initialize(const ParticleData<D>& particles, const std::vector<Wall<D>>& walls = {});
   /// Sets the excess pressure of every cell (Pa), e.g. an initial field
   /// or a restart, after initialize(); gradients and fluxes follow, and the
   /// next update starts from it. Throws std::invalid_argument if the size
   /// is not the number of cells.
   void set_pressure(const std::vector<double>& u);
-  /// One fluid step of length dt ending at `time`.
-  void update(const ParticleData<D>& particles, double dt, double time);
+  /// One fluid step of length dt ending at `time`; `walls` holds the
+  /// solid_walls where they are now.
+  void update(const ParticleData<D>& particles, double dt, double time,
+              const std::vector<Wall<D>>& walls = {});
 
   void particle_forces(const ParticleData<D>& particles, const Vec<D>& gravity,
                        std::vector<Vec<D>>& force) const override;
@@ -126,9 +136,10 @@ class PoreFluid final : public ParticleForceField<D> {
   template <class Archive>
   void checkpoint(Archive& ar, const std::vector<Vec<D>>* held_output) {
     ar(steps_per_update, hold_forces, sides, permeability_frozen, pressure_, pressure_old_, pressure_older_,
-       porosity_, solid_, solid_old_, porosity_used_, solid_flux_, solid_velocity_, kappa_, cell_drag_,
-       blend_atan_, n_power_, face_lambda_, carried_, face_gq_, solid_face_flux_, side_inflow_, last_solve_,
-       last_, total_, updates_, time_, initialized_, wrap_lambda_, wrap_carried_);
+       porosity_, solid_, solid_old_, wall_solid_, wall_solid_old_, porosity_used_, solid_flux_,
+       solid_velocity_, kappa_, cell_drag_, blend_atan_, n_power_, face_lambda_, carried_, face_gq_,
+       solid_face_flux_, side_inflow_, last_solve_, last_, total_, updates_, time_, initialized_,
+       wrap_lambda_, wrap_carried_);
     std::size_t patch_count = patches.size();
     ar(patch_count);
     if constexpr (Archive::loading) {
@@ -151,10 +162,11 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] double critical_time_step(const ParticleData<D>& particles, double dem_step) const;
 
   // Fields, one value per cell.
-  [[nodiscard]] const std::vector<double>& pressure() const { return pressure_; }         ///< Pa (excess)
-  [[nodiscard]] const std::vector<double>& porosity() const { return porosity_; }         ///< -
-  [[nodiscard]] const std::vector<double>& solid_volume() const { return solid_; }        ///< m^3
-  [[nodiscard]] const std::vector<Vec<D>>& permeability_field() const { return kappa_; }  ///< m^2
+  [[nodiscard]] const std::vector<double>& pressure() const { return pressure_; }       ///< Pa (excess)
+  [[nodiscard]] const std::vector<double>& porosity() const { return porosity_; }       ///< -
+  [[nodiscard]] const std::vector<double>& solid_volume() const { return solid_; }      ///< m^3, grains
+  [[nodiscard]] const std::vector<double>& wall_volume() const { return wall_solid_; }  ///< m^3, solid walls
+  [[nodiscard]] const std::vector<Vec<D>>& permeability_field() const { return kappa_; }       ///< m^2
   [[nodiscard]] const std::vector<Vec<D>>& solid_velocity() const { return solid_velocity_; }  ///< m/s
   /// Darcy velocity at each cell centre (mean of the two faces), m/s.
   [[nodiscard]] std::vector<Vec<D>> darcy_velocity() const;
@@ -209,6 +221,8 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Whether a grain's centre at x is in the grid (as the forces count it).
   [[nodiscard]] bool in_grid(const Vec<D>& x) const;
   void compute_solid(const ParticleData<D>& particles);
+  /// wall_solid_ from the solid_walls among `walls`.
+  void compute_wall_solid(const std::vector<Wall<D>>& walls);
   void compute_cell_properties();
   void build_pattern();
   /// Each boundary face's patch (BoundaryFace::patch), and the patches'
@@ -387,8 +401,9 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<SolidSums> block_solid_;
   std::vector<Lanes> block_total_;  ///< the blocks' cell sums added
   std::vector<double> pressure_, pressure_old_, porosity_, solid_, solid_old_;
-  std::vector<double> pressure_older_;  ///< the pressure one fluid step before pressure_old_
-  std::vector<double> porosity_used_;   ///< porosity clamped to the permeability's [min, max]
+  std::vector<double> wall_solid_, wall_solid_old_;  ///< volume of the solid walls per cell
+  std::vector<double> pressure_older_;               ///< the pressure one fluid step before pressure_old_
+  std::vector<double> porosity_used_;                ///< porosity clamped to the permeability's [min, max]
   std::vector<Vec<D>> solid_flux_, solid_velocity_, kappa_;
   /// Per cell, what the force on a grain needs, in one cache line: the mean
   /// solid velocity, 1/n and, at the clamped porosity, the drag per unit

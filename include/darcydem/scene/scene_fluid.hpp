@@ -48,12 +48,15 @@ struct WallBarrier {
 };
 
 /// The pore fluid of a [fluid] table with the impermeable walls' barriers,
-/// initialised on the particles; along the periodic axes of `periodic` the
-/// grid must span the period, and its ends meet.
+/// initialised on the particles and the box walls `solid_walls` (indices
+/// into `walls`) that take up pore volume; along the periodic axes of
+/// `periodic` the grid must span the period, and its ends meet.
 template <int D>
 std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::string& file,
                                          const ParticleData<D>& particles,
                                          const std::vector<WallBarrier<D>>& wall_barriers = {},
-                                         const PeriodicCell<D>& periodic = {});
+                                         const PeriodicCell<D>& periodic = {},
+                                         const std::vector<Wall<D>>& walls = {},
+                                         const std::vector<std::size_t>& solid_walls = {});
 
 }  // namespace darcydem
