@@ -718,3 +718,66 @@ TEST(FluidScenes, HeaveStartsAtTheCriticalGradient) {
   EXPECT_EQ(above.floor, 0.0);
   EXPECT_GT(above.late_rise, 5e-5);
 }
+
+TEST(FluidScenes, PilePenetration) {
+  // A rod displacing the pore fluid pushed into the hydrostatic bed
+  // (examples/fluid_cases/pile_penetration.toml). Over the run, the water
+  // that left through the drained top is the volume the solids brought into
+  // the grid: the rod's, A (8 mm - tip) from its position, and the grains'
+  // change, from the porosity probe over the grid's box (each grain's part
+  // exact), less what the pore water's compression keeps in the grid (the
+  // fluid's stored volume, 5e-5 of it). Both sides come from different code: 1e-7 of the
+  // rod's volume covers the probes' ten digits (1.5e-17 m^3 against 8e-9).
+  auto scene = darcydem::testing::load_scene<3>("examples/fluid_cases/pile_penetration.toml");
+  RunOptions options;
+  options.out_dir = temp_dir("pile_penetration");
+  run_scene(scene, options);
+  const auto& f = *scene.fluid;
+  const auto probes = read_probes(options.out_dir + "/probes.csv");
+  const auto& t = probes.at("time");
+  const auto& tip_centre = probes.at("rod_tip");  // the box's centre; its tip is 5.75 mm below
+  const auto& n_grid = probes.at("grid_porosity");
+  const double area = 0.002 * 0.002;
+  const double box = 0.006 * 0.006 * 0.008;
+  const double tip = tip_centre.back() - 0.00575;
+  // It moved for the push stage only (to within the 4.3e-9 m the stage's
+  // whole number of DEM steps leaves, a fifth of a step's motion).
+  EXPECT_NEAR(tip, 0.0085 - 0.02 * 0.125, 1e-8);
+  const double rod_in = area * (0.008 - tip);
+  const double grains_in = (n_grid.front() - n_grid.back()) * box;
+  const double out = -f.total_balance().inflow + f.total_balance().stored;
+  std::printf("pile: out %.6e m^3 = rod %.6e + grains %.6e (%.2e relative); stored %.2e\n", out, rod_in,
+              grains_in, (out - rod_in - grains_in) / rod_in, f.total_balance().stored);
+  // All of it in the top middle cell (1e-9: the probe's ten digits of the
+  // rod's position, 1e-12 m).
+  EXPECT_NEAR(f.wall_volume()[f.grid.index({1, 1, 3})], rod_in, 1e-9 * rod_in);
+  EXPECT_NEAR(out, rod_in + grains_in, 1e-7 * rod_in);
+  // The pore pressure below the tip rises while the rod enters: the water
+  // it pushes out, A v = 8e-8 m^3/s through the grid's 36 mm^2, drops by
+  // about 4 Pa over the 3 mm from the probe to the top by Darcy's law
+  // (Kozeny-Carman at n = 0.45, kappa = 1.7e-9 m^2), and the grains'
+  // own motion adds fluctuations of either sign of the same size: the mean
+  // over the push, once the tip is in the grid (after 0.025 s), is
+  // positive by a margin (a quarter of 1 Pa).
+  const auto& u = probes.at("pressure_below_tip");
+  double pushing = 0.0;
+  double resting = 0.0;
+  int n_push = 0;
+  int n_rest = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (t[k] > 0.125 + 1e-6 && t[k] < 0.225 - 1e-6) {
+      pushing += u[k];
+      ++n_push;
+    }
+    if (t[k] > 0.275 + 1e-6) {
+      resting += u[k];
+      ++n_rest;
+    }
+  }
+  ASSERT_GT(n_push, 40);
+  ASSERT_GT(n_rest, 10);
+  std::printf(
+      "pile: pressure below the tip, mean while pushing %.3f Pa, over the last 0.025 s at rest %.3f Pa\n",
+      pushing / n_push, resting / n_rest);
+  EXPECT_GT(pushing / n_push, 0.25);
+}
