@@ -233,7 +233,13 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "excess pore pressure per cell, Pa, indexed [i, j(, k)]")
       .def_property_readonly(
           "porosity", [](const F& f) { return cell_field<D>(f.fluid->grid, f.fluid->porosity(), 1); },
-          "porosity per cell")
+          "porosity per cell: 1 - (grains' + walls' volume) / cell volume")
+      .def_property_readonly(
+          "solid_volume", [](const F& f) { return cell_field<D>(f.fluid->grid, f.fluid->solid_volume(), 1); },
+          "the grains' volume in each cell, m^3 (2D: per metre), exact")
+      .def_property_readonly(
+          "wall_volume", [](const F& f) { return cell_field<D>(f.fluid->grid, f.fluid->wall_volume(), 1); },
+          "the volume of the box walls that displace the fluid in each cell, m^3 (2D: per metre), exact")
       .def_property_readonly(
           "permeability",
           [](const F& f) { return cell_field<D>(f.fluid->grid, f.fluid->permeability_field(), D); },

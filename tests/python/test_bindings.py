@@ -262,5 +262,35 @@ class HydrostaticBed(unittest.TestCase):
         self.assertAlmostEqual(f.pressure_at((0.003, 0.003, 0.001)), f.pressure[1, 1, 0], delta=1e-9)
 
 
+
+class PilePenetration(unittest.TestCase):
+    """examples/fluid_cases/pile_penetration.toml stepped from Python: the
+    rod, a box wall that displaces the pore fluid, pushed into the grid."""
+
+    def test_the_rods_volume_in_the_grid_follows_its_position(self):
+        model = darcydem.load(os.path.join(SOURCE, "examples", "fluid_cases", "pile_penetration.toml"))
+        f = model.fluid
+        # At the start its tip is 0.5 mm above the grid: nothing in it.
+        self.assertEqual(float(np.sum(f.wall_volume)), 0.0)
+        model.apply_stage("push")
+        model.step(40000)  # 0.046 s at 20 mm/s: 0.93 mm down, 0.43 mm into the grid
+        f = model.fluid
+        rod = next(w for w in model.walls if w["name"] == "rod")
+        tip = rod["point"][2] - 0.00575  # the box's centre is 5.75 mm above its tip
+        self.assertLess(tip, 0.008)
+        inside = 0.002 * 0.002 * (0.008 - tip)
+        # All of it in the top middle cell, the rest nowhere (exact overlaps:
+        # 1e-12 of it, round-off of the positions' sums).
+        self.assertAlmostEqual(float(f.wall_volume[1, 1, 3]), inside, delta=1e-12 * inside)
+        self.assertAlmostEqual(float(np.sum(f.wall_volume)), inside, delta=1e-12 * inside)
+        # Porosity counts the grains and the rod, cell by cell.
+        cell = 0.002**3
+        expected = 1.0 - (f.solid_volume + f.wall_volume) / cell
+        self.assertLess(float(np.max(np.abs(f.porosity - expected))), 1e-12)
+        # Balance since the start, to round-off of the volumes moved (the
+        # grains' settling moves most: 1e-12 of their volume, as above).
+        grains = float(np.sum(4.0 / 3.0 * np.pi * model.radii**3))
+        self.assertLess(abs(f.balance["imbalance"]), 1e-12 * grains)
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)
