@@ -54,7 +54,7 @@ std::vector<Vec<D>> clip_polygon(const std::vector<Vec<D>>& polygon, const CellS
   return out;
 }
 
-/// The cell's 2D sides.
+/// The cell's sides, two per axis.
 template <int D>
 std::array<CellSide, 2 * D> sides_of(const Vec<D>& lo, const Vec<D>& hi) {
   std::array<CellSide, 2 * D> s{};

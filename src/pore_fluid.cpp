@@ -170,6 +170,7 @@ void PoreFluid<D>::compute_solid(const ParticleData<D>& particles) {
 template <int D>
 void PoreFluid<D>::compute_wall_solid(const std::vector<Wall<D>>& walls) {
   const std::size_t n = grid.size();
+  if (solid_walls.empty() && wall_solid_.size() == n) return;  // zeros, as they were
   wall_solid_.assign(n, 0.0);
   for (std::size_t w : solid_walls) {
     if (w >= walls.size() || !walls[w].is_box)
@@ -181,16 +182,15 @@ void PoreFluid<D>::compute_wall_solid(const std::vector<Wall<D>>& walls) {
     const Vec<D> reach = box.bounding_half();
     std::array<int, D> lo{};
     std::array<int, D> hi{};
-    bool any = true;
+    bool outside = false;
     for (int k = 0; k < D; ++k) {
-      lo[k] = FluidGrid<D>::clamp_cell(
-          std::floor((box.centre[k] - reach[k] - grid.origin[k]) / grid.spacing[k]), 0, grid.cells[k] - 1);
-      hi[k] = FluidGrid<D>::clamp_cell(
-          std::floor((box.centre[k] + reach[k] - grid.origin[k]) / grid.spacing[k]), 0, grid.cells[k] - 1);
-      any = any && box.centre[k] + reach[k] > grid.origin[k] &&
-            box.centre[k] - reach[k] < grid.origin[k] + grid.cells[k] * grid.spacing[k];
+      const int first = grid.cell_along(k, box.centre[k] - reach[k]);
+      const int last = grid.cell_along(k, box.centre[k] + reach[k]);
+      outside = outside || last < 0 || first >= grid.cells[k];
+      lo[k] = std::max(first, 0);
+      hi[k] = std::min(last, grid.cells[k] - 1);
     }
-    if (!any) continue;
+    if (outside) continue;
     std::array<int, D> c = lo;
     while (true) {
       const Vec<D> corner = grid.centre(c) - 0.5 * grid.spacing;
