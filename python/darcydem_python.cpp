@@ -227,7 +227,20 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "lower corner of the grid, m")
       .def_property_readonly(
           "spacing", [](const F& f) { return as_tuple<D>(f.fluid->grid.spacing); },
-          "cell size along each axis, m")
+          "cell size along each axis, m (nan along a graded axis: see faces)")
+      .def_property_readonly(
+          "faces",
+          [](const F& f) {
+            const auto& g = f.fluid->grid;
+            py::list axes;
+            for (int k = 0; k < D; ++k) {
+              py::list at;
+              for (int i = 0; i <= g.cells[k]; ++i) at.append(g.face_at(k, i));
+              axes.append(at);
+            }
+            return axes;
+          },
+          "the faces' coordinates along each axis (cells + 1 each), m, uniform or graded")
       .def_property_readonly(
           "pressure", [](const F& f) { return cell_field<D>(f.fluid->grid, f.fluid->pressure(), 1); },
           "excess pore pressure per cell, Pa, indexed [i, j(, k)]")

@@ -53,9 +53,14 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles, const std::vecto
   pressure_.assign(n, 0.0);
   pressure_old_.assign(n, 0.0);
   for (int k = 0; k < D; ++k) {
+    if (grid.graded(k) && grid.periodic[k])
+      throw std::logic_error("PoreFluid: a periodic axis of the grid cannot be graded");
     face_gq_[k].assign(grid.face_count(k), {0.0, 0.0});
-    inv_spacing_[k] = 1.0 / grid.spacing[k];
+    inv_spacing_[k] = grid.graded(k) ? std::numeric_limits<double>::quiet_NaN() : 1.0 / grid.spacing[k];
   }
+  if (grid.any_graded() && grid.any_periodic())
+    throw std::logic_error("PoreFluid: a grid with graded axes cannot be periodic");
+  build_geometry();
   for (int a = 0; a < D; ++a) {
     std::size_t stride = 1;
     for (int k = 0; k < D; ++k) {
@@ -75,6 +80,40 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles, const std::vecto
   compute_face_fields(0.0);
   solution_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
   initialized_ = true;
+}
+
+template <int D>
+void PoreFluid<D>::build_geometry() {
+  const std::size_t n = grid.size();
+  volume_.clear();
+  for (int k = 0; k < D; ++k) {
+    face_area_[k].clear();
+    face_inv_distance_[k].clear();
+    face_weight_[k].clear();
+  }
+  if (!grid.any_graded()) {
+    uniform_volume_ = grid.cell_volume();
+    return;
+  }
+  uniform_volume_ = std::numeric_limits<double>::quiet_NaN();
+  volume_.resize(n);
+  for (int k = 0; k < D; ++k) {
+    face_area_[k].assign(n, 0.0);
+    face_inv_distance_[k].assign(n, 0.0);
+    face_weight_[k].assign(n, 0.0);
+  }
+  for (std::size_t c = 0; c < n; ++c) {
+    const auto cc = grid.coords(c);
+    volume_[c] = grid.cell_volume(cc);
+    for (int k = 0; k < D; ++k) {
+      if (cc[k] + 1 >= grid.cells[k]) continue;  // no interior face above
+      const double ha = grid.width(k, cc[k]);
+      const double hb = grid.width(k, cc[k] + 1);
+      face_area_[k][c] = grid.face_area(k, cc);
+      face_inv_distance_[k][c] = 2.0 / (ha + hb);
+      face_weight_[k][c] = ha / (ha + hb);
+    }
+  }
 }
 
 template <int D>
@@ -193,8 +232,12 @@ void PoreFluid<D>::compute_wall_solid(const std::vector<Wall<D>>& walls) {
     if (outside) continue;
     std::array<int, D> c = lo;
     while (true) {
-      const Vec<D> corner = grid.centre(c) - 0.5 * grid.spacing;
-      const Vec<D> far = corner + grid.spacing;
+      Vec<D> corner;
+      Vec<D> far;
+      for (int k = 0; k < D; ++k) {
+        corner[k] = grid.face_at(k, c[k]);
+        far[k] = grid.face_at(k, c[k] + 1);
+      }
       wall_solid_[grid.index(c)] += box_cell_volume(box, corner, far);
       int k = 0;
       while (k < D && ++c[k] > hi[k]) {
@@ -211,7 +254,6 @@ void PoreFluid<D>::compute_cell_properties() {
   // Every cell (and face) on its own: in parallel on a large grid, with the
   // same result for any number of threads.
   const std::size_t n = grid.size();
-  const double volume = grid.cell_volume();
   porosity_.resize(n);
   porosity_used_.resize(n);
   solid_velocity_.resize(n);
@@ -230,6 +272,7 @@ void PoreFluid<D>::compute_cell_properties() {
     const std::size_t begin = static_cast<std::size_t>(r) * run;
     const std::size_t end = std::min(n, begin + run);
     for (std::size_t c = begin; c < end; ++c) {
+      const double volume = volume_of(c);
       porosity_[c] = 1.0 - (solid_[c] + wall_solid_[c]) / volume;
       porosity_used_[c] = std::clamp(porosity_[c], permeability.min_porosity, permeability.max_porosity);
       const double inv_solid = solid_[c] > 1e-12 * volume ? 1.0 / solid_[c] : 0.0;
@@ -274,13 +317,23 @@ void PoreFluid<D>::compute_cell_properties() {
     for (std::int64_t r = 0; r < runs; ++r) cells_of_run(r);
   }
   // Darcy conductance kappa/mu of each interior face: the harmonic mean of
-  // its two cells'.
+  // its two cells' (on a graded axis weighted by their widths, the two
+  // half-cells in series: (h_a + h_b) / (h_a / kappa_a + h_b / kappa_b)).
   for (int k = 0; k < D; ++k) {
     face_lambda_[k].resize(n, 0.0);
     double* lambda = face_lambda_[k].data();
     const std::size_t s = grid.stride(k);
     const double inv_mu = 1.0 / fluid.viscosity;
+    const double* weight = face_weight_[k].empty() ? nullptr : face_weight_[k].data();
     for_each_face_piece(grid, k, [&](std::size_t a0, std::size_t len, std::size_t) {
+      if (weight != nullptr) {
+        for (std::size_t a = a0; a < a0 + len; ++a) {
+          const double ka = kappa_[a][k];
+          const double kb = kappa_[a + s][k];
+          lambda[a] = ka * kb / (weight[a] * kb + (1.0 - weight[a]) * ka) * inv_mu;
+        }
+        return;
+      }
       for (std::size_t a = a0; a < a0 + len; ++a) {
         const double ka = kappa_[a][k];
         const double kb = kappa_[a + s][k];
@@ -342,6 +395,12 @@ void PoreFluid<D>::build_pattern() {
       }
     }
   }
+  for (auto& bf : boundary_faces_) {
+    const auto cc = grid.coords(bf.cell);
+    const int axis = bf.side / 2;
+    bf.area = grid.face_area(axis, cc);
+    bf.half = 0.5 * grid.width(axis, cc[axis]);
+  }
   assign_patches();
   assign_barriers();
   matrix_.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
@@ -401,7 +460,16 @@ void PoreFluid<D>::assign_barriers() {
     const int k = barrier.axis;
     // The plane of faces nearest `at` (the scene reader checks that it is
     // one), between cell layers plane - 1 and plane along k.
-    const long plane = std::lround((barrier.at - grid.origin[k]) / grid.spacing[k]);
+    long plane = 0;
+    if (grid.graded(k)) {
+      for (int i = 1; i <= grid.cells[k]; ++i) {
+        if (std::abs(grid.face_at(k, i) - barrier.at) <
+            std::abs(grid.face_at(k, static_cast<int>(plane)) - barrier.at))
+          plane = i;
+      }
+    } else {
+      plane = std::lround((barrier.at - grid.origin[k]) / grid.spacing[k]);
+    }
     if (plane < 1 || plane >= grid.cells[k]) continue;
     for (std::size_t c = 0; c < grid.size(); ++c) {
       auto cc = grid.coords(c);
@@ -455,14 +523,24 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   // (FluidGrid::face_run): the face between cell a and a + s is [k][a].
   for (int k = 0; k < D; ++k) {
     const std::size_t s = grid.stride(k);
-    const double area = grid.face_area(k);
-    const double coefficient = dt * area / grid.spacing[k];
+    // On a grid with graded axes each face's area and the distance between
+    // its cells' centres; else the same for all.
+    const bool graded = !face_area_[k].empty();
+    const double uniform_area = graded ? 0.0 : grid.face_area(k);
+    const double coefficient = graded ? 0.0 : dt * uniform_area / grid.spacing[k];
+    const double* face_area = graded ? face_area_[k].data() : nullptr;
+    const double* inv_distance = graded ? face_inv_distance_[k].data() : nullptr;
     const double* lambda = face_lambda_[k].data();
     double* upper = operator_.upper[static_cast<std::size_t>(k)].data();
     carried_[k].resize(n, 0.0);
     double* carried = carried_[k].data();
     for_each_face_piece(grid, k, [&](std::size_t a0, std::size_t len, std::size_t f0) {
-      for (std::size_t a = a0; a < a0 + len; ++a) upper[a] = coefficient * lambda[a];
+      if (graded) {
+        for (std::size_t a = a0; a < a0 + len; ++a)
+          upper[a] = dt * face_area[a] * inv_distance[a] * lambda[a];
+      } else {
+        for (std::size_t a = a0; a < a0 + len; ++a) upper[a] = coefficient * lambda[a];
+      }
       if (!carry_with_solid) return;
       // Pore fluid carried across the face by the skeleton: the
       // skeleton's volume flux (mean solid velocity of the two cells,
@@ -473,6 +551,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
       const double* section_flux = solid_face_flux_[k].data() + f0;
       for (std::size_t j = 0; j < len; ++j) {
         const std::size_t a = a0 + j;
+        const double area = graded ? face_area[a] : uniform_area;
         const double vs = solid_[a] + solid_[a + s];
         const double v_mix = vs > 0.0 ? (solid_flux_[a][k] + solid_flux_[a + s][k]) / vs : 0.0;
         carried[a] = dt * (v_mix * area - section_flux[j]);
@@ -552,9 +631,9 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   for (const auto& bf : boundary_faces_) {
     const FluidBoundary& side = condition_of(bf);
     const int axis = bf.side / 2;
-    const double area = grid.face_area(axis);
+    const double area = bf.area;
     if (side.type == FluidBoundaryType::drained) {
-      const double t = dt * side_lambda(axis, bf.cell) * area / (0.5 * grid.spacing[axis]);
+      const double t = dt * side_lambda(axis, bf.cell) * area / bf.half;
       diagonal[bf.cell] += t;
       rhs_[bf.cell] += t * side.value.at(time);
     } else if (side.type == FluidBoundaryType::flux) {
@@ -631,8 +710,17 @@ void PoreFluid<D>::compute_face_fields(double time) {
     const std::size_t s = grid.stride(k);
     const double inv_h = inv_spacing_[k];
     const double* lambda = face_lambda_[k].data();
+    const double* inv_distance = face_inv_distance_[k].empty() ? nullptr : face_inv_distance_[k].data();
     std::array<double, 2>* gq = face_gq_[k].data();
     for_each_face_piece(grid, k, [&](std::size_t a0, std::size_t len, std::size_t f0) {
+      if (inv_distance != nullptr) {
+        for (std::size_t j = 0; j < len; ++j) {
+          const std::size_t a = a0 + j;
+          const double g = (pressure_[a + s] - pressure_[a]) * inv_distance[a];
+          gq[f0 + j] = {g, -lambda[a] * g};
+        }
+        return;
+      }
       for (std::size_t j = 0; j < len; ++j) {
         const std::size_t a = a0 + j;
         const double g = (pressure_[a + s] - pressure_[a]) * inv_h;
@@ -658,8 +746,7 @@ void PoreFluid<D>::compute_face_fields(double time) {
     double inflow = 0.0;  // into the grid, m/s
     if (side.type == FluidBoundaryType::drained) {
       const double ub = side.value.at(time);
-      g = upper ? (ub - pressure_[bf.cell]) / (0.5 * grid.spacing[axis])
-                : (pressure_[bf.cell] - ub) / (0.5 * grid.spacing[axis]);
+      g = upper ? (ub - pressure_[bf.cell]) / bf.half : (pressure_[bf.cell] - ub) / bf.half;
       const double q = -lambda * g;  // along +axis
       inflow = upper ? -q : q;
     } else if (side.type == FluidBoundaryType::flux) {
@@ -668,8 +755,8 @@ void PoreFluid<D>::compute_face_fields(double time) {
       g = -q / lambda;
     }
     face_gq_[axis][bf.index] = {g, -lambda * g};
-    side_inflow_[bf.side] += inflow * grid.face_area(axis);
-    if (bf.patch >= 0) patch_inflow_[static_cast<std::size_t>(bf.patch)] += inflow * grid.face_area(axis);
+    side_inflow_[bf.side] += inflow * bf.area;
+    if (bf.patch >= 0) patch_inflow_[static_cast<std::size_t>(bf.patch)] += inflow * bf.area;
   }
 }
 
@@ -678,7 +765,7 @@ void PoreFluid<D>::interpolate(const std::array<double, D>& s_of, std::array<dou
                                std::array<double, D>& flux) const {
   Stencil st;
   for (int k = 0; k < D; ++k)
-    stencil_axis(k, s_of[k], st.face_cell[k], st.face_frac[k], st.centre_cell[k], st.centre_frac[k]);
+    stencil_axis_any(k, s_of[k], st.face_cell[k], st.face_frac[k], st.centre_cell[k], st.centre_frac[k]);
   interpolate(st, grad, flux);
 }
 
@@ -702,7 +789,7 @@ void PoreFluid<D>::centre_pair(int k, double s, std::array<int, 2>& layer, doubl
   int face_cell = 0;
   int below = 0;
   double face_frac = 0.0;
-  stencil_axis(k, s, face_cell, face_frac, below, frac);
+  stencil_axis_any(k, s, face_cell, face_frac, below, frac);
   layer = {below, grid.cells[k] > 1 ? below + 1 : below};
   if (grid.periodic[k] && grid.cells[k] > 1) {
     const double t = s - 0.5;
@@ -836,6 +923,18 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
     // Where each grain is.
     for (int k = 0; k < D; ++k) {
       const double cells = grid.cells[k];
+      if (grid.graded(k)) {
+        // A graded axis: each grain's layer by a search of the faces, the
+        // fraction between the cell centres along x.
+        for (std::int64_t j = 0; j < n; ++j) {
+          s[k][j] = grid.cell_units(k, p.position[begin + j][k]);
+          stencil_axis_any(k, s[k][j], face_cell[k][j], face_frac[k][j], centre_cell[k][j],
+                           centre_frac[k][j]);
+          const bool in = s[k][j] >= 0.0 && s[k][j] < cells;
+          inside[j] = (k == 0 || inside[j] > 0.0) && in ? 1.0 : 0.0;
+        }
+        continue;
+      }
 #pragma omp simd
       for (std::int64_t j = 0; j < n; ++j)
         s[k][j] = (p.position[begin + j][k] - grid.origin[k]) * inv_spacing_[k];
@@ -1030,8 +1129,20 @@ double PoreFluid<D>::critical_time_step(const ParticleData<D>& p, double dem_ste
   // Undrained stiffness of the pore fluid against a grain: modulus K_f/n
   // over a cell, k = (K_f/n) A/h, taken along the cell's shortest side.
   double geometry = 0.0;
-  for (int k = 0; k < D; ++k)
+  // V / h_k^2 = (the other sides' product) / h_k: on a graded grid at
+  // most the widest other sides over the narrowest h_k.
+  for (int k = 0; k < D && !grid.any_graded(); ++k)
     geometry = std::max(geometry, grid.cell_volume() / (grid.spacing[k] * grid.spacing[k]));
+  for (int k = 0; k < D && grid.any_graded(); ++k) {
+    double others = 1.0;
+    for (int j = 0; j < D; ++j) {
+      if (j == k) continue;
+      double widest = 0.0;
+      for (int i = 0; i < grid.cells[j]; ++i) widest = std::max(widest, grid.width(j, i));
+      others *= widest;
+    }
+    geometry = std::max(geometry, others / grid.min_width(k));
+  }
   const double k_fluid = fluid.bulk_modulus / n_min * geometry;
   const double dt_stiff = 1.0 / std::sqrt(1.0 / (dem_step * dem_step) + k_fluid / m_min);
   // Drag relaxation time m / (beta V_p / (1-n)), for the explicit drag.

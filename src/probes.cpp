@@ -85,8 +85,10 @@ std::vector<typename Simulation<D>::Moment> cell_contact_stress(const Simulation
     for (int k = 0; k < D; ++k) c[k] = grid.cell_along(k, x[k]);
     if (grid.inside(c)) sum[grid.index(c)] += moments[i];
   }
-  const double volume = grid.cell_volume();
-  for (auto& m : sum) m = -0.5 * (m + m.transpose()) / volume;
+  for (std::size_t c = 0; c < sum.size(); ++c) {
+    auto& m = sum[c];
+    m = -0.5 * (m + m.transpose()) / grid.cell_volume(grid.coords(c));
+  }
   return sum;
 }
 

@@ -257,7 +257,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       contact_series.add(sim.time, cname);
     }
     if (fluid != nullptr) {
-      const std::string fname = fmt::format("fluid_{:05d}.vti", pos.snapshot_index);
+      const std::string fname =
+          fmt::format("fluid_{:05d}.{}", pos.snapshot_index, fluid->grid.any_graded() ? "vtr" : "vti");
       const auto stress = cell_contact_stress<D>(sim, fluid->grid);
       write_fluid_vti<D>((out / fname).string(), *fluid, &stress);
       fluid_series.add(sim.time, fname);

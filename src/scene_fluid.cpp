@@ -109,12 +109,12 @@ FluidPatch<D> read_patch_place(TableReader& r, const std::string& name, const Fl
   for (int k = 0; k < D; ++k) {
     if (k == axis) continue;
     const double lo = grid.origin[k];
-    const double hi = grid.origin[k] + grid.spacing[k] * grid.cells[k];
+    const double hi = grid.face_at(k, grid.cells[k]);
     if (!(to[j] > from[j]))
       r.fail("to", fmt::format("must be greater than 'from' along {} (the patch's extent along {}, m)",
                                "xyz"[k], along));
     // (A patch's edge on the grid's edge may differ from it by round-off.)
-    const double slack = 1e-9 * grid.spacing[k];
+    const double slack = 1e-9 * grid.min_width(k);
     if (!(from[j] >= lo - slack && to[j] <= hi + slack)) {
       r.fail(from[j] >= lo ? "to" : "from",
              fmt::format("the patch must lie on side {}: along {} the grid spans [{}, {}] m", side, "xyz"[k],
@@ -151,12 +151,12 @@ FluidPatch<D> read_patch_place(TableReader& r, const std::string& name, const Fl
     std::string width;  // e.g. "0.001 x 0.002"
     for (int k = 0; k < D; ++k) {
       if (k != axis)
-        width += std::string(width.empty() ? "" : " x ") + TableReader::format_number(grid.spacing[k]);
+        width += std::string(width.empty() ? "" : " x ") + TableReader::format_number(grid.min_width(k));
     }
     r.fail("from",
            fmt::format("the patch holds no face of side {}: a face is in it when its centre is, and the "
-                       "faces are {} m wide along {}",
-                       side, width, along));
+                       "faces are {}{} m wide along {}",
+                       side, grid.any_graded() ? "at least " : "", width, along));
   }
   return patch;
 }
@@ -172,7 +172,22 @@ void check_barrier(const FluidBarrier<D>& barrier, const FluidGrid<D>& grid, Fai
     fail("axis",
          fmt::format("the grid has one cell along {}: there is no face between cells to close", axis));
   }
-  const double plane = (barrier.at - grid.origin[k]) / grid.spacing[k];
+  if (grid.graded(k)) {
+    // The interior face nearest `at`, within 1e-6 of the narrower cell beside it.
+    int nearest = 1;
+    for (int i = 1; i < grid.cells[k]; ++i) {
+      if (std::abs(grid.face_at(k, i) - barrier.at) < std::abs(grid.face_at(k, nearest) - barrier.at))
+        nearest = i;
+    }
+    const double tolerance = 1e-6 * std::min(grid.width(k, nearest - 1), grid.width(k, nearest));
+    if (!(std::abs(grid.face_at(k, nearest) - barrier.at) <= tolerance)) {
+      fail("at",
+           fmt::format("must be on a plane of faces between two cells inside the grid: along {} (graded) "
+                       "the nearest is at {} m",
+                       axis, TableReader::format_number(grid.face_at(k, nearest))));
+    }
+  }
+  const double plane = grid.graded(k) ? 1.0 : (barrier.at - grid.origin[k]) / grid.spacing[k];
   const double nearest = std::round(plane);
   if (!(std::abs(plane - nearest) <= 1e-6 && nearest >= 1.0 && nearest <= grid.cells[k] - 1.0)) {
     const double below =
@@ -190,7 +205,7 @@ void check_barrier(const FluidBarrier<D>& barrier, const FluidGrid<D>& grid, Fai
     // Cell centres along a inside [lo, hi].
     std::size_t in = 0;
     for (int c = 0; c < grid.cells[a]; ++c) {
-      const double x = grid.origin[a] + grid.spacing[a] * (c + 0.5);
+      const double x = grid.centre_at(a, c);
       in += x >= barrier.lo[a] && x <= barrier.hi[a] ? 1U : 0U;
     }
     faces *= in;
@@ -199,6 +214,103 @@ void check_barrier(const FluidBarrier<D>& barrier, const FluidGrid<D>& grid, Fai
     fail("from",
          "the barrier holds no face: a face is in it when its centre lies within the barrier's extent along "
          "the other axes");
+  }
+}
+
+/// [fluid.grid] given axis by axis: a table per axis (`x`, `y`[, `z`]),
+/// each either `faces` (the face coordinates, increasing) or `from`, `to`,
+/// `cells` and `ratio` (the last cell's width over the first's, default 1:
+/// cells of one size; else widths in geometric progression). Cells at
+/// least `2 r_max` wide; a periodic axis uniform.
+template <int D>
+void read_grid_axes(TableReader& g, FluidGrid<D>& grid, double r_max,
+                    const std::array<bool, static_cast<std::size_t>(D)>& periodic) {
+  for (auto key : {"origin", "cells", "size"}) {
+    if (g.has(key))
+      g.fail(key, "the grid is given axis by axis (x, y, z tables): leave out origin, cells and size");
+  }
+  for (int k = 0; k < D; ++k) {
+    const std::string name(1, "xyz"[k]);
+    const toml::table* t = g.optional_table(name);
+    if (t == nullptr) {
+      g.fail_table(
+          fmt::format("the {} axis has no table: given axis by axis, the grid needs a table for every "
+                      "axis, {{ from, to, cells[, ratio] }} or {{ faces = [...] }}",
+                      name));
+    }
+    TableReader a(*t, "[fluid.grid] " + name, g.file());
+    std::vector<double> faces;
+    const char* key = "faces";
+    if (a.has("faces")) {
+      for (auto other : {"from", "to", "cells", "ratio"}) {
+        if (a.has(other)) a.fail(other, "give either faces or from, to, cells (and ratio), not both");
+      }
+      faces = a.number_list("faces");
+      if (faces.size() < 2) a.fail("faces", "must hold at least two face coordinates (one cell), m");
+      for (std::size_t i = 0; i < faces.size(); ++i) {
+        if (!std::isfinite(faces[i]) || (i > 0 && !(faces[i] > faces[i - 1])))
+          a.fail("faces", "must be finite face coordinates in increasing order, m");
+      }
+    } else {
+      const double from = a.number("from");
+      const double to = a.number("to");
+      if (!std::isfinite(from) || !std::isfinite(to) || !(to > from))
+        a.fail("to", "must be finite and greater than 'from' (the grid's extent along the axis, m)");
+      const double n = a.check(
+          "cells", static_cast<double>(a.integer("cells")), [](double v) { return v >= 1.0 && v <= 1e6; },
+          "a whole number of cells >= 1");
+      const double ratio = a.check("ratio", a.number_or("ratio", 1.0), is_positive,
+                                   "> 0 (the last cell's width over the first's)");
+      key = "cells";
+      const int cells = static_cast<int>(n);
+      if (ratio == 1.0) {
+        // Cells of one size: a uniform axis, as origin, cells and size give it.
+        grid.origin[k] = from;
+        grid.cells[k] = cells;
+        grid.spacing[k] = (to - from) / n;
+      } else {
+        if (cells < 2) a.fail("ratio", "grades cells: it needs at least two cells");
+        if (periodic[k])
+          a.fail("ratio",
+                 fmt::format("the scene is periodic along {}: the grid's cells along it must be of one "
+                             "size (ratio = 1)",
+                             name));
+        // Widths w_i = w_0 q^i, q = ratio^(1 / (cells - 1)), adding up to to - from.
+        const double q = std::pow(ratio, 1.0 / (n - 1.0));
+        double total = 0.0;
+        for (int i = 0; i < cells; ++i) total += std::pow(q, i);
+        faces.resize(static_cast<std::size_t>(cells) + 1);
+        faces[0] = from;
+        double sum = 0.0;
+        for (int i = 1; i < cells; ++i) {
+          sum += std::pow(q, i - 1);
+          faces[static_cast<std::size_t>(i)] = from + (to - from) * sum / total;
+        }
+        faces.back() = to;
+      }
+    }
+    if (!faces.empty()) {
+      if (periodic[k])
+        a.fail(key,
+               fmt::format("the scene is periodic along {}: the grid's cells along it must be of one size "
+                           "(from, to, cells)",
+                           name));
+      for (int j = 0; j < D; ++j) {
+        if (periodic[j])
+          a.fail(key,
+                 fmt::format("the scene is periodic along {}: graded cells are not supported in a periodic "
+                             "scene; give cells of one size along every axis",
+                             "xyz"[j]));
+      }
+      grid.set_faces(k, std::move(faces));
+    }
+    if (grid.min_width(k) < 2.0 * r_max * (1.0 - 1e-12)) {
+      a.fail(key, fmt::format(
+                      "cells must be at least one grain diameter wide: the narrowest along {} is {:.4g} m, "
+                      "less than the largest diameter {:.4g} m",
+                      name, grid.min_width(k), 2.0 * r_max));
+    }
+    a.finish();
   }
 }
 
@@ -355,10 +467,17 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
     const toml::table* t = r.optional_table("grid");
     if (t == nullptr) r.fail_table("missing required table [fluid.grid] (origin, cells, size)");
     TableReader g(*t, "[fluid.grid]", file);
-    const auto origin = g.numbers("origin", D);
-    const auto cells = g.numbers("cells", D);
-    const auto size = g.numbers("size", D);
-    for (int k = 0; k < D; ++k) {
+    // Either origin, cells and size (cells of one size), or a table per
+    // axis (x, y[, z]), each uniform or graded.
+    bool per_axis = false;
+    for (int k = 0; k < D; ++k) per_axis = per_axis || g.has(std::string(1, "xyz"[k]));
+    if (per_axis) {
+      read_grid_axes<D>(g, fluid->grid, r_max, periodic.periodic);
+    }
+    const auto origin = per_axis ? std::vector<double>() : g.numbers("origin", D);
+    const auto cells = per_axis ? std::vector<double>() : g.numbers("cells", D);
+    const auto size = per_axis ? std::vector<double>() : g.numbers("size", D);
+    for (int k = 0; k < D && !per_axis; ++k) {
       fluid->grid.origin[k] = origin[k];
       if (!(cells[k] >= 1.0) || cells[k] != std::floor(cells[k]) || cells[k] > 1e6)
         g.fail("cells", "must be whole numbers of cells >= 1 along each axis");
@@ -378,10 +497,12 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
       const double lo = periodic.lower[k];
       const double length = periodic.length[k];
       const auto& grid = fluid->grid;
-      const double end = grid.origin[k] + grid.spacing[k] * grid.cells[k];
+      const double end = grid.face_at(k, grid.cells[k]);
       if (std::abs(grid.origin[k] - lo) > 1e-9 * length || std::abs(end - (lo + length)) > 1e-9 * length) {
         g.fail(
-            std::abs(grid.origin[k] - lo) > 1e-9 * length ? "origin" : "size",
+            per_axis                                        ? std::string(1, "xyz"[k])
+            : std::abs(grid.origin[k] - lo) > 1e-9 * length ? "origin"
+                                                            : "size",
             fmt::format("the scene is periodic along {} ([periodic] {} = [{}, {}]): the grid must span the "
                         "period, from {} m over cells x size = {} m along {}; it spans [{}, {}] m",
                         "xyz"[k], "xyz"[k], TableReader::format_number(lo),

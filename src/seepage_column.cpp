@@ -36,7 +36,12 @@ SeepageColumnAnalysis<D>::SeepageColumnAnalysis(SeepageColumnSpec spec, const Sc
   const auto& g = scene.fluid->grid;
   base_ = g.origin[D - 1];
   top_ = g.upper()[D - 1];
-  area_ = g.cell_volume() / g.spacing[D - 1] * g.size() / g.cells[D - 1];
+  if (g.any_graded()) {
+    area_ = 1.0;
+    for (int k = 0; k < D - 1; ++k) area_ *= g.length(k);
+  } else {
+    area_ = g.cell_volume() / g.spacing[D - 1] * g.size() / g.cells[D - 1];
+  }
   for (double r : scene.simulation.particles.radius) solid_volume_ += particle_volume<D>(r);
 }
 
@@ -61,12 +66,16 @@ void SeepageColumnAnalysis<D>::stage_started(const Scene<D>& scene, const std::s
     const auto& g = f.grid;
     const int layers = g.cells[D - 1];
     std::vector<double> layer_kappa(static_cast<std::size_t>(layers), 0.0);
+    // The cells of a layer side by side (in parallel): their mean kappa,
+    // weighted by their areas.
     const double per_layer = static_cast<double>(g.size() / static_cast<std::size_t>(layers));
     for (std::size_t c = 0; c < g.size(); ++c) {
-      layer_kappa[g.coords(c)[D - 1]] += f.permeability_field()[c][D - 1] / per_layer;
+      const auto cc = g.coords(c);
+      const double share = g.any_graded() ? g.face_area(D - 1, cc) / area_ : 1.0 / per_layer;
+      layer_kappa[cc[D - 1]] += f.permeability_field()[c][D - 1] * share;
     }
     double resistance = 0.0;
-    for (double k : layer_kappa) resistance += g.spacing[D - 1] / k;
+    for (int j = 0; j < layers; ++j) resistance += g.width(D - 1, j) / layer_kappa[j];
     kappa_effective_ = (top_ - base_) / resistance;
     sample_time_ = {0.0};
     sample_uplift_ = {0.0};
@@ -102,17 +111,19 @@ void SeepageColumnAnalysis<D>::after_step(const Scene<D>& scene) {
     const auto& g = f.grid;
     Profile pr{spec_.pressure_times[next_profile_], t, {}, {}};
     const int layers = g.cells[D - 1];
+    // Each layer's mean pressure, weighted by the cells' areas.
     std::vector<double> sum(static_cast<std::size_t>(layers), 0.0);
-    std::vector<int> count(static_cast<std::size_t>(layers), 0);
+    std::vector<double> weight(static_cast<std::size_t>(layers), 0.0);
     for (std::size_t c = 0; c < g.size(); ++c) {
-      const int layer = g.coords(c)[D - 1];
-      sum[layer] += f.pressure()[c];
-      ++count[layer];
+      const auto cc = g.coords(c);
+      const double w = g.any_graded() ? g.face_area(D - 1, cc) : 1.0;
+      sum[cc[D - 1]] += w * f.pressure()[c];
+      weight[cc[D - 1]] += w;
     }
     for (int j = layers - 1; j >= 0; --j) {
-      const double centre = base_ + (j + 0.5) * g.spacing[D - 1];
+      const double centre = g.centre_at(D - 1, j);
       pr.depth.push_back(top_ - centre);
-      pr.pressure.push_back(sum[j] / count[j]);
+      pr.pressure.push_back(sum[j] / weight[j]);
     }
     profiles_.push_back(std::move(pr));
     ++next_profile_;

@@ -174,14 +174,34 @@ void write_fluid_vti(const std::string& path, const PoreFluid<D>& f,
     const double oz = D == 3 ? g.origin[2] : 0.0;
     const double hz = D == 3 ? g.spacing[2] : 1.0;
     const std::string extent = fmt::format("0 {} 0 {} 0 {}", g.cells[0], g.cells[1], nz);
+    // Graded axes: a rectilinear grid (.vtr) with the faces' coordinates;
+    // else image data (.vti).
+    const bool rectilinear = g.any_graded();
+    const char* type = rectilinear ? "RectilinearGrid" : "ImageData";
     out.print(
-        "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\" "
-        "byte_order=\"LittleEndian\">\n");
-    out.print(
-        "  <ImageData WholeExtent=\"{}\" Origin=\"{:.17g} {:.17g} {:.17g}\" Spacing=\"{:.17g} {:.17g} "
-        "{:.17g}\">\n",
-        extent, g.origin[0], g.origin[1], oz, g.spacing[0], g.spacing[1], hz);
-    out.print("    <Piece Extent=\"{}\">\n      <CellData Scalars=\"pressure\">\n", extent);
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"{}\" version=\"0.1\" "
+        "byte_order=\"LittleEndian\">\n",
+        type);
+    if (rectilinear) {
+      out.print("  <RectilinearGrid WholeExtent=\"{}\">\n    <Piece Extent=\"{}\">\n      <Coordinates>\n",
+                extent, extent);
+      for (int k = 0; k < 3; ++k) {
+        out.print("        <DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", "xyz"[k]);
+        if (k < D) {
+          for (int i = 0; i <= g.cells[k]; ++i) out.print("{:.17g}\n", g.face_at(k, i));
+        } else {
+          out.print("0\n1\n");  // 2D: the cells' unit thickness
+        }
+        out.print("        </DataArray>\n");
+      }
+      out.print("      </Coordinates>\n      <CellData Scalars=\"pressure\">\n");
+    } else {
+      out.print(
+          "  <ImageData WholeExtent=\"{}\" Origin=\"{:.17g} {:.17g} {:.17g}\" Spacing=\"{:.17g} {:.17g} "
+          "{:.17g}\">\n",
+          extent, g.origin[0], g.origin[1], oz, g.spacing[0], g.spacing[1], hz);
+      out.print("    <Piece Extent=\"{}\">\n      <CellData Scalars=\"pressure\">\n", extent);
+    }
     auto scalars = [&](const char* name, const std::vector<double>& v) {
       out.print("        <DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", name);
       for (double x : v) out.print("{:.17g}\n", x);
@@ -211,7 +231,7 @@ void write_fluid_vti(const std::string& path, const PoreFluid<D>& f,
       for (std::size_t i = 0; i < s.size(); ++i) mean[i] = s[i].trace() / D;
       scalars("mean_effective_stress", mean);
     }
-    out.print("      </CellData>\n    </Piece>\n  </ImageData>\n</VTKFile>\n");
+    out.print("      </CellData>\n    </Piece>\n  </{}>\n</VTKFile>\n", type);
     out.close();
   } catch (const std::system_error& e) {
     throw std::runtime_error(fmt::format("{}: cannot write the fluid snapshot: {}", path, e.what()));

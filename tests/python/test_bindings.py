@@ -263,6 +263,26 @@ class HydrostaticBed(unittest.TestCase):
 
 
 
+class GradedGrid(unittest.TestCase):
+    """examples/fluid_cases/graded_upward_seepage.toml: a grid graded along z."""
+
+    def test_the_faces_and_the_cells_volumes(self):
+        model = darcydem.load(os.path.join(SOURCE, "examples", "fluid_cases", "graded_upward_seepage.toml"))
+        f = model.fluid
+        faces = [np.array(a) for a in f.faces]
+        self.assertEqual([len(a) for a in faces], [4, 4, 5])
+        self.assertTrue(np.isnan(f.spacing[2]))
+        self.assertAlmostEqual(f.spacing[0], 0.002, delta=1e-15)
+        # ratio = 2: the top cell twice the bottom one, 8 mm in all.
+        widths = np.diff(faces[2])
+        self.assertAlmostEqual(widths[-1], 2.0 * widths[0], delta=1e-15)
+        self.assertAlmostEqual(faces[2][-1], 0.008, delta=1e-15)
+        # Each cell's porosity from its own volume (the widths' product).
+        volume = np.einsum("i,j,k->ijk", np.diff(faces[0]), np.diff(faces[1]), widths)
+        expected = 1.0 - f.solid_volume / volume
+        self.assertLess(float(np.max(np.abs(f.porosity - expected))), 1e-12)
+
+
 class PilePenetration(unittest.TestCase):
     """examples/fluid_cases/pile_penetration.toml stepped from Python: the
     rod, a box wall that displaces the pore fluid, pushed into the grid."""

@@ -630,6 +630,74 @@ TEST(SceneErrors, PeriodicBoundariesAreChecked) {
       << msg;
 }
 
+// [fluid.grid] axis by axis: each axis uniform (from, to, cells), graded
+// (ratio = the last cell's width over the first's) or given by its faces.
+TEST(SceneErrors, GradedFluidGridIsReadAndChecked) {
+  const std::string uniform = "origin = [-0.0005, 0.0]\ncells = [1, 2]\nsize = [0.001, 0.002]\n";
+  const std::string axes =
+      "x = { from = -0.0005, to = 0.0005, cells = 1 }\ny = { from = 0.0, to = 0.004, cells = 2, ratio = 1.5 "
+      "}\n";
+  const std::string good = replace(with_fluid(), uniform, axes);
+  ASSERT_EQ(load_error(good), "");
+  const auto scene = built_scene<2>(good);
+  const auto& grid = scene.fluid->grid;
+  EXPECT_FALSE(grid.graded(0));
+  EXPECT_DOUBLE_EQ(grid.spacing[0], 0.001);
+  ASSERT_TRUE(grid.graded(1));
+  // Two cells, the second 1.5 x the first: 1.6 and 2.4 mm.
+  EXPECT_NEAR(grid.width(1, 0), 0.0016, 1e-15);
+  EXPECT_NEAR(grid.width(1, 1), 0.0024, 1e-15);
+  const auto faces = replace(good, "y = { from = 0.0, to = 0.004, cells = 2, ratio = 1.5 }",
+                             "y = { faces = [0.0, 0.0015, 0.004] }");
+  ASSERT_EQ(load_error(faces), "");
+  EXPECT_DOUBLE_EQ(built_scene<2>(faces).fluid->grid.face_at(1, 1), 0.0015);
+
+  auto msg = load_error(replace(with_fluid(), uniform, uniform + axes));
+  EXPECT_NE(msg.find("[fluid.grid] key 'origin': the grid is given axis by axis"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(with_fluid(), uniform, "y = { from = 0.0, to = 0.004, cells = 2 }\n"));
+  EXPECT_NE(msg.find("[fluid.grid]: the x axis has no table"), std::string::npos) << msg;
+  msg = load_error(replace(faces, "faces = [0.0, 0.0015, 0.004]", "faces = [0.0, 0.004, 0.0015]"));
+  EXPECT_NE(msg.find("[fluid.grid] y key 'faces': must be finite face coordinates in increasing order"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(faces, "faces = [0.0, 0.0015, 0.004]", "faces = [0.0, 0.0008, 0.004]"));
+  EXPECT_NE(msg.find("key 'faces': cells must be at least one grain diameter wide: the narrowest along y is "
+                     "0.0008 m"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "cells = 2, ratio = 1.5", "cells = 2, ratio = 9.0"));
+  EXPECT_NE(msg.find("key 'cells': cells must be at least one grain diameter wide"), std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "cells = 2, ratio = 1.5", "cells = 2, ratio = -1.5"));
+  EXPECT_NE(msg.find("key 'ratio': must be > 0 (the last cell's width over the first's)"), std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "cells = 2, ratio = 1.5", "cells = 1, ratio = 1.5"));
+  EXPECT_NE(msg.find("key 'ratio': grades cells: it needs at least two cells"), std::string::npos) << msg;
+  msg = load_error(replace(faces, "faces = [0.0, 0.0015, 0.004]", "faces = [0.0, 0.0015, 0.004], cells = 2"));
+  EXPECT_NE(msg.find("key 'cells': give either faces or from, to, cells (and ratio), not both"),
+            std::string::npos)
+      << msg;
+  // Along a periodic axis the cells must be of one size.
+  const std::string periodic = "\n[periodic]\nx = [-0.003, 0.003]\n";
+  const std::string graded_x = replace(replace(good, "\n[[material]]", periodic + "\n[[material]]"),
+                                       "x = { from = -0.0005, to = 0.0005, cells = 1 }",
+                                       "x = { from = -0.003, to = 0.003, cells = 3, ratio = 1.2 }");
+  msg = load_error(graded_x);
+  EXPECT_NE(
+      msg.find("key 'ratio': the scene is periodic along x: the grid's cells along it must be of one size"),
+      std::string::npos)
+      << msg;
+  // Graded along another axis: not supported in a periodic scene (the
+  // periodic ends' interpolation takes cell units), refused.
+  msg = load_error(replace(graded_x, "ratio = 1.2", "ratio = 1.0"));
+  EXPECT_NE(
+      msg.find("[fluid.grid] y key 'cells': the scene is periodic along x: graded cells are not supported"),
+      std::string::npos)
+      << msg;
+  EXPECT_EQ(load_error(replace(replace(graded_x, "ratio = 1.2", "ratio = 1.0"), ", ratio = 1.5", "")), "");
+}
+
 // A pore fluid in a scene periodic along x: the grid spans the period, and
 // its x sides take no condition (they are one face between its ends).
 TEST(SceneErrors, PeriodicFluidGridIsChecked) {

@@ -19,17 +19,26 @@
 #include "darcydem/output/probes.hpp"
 #include "darcydem/simulation/runner.hpp"
 #include "dem_setup.hpp"
+#include "fluid_sums.hpp"
 #include "scene_loading.hpp"
 
 using namespace darcydem;
 
+using darcydem::testing::floor_thrust;
+
 namespace {
 
+/// Where temp_dir(name) puts its folder.
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("darcydem_test_" + name + "_" + std::to_string(getpid())))
+      .string();
+}
+
+/// A fresh folder for a test's output.
 std::string temp_dir(const std::string& name) {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("darcydem_test_" + name + "_" + std::to_string(getpid()));
+  const auto dir = temp_path(name);
   std::filesystem::remove_all(dir);
-  return dir.string();
+  return dir;
 }
 
 /// The paper's seepage column (examples/seepage_column/, discs) or its 3D
@@ -125,22 +134,6 @@ double submerged_weight_moment(const Simulation<3>& sim, const PoreFluid<3>& f) 
     m += sim.particles.position[i].z() * (1.0 / sim.particles.inv_mass[i] - f.fluid.density * v) * 9.80665;
   }
   return m;
-}
-
-/// The excess pressure on the grid's floor times the faces' areas, N: each
-/// bottom cell's value plus, on the faces where inflow(i, j) holds, the
-/// half-cell drop that carries the inflow q.
-double floor_thrust(const PoreFluid<3>& f, double q, const std::function<bool(int, int)>& inflow) {
-  double thrust = 0.0;
-  for (int i = 0; i < f.grid.cells[0]; ++i) {
-    for (int j = 0; j < f.grid.cells[1]; ++j) {
-      const std::size_t c = f.grid.index({i, j, 0});
-      const double half_drop =
-          inflow(i, j) ? q * f.fluid.viscosity / f.permeability_field()[c][2] * 0.5 * f.grid.spacing[2] : 0.0;
-      thrust += (f.pressure()[c] + half_drop) * f.grid.face_area(2);
-    }
-  }
-  return thrust;
 }
 
 }  // namespace
@@ -313,6 +306,34 @@ TEST(FluidScenes, PeriodicUpwardSeepage) {
     straddling += scene.simulation.particles.position[i].x() < 0.00049 ? 1U : 0U;
   EXPECT_EQ(straddling, 48U) << "a row of 6 x 8 grains on the end x = 0";
   expect_upward_seepage_balance(scene, "periodic upward seepage");
+}
+
+// The same bed on a grid graded along z (graded_upward_seepage.toml): the
+// same balance, and its fluid snapshots are rectilinear grids with the
+// faces' coordinates.
+TEST(FluidScenes, GradedUpwardSeepage) {
+  auto scene = darcydem::testing::load_scene<3>("examples/fluid_cases/graded_upward_seepage.toml");
+  const auto& grid = scene.fluid->grid;
+  ASSERT_TRUE(grid.graded(2) && grid.graded(1) && !grid.graded(0));
+  // ratio = 2 over 4 cells: widths w q^i, q = 2^(1/3), adding up to 8 mm.
+  const double q = std::cbrt(2.0);
+  const double w0 = 0.008 / (1.0 + q + q * q + q * q * q);
+  EXPECT_NEAR(grid.width(2, 0), w0, 1e-15);
+  EXPECT_NEAR(grid.width(2, 3), 2.0 * w0, 1e-15);
+  EXPECT_NEAR(grid.upper().z(), 0.008, 1e-15);
+  expect_upward_seepage_balance(scene, "graded upward seepage");
+  const std::string vtr =
+      darcydem::testing::file_contents(temp_path("graded upward seepage") + "/fluid_00001.vtr");
+  EXPECT_NE(vtr.find("<RectilinearGrid WholeExtent=\"0 3 0 3 0 4\">"), std::string::npos);
+  const auto z_at = vtr.find("Name=\"z\"");
+  ASSERT_NE(z_at, std::string::npos);
+  // The z coordinates: the faces, from 0 to 8 mm.
+  std::istringstream z_values(vtr.substr(vtr.find('>', z_at) + 1));
+  for (int i = 0; i <= 4; ++i) {
+    double z = 0.0;
+    z_values >> z;
+    EXPECT_NEAR(z, grid.face_at(2, i), 1e-18) << "face " << i;
+  }
 }
 
 TEST(FluidScenes, UpwardSeepageThroughABed) {

@@ -11,6 +11,7 @@
 #include "darcydem/fluid/pore_fluid.hpp"
 #include "darcydem/generation/generators.hpp"
 #include "dem_setup.hpp"
+#include "fluid_sums.hpp"
 
 using namespace darcydem;
 
@@ -50,28 +51,13 @@ PoreFluid<3> frozen_packing(ParticleData<3>& p, DragLaw drag, PermeabilityModel 
 /// Excess pressure on the bottom face: cell value plus the half-cell drop
 /// that carries the imposed flux, summed times the face areas (N).
 double bottom_thrust(const PoreFluid<3>& f, double q) {
-  double thrust = 0.0;
-  for (int i = 0; i < 5; ++i) {
-    for (int j = 0; j < 5; ++j) {
-      const std::size_t c = f.grid.index({i, j, 0});
-      const double kappa = f.permeability_field()[c][2];
-      thrust += (f.pressure()[c] + q * f.fluid.viscosity / kappa * 0.001) * 0.002 * 0.002;
-    }
-  }
-  return thrust;
+  return darcydem::testing::floor_thrust(f, q, [](int, int) { return true; });
 }
 
 void expect_force_balance(DragLaw drag, PermeabilityModel model, double q) {
   ParticleData<3> p;
   const auto f = frozen_packing(p, drag, model, q);
-  std::vector<Vec<3>> force(p.size());
-  f.particle_forces(p, Vec<3>(0.0, 0.0, -g), force);
-  Vec<3> total = Vec<3>::Zero();
-  double solid = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    total += force[i];
-    solid += particle_volume<3>(p.radius[i]);
-  }
+  const auto [total, solid] = darcydem::testing::fluid_force_on_grains(f, p, g);
   const double buoyancy = f.fluid.density * g * solid;
   const double thrust = bottom_thrust(f, q);
   const double expected = thrust + buoyancy;

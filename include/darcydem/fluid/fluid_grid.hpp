@@ -1,11 +1,15 @@
 #pragma once
-// The fixed Cartesian grid of the pore fluid: cells of equal size over a box,
-// independent of the DEM neighbour cells. Cell (i, j, k) has index
-// i + nx (j + ny k). In 2D the cells are 1 m thick, like the discs.
+// The fixed Cartesian grid of the pore fluid over a box, independent of the
+// DEM neighbour cells: along each axis either cells of equal size (origin,
+// spacing, cells) or graded cells between given face coordinates (`faces`,
+// a rectilinear grid). Cell (i, j, k) has index i + nx (j + ny k). In 2D
+// the cells are 1 m thick, like the discs.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <vector>
 
 #include "darcydem/core/vec.hpp"
 
@@ -20,19 +24,75 @@ struct FluidGrid {
   /// cells and its first are neighbours across the face at either end
   /// (face 0 and face `cells`, the same face), which is then not a boundary.
   std::array<bool, D> periodic{};
+  /// Graded axes: faces[k] holds the cells[k] + 1 face coordinates along
+  /// axis k, increasing (set them with set_faces, which makes origin[k] the
+  /// first and cells[k] their count less one; spacing[k] is then NaN, so
+  /// code that takes one size for the axis fails loudly). Empty: the axis
+  /// is uniform, face i at origin[k] + i spacing[k].
+  std::array<std::vector<double>, D> faces{};
+
+  /// Makes axis k graded with faces at `at` (at least two, increasing).
+  void set_faces(int k, std::vector<double> at) {
+    origin[k] = at.front();
+    cells[k] = static_cast<int>(at.size()) - 1;
+    spacing[k] = std::numeric_limits<double>::quiet_NaN();
+    faces[k] = std::move(at);
+  }
+  [[nodiscard]] bool graded(int k) const { return !faces[k].empty(); }
+  [[nodiscard]] bool any_graded() const {
+    for (int k = 0; k < D; ++k) {
+      if (graded(k)) return true;
+    }
+    return false;
+  }
+  /// Coordinate of face i (0 .. cells) along axis k, m.
+  [[nodiscard]] double face_at(int k, int i) const {
+    return graded(k) ? faces[k][static_cast<std::size_t>(i)] : origin[k] + i * spacing[k];
+  }
+  /// Width of cell layer i along axis k, m.
+  [[nodiscard]] double width(int k, int i) const {
+    return graded(k) ? faces[k][static_cast<std::size_t>(i) + 1] - faces[k][static_cast<std::size_t>(i)]
+                     : spacing[k];
+  }
+  /// Coordinate of the centre of cell layer i along axis k, m.
+  [[nodiscard]] double centre_at(int k, int i) const {
+    return graded(k)
+               ? 0.5 * (faces[k][static_cast<std::size_t>(i)] + faces[k][static_cast<std::size_t>(i) + 1])
+               : origin[k] + (i + 0.5) * spacing[k];
+  }
+  /// The narrowest cell layer along axis k, m.
+  [[nodiscard]] double min_width(int k) const {
+    double w = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < cells[k]; ++i) w = std::min(w, width(k, i));
+    return w;
+  }
+  /// Volume of cell c, m^3 (2D: area x 1 m).
+  [[nodiscard]] double cell_volume(const std::array<int, D>& c) const {
+    double v = 1.0;
+    for (int k = 0; k < D; ++k) v *= width(k, c[k]);
+    return v;
+  }
+  /// Area of the faces normal to `axis` of cell c, m^2 (2D: length x 1 m).
+  [[nodiscard]] double face_area(int axis, const std::array<int, D>& c) const {
+    double a = 1.0;
+    for (int k = 0; k < D; ++k) a *= k == axis ? 1.0 : width(k, c[k]);
+    return a;
+  }
+  /// Length of the grid along axis k, m.
+  [[nodiscard]] double length(int k) const { return face_at(k, cells[k]) - face_at(k, 0); }
 
   [[nodiscard]] std::size_t size() const {
     std::size_t n = 1;
     for (int c : cells) n *= static_cast<std::size_t>(c);
     return n;
   }
-  /// m^3 (2D: area x 1 m).
+  /// Volume of every cell of a grid without graded axes, m^3 (2D: area x 1 m).
   [[nodiscard]] double cell_volume() const { return spacing.prod(); }
-  /// Area of a face normal to `axis`, m^2 (2D: length x 1 m).
+  /// Area of every face normal to `axis` of a grid without graded axes, m^2.
   [[nodiscard]] double face_area(int axis) const { return cell_volume() / spacing[axis]; }
   [[nodiscard]] Vec<D> upper() const {
-    Vec<D> u = origin;
-    for (int k = 0; k < D; ++k) u[k] += spacing[k] * cells[k];
+    Vec<D> u;
+    for (int k = 0; k < D; ++k) u[k] = face_at(k, cells[k]);
     return u;
   }
   [[nodiscard]] std::size_t index(const std::array<int, D>& c) const {
@@ -51,14 +111,28 @@ struct FluidGrid {
   }
   [[nodiscard]] Vec<D> centre(const std::array<int, D>& c) const {
     Vec<D> x;
-    for (int k = 0; k < D; ++k) x[k] = origin[k] + (c[k] + 0.5) * spacing[k];
+    for (int k = 0; k < D; ++k) x[k] = centre_at(k, c[k]);
     return x;
   }
   /// Cell coordinate along `axis` of position x: -1 below the grid, n above
-  /// (clamped before the conversion, so a grain far away is still safe).
+  /// (clamped before the conversion, so a grain far away is still safe; a
+  /// NaN position is -1).
   [[nodiscard]] int cell_along(int axis, double x) const {
+    if (graded(axis)) {
+      if (!(x == x)) return -1;
+      const auto& f = faces[axis];
+      return static_cast<int>(std::upper_bound(f.begin(), f.end(), x) - f.begin()) - 1;
+    }
     const double s = std::floor((x - origin[axis]) / spacing[axis]);
     return static_cast<int>(std::clamp(s, -1.0, static_cast<double>(cells[axis])));
+  }
+  /// x in cell units along `axis`: i + (x - face i) / width i in cell i,
+  /// extended beyond the ends with the end cells' widths (NaN stays NaN).
+  /// On a uniform axis (x - origin) / spacing.
+  [[nodiscard]] double cell_units(int axis, double x) const {
+    if (!graded(axis)) return (x - origin[axis]) / spacing[axis];
+    const int i = std::clamp(cell_along(axis, x), 0, cells[axis] - 1);
+    return i + (x - face_at(axis, i)) / width(axis, i);
   }
   /// Clamps a (possibly huge) floating cell coordinate into [lo, hi] and converts it.
   [[nodiscard]] static int clamp_cell(double s, int lo, int hi) {

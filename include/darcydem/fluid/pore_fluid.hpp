@@ -266,6 +266,21 @@ class PoreFluid final : public ParticleForceField<D> {
     centre_cell = static_cast<int>(cb);
     centre_frac = last > 0 ? std::clamp(t - cb, 0.0, 1.0) : 0.0;
   }
+  /// stencil_axis on any axis: on a graded one, the fraction between the
+  /// two cell centres is taken along x (linear in x between them), not in
+  /// cell units, whose scale changes at the face between them.
+  void stencil_axis_any(int k, double s, int& face_cell, double& face_frac, int& centre_cell,
+                        double& centre_frac) const {
+    stencil_axis(k, s, face_cell, face_frac, centre_cell, centre_frac);
+    if (!grid.graded(k) || grid.cells[k] < 2 || !(s == s)) return;
+    // x back from its cell units (FluidGrid::cell_units).
+    const int i = std::clamp(static_cast<int>(std::floor(std::clamp(s, -1.0, grid.cells[k] + 1.0))), 0,
+                             grid.cells[k] - 1);
+    const double x = grid.face_at(k, i) + (s - i) * grid.width(k, i);
+    const double lo = grid.centre_at(k, centre_cell);
+    const double hi = grid.centre_at(k, centre_cell + 1);
+    centre_frac = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
+  }
   /// Index in the face arrays of axis A of the stencil's lower corner for
   /// component A: the face below the holding cell along A, the lower cell
   /// centre along the others.
@@ -358,15 +373,27 @@ class PoreFluid final : public ParticleForceField<D> {
     return near;
   }
   void interpolate(const Stencil& stencil, std::array<double, D>& grad, std::array<double, D>& flux) const;
+  /// x in cell units along each axis (FluidGrid::cell_units).
   [[nodiscard]] std::array<double, D> cell_units(const Vec<D>& x) const {
     std::array<double, D> s{};
-    for (int k = 0; k < D; ++k) s[k] = (x[k] - grid.origin[k]) * inv_spacing_[k];
+    for (int k = 0; k < D; ++k)
+      s[k] = grid.graded(k) ? grid.cell_units(k, x[k]) : (x[k] - grid.origin[k]) * inv_spacing_[k];
     return s;
+  }
+  /// Volume of cell c, m^3.
+  [[nodiscard]] double volume_of(std::size_t c) const {
+    return volume_.empty() ? uniform_volume_ : volume_[c];
   }
   /// Storage n V / K_f of cell c, m^3/Pa (porosity floored at 1e-3).
   [[nodiscard]] double storage_of(std::size_t c) const {
-    return std::max(porosity_[c], 1e-3) * grid.cell_volume() / fluid.bulk_modulus;
+    return std::max(porosity_[c], 1e-3) * volume_of(c) / fluid.bulk_modulus;
   }
+  /// The geometry of a grid with graded axes (empty without): per cell its
+  /// volume, and per interior face, [axis][a] for the face between a and a
+  /// + stride(axis), its area, 1 / the distance between the two centres
+  /// and the weight of cell a in the harmonic mean of the permeabilities,
+  /// h_a / (h_a + h_b).
+  void build_geometry();
 
   /// An interior face in the stored matrix (Cholesky solver only; the hot
   /// loops go over FluidGrid::face_run).
@@ -380,6 +407,8 @@ class PoreFluid final : public ParticleForceField<D> {
     int side;
     std::size_t index;  ///< in the face arrays of the side's axis
     int patch = -1;     ///< in `patches`; -1: the side's own condition
+    double area = 0.0;  ///< m^2
+    double half = 0.0;  ///< half the cell's width along the side's axis, m
   };
   [[nodiscard]] const FluidBoundary& condition_of(const BoundaryFace& bf) const {
     return bf.patch >= 0 ? patches[static_cast<std::size_t>(bf.patch)].condition : sides[bf.side];
@@ -426,8 +455,11 @@ class PoreFluid final : public ParticleForceField<D> {
   /// fluid step, m^3, from a to a + stride(axis): [axis][a].
   std::array<std::vector<double>, D> carried_;
   std::array<std::vector<std::array<double, 2>>, D>
-      face_gq_;  ///< (grad, flux) side by side: one load per corner
-  Vec<D> inv_spacing_ = Vec<D>::Ones();
+      face_gq_;                          ///< (grad, flux) side by side: one load per corner
+  Vec<D> inv_spacing_ = Vec<D>::Ones();  ///< NaN along graded axes
+  double uniform_volume_ = 1.0;          ///< the cells' volume without graded axes
+  std::vector<double> volume_;           ///< per cell, with graded axes (build_geometry)
+  std::array<std::vector<double>, D> face_area_, face_inv_distance_, face_weight_;  ///< (build_geometry)
   std::array<std::vector<double>, D> solid_face_flux_;  ///< m^3/s of solid through each face
   std::vector<Face> faces_;
   /// A face across a periodic end of the grid: between the cell `low` on

@@ -240,6 +240,32 @@ inline std::array<double, N> lane_of(const std::array<Lanes, N>& v, int l) {
   return out;
 }
 
+/// The cuts along a graded axis k (FluidGrid::faces, not periodic) of the
+/// grains [start, start + n): as the uniform axes' loop in for_each_overlap,
+/// with the home cell found by a search of the faces; beyond the grid's
+/// ends the home cell (-1 or cells) is as wide as the end cell.
+template <int D>
+void cut_graded_axis(const FluidGrid<D>& grid, int k, const ParticleData<D>& p, std::size_t start,
+                     std::size_t n, ChunkCuts<D>& cuts) {
+  const int last = grid.cells[k];
+  for (std::size_t g = 0; g < n; ++g) {
+    const double x = p.position[start + g][k];
+    const int cell = grid.cell_along(k, x);  // -1 .. cells, -1 for NaN
+    const double lo = cell >= 0 ? grid.face_at(k, cell) : grid.face_at(k, 0) - grid.width(k, 0);
+    const double hi =
+        cell < last ? grid.face_at(k, cell + 1) : grid.face_at(k, last) + grid.width(k, last - 1);
+    const double r = p.radius[start + g];
+    const double below = x - lo;
+    const double above = hi - x;
+    const int down = below < r ? 1 : 0;
+    const int up = (1 - down) & (above < r ? 1 : 0);
+    cuts.home[k][g] = cell;
+    cuts.other[k][g] = cell + up - down;
+    cuts.dist[k][g] = lane_max(0.0, down != 0 ? below : above);
+    cuts.mask[g] = (k == 0 ? 0 : cuts.mask[g]) | ((down | up) << k);
+  }
+}
+
 /// The grains `members` (indices into the chunk starting at `start`), which
 /// all cross exactly the faces of the axes in Mask, four at a time: the
 /// measures for four grains on vector lanes (the last group padded with
@@ -380,6 +406,10 @@ void PoreFluid<D>::for_each_overlap(const ParticleData<D>& p, std::size_t begin,
       fetch(p.radius.data() + next, m * sizeof(double));
     }
     for (int k = 0; k < D; ++k) {
+      if (grid.graded(k)) {
+        cut_graded_axis(grid, k, p, start, n, *cuts);
+        continue;
+      }
       const double origin = grid.origin[k];
       const double h = grid.spacing[k];
       const double inv_h = 1.0 / h;

@@ -37,7 +37,8 @@ template <int D>
 void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls, const Vec<D>& lo,
                      const Vec<D>& hi);
 
-/// The pore fluid's cell fields as VTK ImageData (.vti): excess pressure,
+/// The pore fluid's cell fields as VTK ImageData (.vti), or RectilinearGrid
+/// (.vtr, the faces' coordinates) when an axis is graded: excess pressure,
 /// porosity, intrinsic permeability, Darcy velocity, solid velocity and,
 /// given the cells' contact stress (cell_contact_stress), the effective
 /// stress as a tensor (9 components, compression positive; zz = 0 in 2D)
