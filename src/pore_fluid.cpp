@@ -437,6 +437,7 @@ void PoreFluid<D>::build_pattern() {
 template <int D>
 void PoreFluid<D>::assign_patches() {
   patch_faces_.assign(patches.size(), 0);
+  patch_area_.assign(patches.size(), 0.0);
   patch_inflow_.assign(patches.size(), 0.0);
   for (auto& bf : boundary_faces_) {
     const Vec<D> centre = grid.centre(grid.coords(bf.cell));
@@ -445,6 +446,7 @@ void PoreFluid<D>::assign_patches() {
       if (patches[p].side == bf.side && patches[p].holds(centre)) {
         bf.patch = static_cast<int>(p);
         ++patch_faces_[p];
+        patch_area_[p] += bf.area;
         break;
       }
     }

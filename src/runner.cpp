@@ -535,7 +535,7 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid) {
   std::string out;
   for (std::size_t k = 0; k < fluid.patches.size(); ++k) {
     const auto& patch = fluid.patches[k];
-    const double area = static_cast<double>(fluid.patch_faces(k)) * fluid.grid.face_area(patch.side / 2);
+    const double area = fluid.patch_area(k);
     out += fmt::format("patch {} on {}: {} faces, {:.6g} m^2, {}\n", patch.name, side_names[patch.side],
                        fluid.patch_faces(k), area, to_string(patch.condition.type));
   }

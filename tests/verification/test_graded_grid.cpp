@@ -359,3 +359,71 @@ TEST(GradedGrid, SeepageForceOnTheGrainsEqualsThePressureDropTimesTheArea) {
   // 1e-5 m/s keeps Ergun's inertial term below 1e-3 of it.
   EXPECT_LT(std::abs(graded_force_balance(DragLaw::ergun, PermeabilityModel::kozeny_carman, 1e-5)), 0.01);
 }
+
+TEST(GradedGrid, AnInletPatchOnAGradedFloorTakesItsFacesAreas) {
+  // An inlet on the floor over x in [0, 0.0045] of a grid graded along x
+  // (faces at 0, 1, 2.5, 4.5, 7.5 mm; 2 mm cells along y, 3 of them): it
+  // holds the faces whose centres lie in it, those of the first three
+  // columns, 4.5 mm x 6 mm = 2.7e-5 m^2 (hand-derived), and once steady all
+  // its inflow q A leaves through the drained top (pore water alone).
+  PoreFluid<3> f(PressureSolverKind::cholesky);
+  f.grid.set_faces(0, {0.0, 0.001, 0.0025, 0.0045, 0.0075});
+  f.grid.origin.y() = 0.0;
+  f.grid.spacing.y() = 0.002;
+  f.grid.cells[1] = 3;
+  f.grid.origin.z() = 0.0;
+  f.grid.spacing.z() = 0.002;
+  f.grid.cells[2] = 4;
+  f.fluid = {1000.0, 1e-3, 2e9};
+  f.permeability.model = PermeabilityModel::constant;
+  f.permeability.intrinsic = Vec<3>::Constant(1e-10);
+  f.sides[5] = {FluidBoundaryType::drained, TimeSeries::constant(0.0)};
+  FluidPatch<3> inlet;
+  inlet.name = "inlet";
+  inlet.side = 4;
+  inlet.lo = {0.0, 0.0, 0.0};
+  inlet.hi = {0.0045, 0.006, 0.0};
+  const double q = 1e-3;
+  inlet.condition = {FluidBoundaryType::flux, TimeSeries::constant(q)};
+  f.patches.push_back(inlet);
+  ParticleData<3> none;
+  f.initialize(none);
+  EXPECT_EQ(f.patch_faces(0), 9U);
+  EXPECT_NEAR(f.patch_area(0), 2.7e-5, 1e-18);
+  f.update(none, 1000.0, 1000.0);
+  EXPECT_NEAR(f.patch_inflow(0), q * 2.7e-5, 1e-12 * q * 2.7e-5);
+  EXPECT_NEAR(f.side_inflow(5), -q * 2.7e-5, 1e-9 * q * 2.7e-5);
+}
+
+TEST(GradedGrid, ABarrierOnAGradedAxisClosesItsPlaneOfFaces) {
+  // A barrier across the whole grid on the graded x faces at 2.5 mm
+  // (faces at 0, 1, 2.5, 4.5, 7.5 mm), 10 Pa at x_min and 0 at x_max: it
+  // closes its 3 x 4 faces and no water flows once steady (the cells on
+  // either side at their side's pressure, 1e-9).
+  PoreFluid<3> f(PressureSolverKind::cholesky);
+  f.grid.set_faces(0, {0.0, 0.001, 0.0025, 0.0045, 0.0075});
+  f.grid.origin = Vec<3>(0.0, 0.0, 0.0);
+  f.grid.spacing.y() = 0.002;
+  f.grid.spacing.z() = 0.002;
+  f.grid.cells[1] = 3;
+  f.grid.cells[2] = 4;
+  f.fluid = {1000.0, 1e-3, 2e9};
+  f.permeability.model = PermeabilityModel::constant;
+  f.permeability.intrinsic = Vec<3>::Constant(1e-10);
+  f.sides[0] = {FluidBoundaryType::drained, TimeSeries::constant(10.0)};
+  f.sides[1] = {FluidBoundaryType::drained, TimeSeries::constant(0.0)};
+  FluidBarrier<3> wall;
+  wall.axis = 0;
+  wall.at = 0.0025;
+  wall.lo = {0.0, 0.0, 0.0};
+  wall.hi = {0.0, 0.006, 0.008};
+  f.barriers.push_back(wall);
+  ParticleData<3> none;
+  f.initialize(none);
+  EXPECT_EQ(f.barrier_faces(0), 12U);
+  f.update(none, 1e6, 1e6);
+  EXPECT_NEAR(f.side_inflow(0), 0.0, 1e-12);
+  EXPECT_NEAR(f.side_inflow(1), 0.0, 1e-12);
+  for (std::size_t c = 0; c < f.grid.size(); ++c)
+    EXPECT_NEAR(f.pressure()[c], f.grid.coords(c)[0] < 2 ? 10.0 : 0.0, 1e-9) << "cell " << c;
+}

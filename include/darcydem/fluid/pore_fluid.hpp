@@ -186,6 +186,8 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] double patch_inflow(std::size_t patch) const { return patch_inflow_.at(patch); }
   /// Boundary faces of a patch (as found by initialize()).
   [[nodiscard]] std::size_t patch_faces(std::size_t patch) const { return patch_faces_.at(patch); }
+  /// Area of a patch's faces, m^2 (2D: per metre).
+  [[nodiscard]] double patch_area(std::size_t patch) const { return patch_area_.at(patch); }
   /// Interior faces a barrier closes (as found by initialize()).
   [[nodiscard]] std::size_t barrier_faces(std::size_t barrier) const { return barrier_faces_.at(barrier); }
 
@@ -483,6 +485,7 @@ class PoreFluid final : public ParticleForceField<D> {
   std::array<double, 2 * D> side_inflow_{};
   std::vector<double> patch_inflow_;      ///< m^3/s, per patch
   std::vector<std::size_t> patch_faces_;  ///< boundary faces per patch
+  std::vector<double> patch_area_;        ///< their area per patch, m^2
   /// An interior face a barrier closes: the cell below it along `axis`
   /// (index into face_lambda_ and carried_) and its index in face_gq_.
   struct BlockedFace {
