@@ -427,3 +427,49 @@ TEST(GradedGrid, ABarrierOnAGradedAxisClosesItsPlaneOfFaces) {
   for (std::size_t c = 0; c < f.grid.size(); ++c)
     EXPECT_NEAR(f.pressure()[c], f.grid.coords(c)[0] < 2 ? 10.0 : 0.0, 1e-9) << "cell " << c;
 }
+
+TEST(GradedGrid, TwoDimensionalGridGradedAlongBothAxes) {
+  // Discs (unit thickness), both axes graded, constant permeability, inflow
+  // q at y_min and y_max drained: u = q mu (H - y) / kappa at every cell
+  // centre and the gradient -q mu / kappa along y anywhere between them
+  // (1e-9: the solver's round-off), and the discs' volumes all in the cells
+  // (1e-12). Cells 1.4 to 3.9 mm along x, 5.1 to 1.3 mm along y; discs of
+  // 1 mm.
+  ParticleData<2> p;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> x(0.0006, 0.0094);
+  std::uniform_real_distribution<double> y(0.0006, 0.0194);
+  double area = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    p.add(Vec<2>(x(rng), y(rng)), 0.0005, 2650.0, 0, true);
+    area += particle_volume<2>(0.0005);
+  }
+  PoreFluid<2> f(PressureSolverKind::cholesky);
+  f.grid.set_faces(0, geometric_faces(0.0, 0.01, 4, 1.4));
+  f.grid.set_faces(1, geometric_faces(0.0, 0.02, 7, 0.8));
+  const double q = 1e-3;
+  const double kappa = 1e-10;
+  f.fluid = {1000.0, 1.0e-3, 2e9};
+  f.permeability.model = PermeabilityModel::constant;
+  f.permeability.intrinsic = Vec<2>::Constant(kappa);
+  f.sides[2] = {FluidBoundaryType::flux, TimeSeries::constant(q)};
+  f.sides[3] = {FluidBoundaryType::drained, TimeSeries::constant(0.0)};
+  f.initialize(p);
+  f.update(p, 1000.0, 1000.0);
+  double solid = 0.0;
+  for (double v : f.solid_volume()) solid += v;
+  EXPECT_NEAR(solid, area, 1e-12 * area);
+  const double mu = f.fluid.viscosity;
+  const double scale = q * mu * 0.02 / kappa;
+  for (std::size_t c = 0; c < f.grid.size(); ++c) {
+    const double yc = f.grid.centre(f.grid.coords(c)).y();
+    EXPECT_NEAR(f.pressure()[c], q * mu * (0.02 - yc) / kappa, 1e-9 * scale) << "cell " << c;
+  }
+  for (double at : {0.3, 0.5, 0.77}) {
+    const Vec<2> point(0.01 * at,
+                       f.grid.centre_at(1, 0) + at * (f.grid.centre_at(1, 6) - f.grid.centre_at(1, 0)));
+    EXPECT_NEAR(f.gradient_at(point).y(), -q * mu / kappa, 1e-9 * q * mu / kappa);
+    EXPECT_NEAR(f.pressure_at(point), q * mu * (0.02 - point.y()) / kappa, 1e-9 * scale);
+  }
+  EXPECT_NEAR(f.side_inflow(2), q * 0.01, 1e-12 * q * 0.01);
+}
