@@ -58,8 +58,6 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles, const std::vecto
     face_gq_[k].assign(grid.face_count(k), {0.0, 0.0});
     inv_spacing_[k] = grid.graded(k) ? std::numeric_limits<double>::quiet_NaN() : 1.0 / grid.spacing[k];
   }
-  if (grid.any_graded() && grid.any_periodic())
-    throw std::logic_error("PoreFluid: a grid with graded axes cannot be periodic");
   build_geometry();
   for (int a = 0; a < D; ++a) {
     std::size_t stride = 1;
@@ -401,6 +399,8 @@ void PoreFluid<D>::build_pattern() {
     bf.area = grid.face_area(axis, cc);
     bf.half = 0.5 * grid.width(axis, cc[axis]);
   }
+  for (auto& w : wrap_faces_)
+    w.area = grid.any_graded() ? grid.face_area(w.axis, grid.coords(w.low)) : grid.face_area(w.axis);
   assign_patches();
   assign_barriers();
   matrix_.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
@@ -566,7 +566,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   for (std::size_t w = 0; w < wrap_faces_.size(); ++w) {
     const WrapFace& f = wrap_faces_[w];
     const int k = f.axis;
-    const double area = grid.face_area(k);
+    const double area = f.area;
     operator_.extra[w].g = dt * area / grid.spacing[k] * wrap_lambda_[w];
     wrap_carried_[w] = 0.0;
     if (!carry_with_solid) continue;

@@ -295,13 +295,6 @@ void read_grid_axes(TableReader& g, FluidGrid<D>& grid, double r_max,
                fmt::format("the scene is periodic along {}: the grid's cells along it must be of one size "
                            "(from, to, cells)",
                            name));
-      for (int j = 0; j < D; ++j) {
-        if (periodic[j])
-          a.fail(key,
-                 fmt::format("the scene is periodic along {}: graded cells are not supported in a periodic "
-                             "scene; give cells of one size along every axis",
-                             "xyz"[j]));
-      }
       grid.set_faces(k, std::move(faces));
     }
     if (grid.min_width(k) < 2.0 * r_max * (1.0 - 1e-12)) {

@@ -474,6 +474,7 @@ class PoreFluid final : public ParticleForceField<D> {
     std::size_t face_first, face_last;
     std::size_t pos_lh = 0, pos_hl = 0;  ///< in the stored matrix (Cholesky)
     bool shared = false;                 ///< two cells along the axis: also a stencil face
+    double area = 0.0;                   ///< m^2
   };
   std::vector<WrapFace> wrap_faces_;
   std::vector<double> wrap_lambda_;   ///< kappa/mu of each wrap face, m^2/(Pa s)
