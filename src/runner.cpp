@@ -332,6 +332,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
           fluid->solver().describe(static_cast<Eigen::Index>(fluid->grid.size())), fluid->steps_per_update,
           fluid->hold_forces && fluid->steps_per_update > 1 ? " (grain forces held between them)" : "",
           sides);
+      *options.log << describe_grid(fluid->grid);
       *options.log << describe_patches_and_barriers(*fluid);
     }
   }
@@ -531,6 +532,19 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
 }
 
 template <int D>
+std::string describe_grid(const FluidGrid<D>& grid) {
+  std::string out = "fluid grid:";
+  for (int k = 0; k < D; ++k) {
+    const std::string width = grid.graded(k) ? fmt::format("graded, {:.4g} to {:.4g} m", grid.width(k, 0),
+                                                           grid.width(k, grid.cells[k] - 1))
+                                             : fmt::format("{:.4g} m", grid.spacing[k]);
+    out += fmt::format("{} {} {} cells in [{:.6g}, {:.6g}] m ({})", k == 0 ? "" : ";", "xyz"[k],
+                       grid.cells[k], grid.face_at(k, 0), grid.face_at(k, grid.cells[k]), width);
+  }
+  return out + "\n";
+}
+
+template <int D>
 std::string describe_patches_and_barriers(const PoreFluid<D>& fluid) {
   std::string out;
   for (std::size_t k = 0; k < fluid.patches.size(); ++k) {
@@ -549,6 +563,8 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid) {
 
 template std::string describe_patches_and_barriers<2>(const PoreFluid<2>&);
 template std::string describe_patches_and_barriers<3>(const PoreFluid<3>&);
+template std::string describe_grid<2>(const FluidGrid<2>&);
+template std::string describe_grid<3>(const FluidGrid<3>&);
 template void apply_stage<2>(Simulation<2>&, PoreFluid<2>*, const Stage<2>&);
 template void apply_stage<3>(Simulation<3>&, PoreFluid<3>*, const Stage<3>&);
 template RunSummary run_scene<2>(Scene<2>&, const RunOptions&);

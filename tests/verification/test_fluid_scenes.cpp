@@ -321,6 +321,10 @@ TEST(FluidScenes, GradedUpwardSeepage) {
   EXPECT_NEAR(grid.width(2, 0), w0, 1e-15);
   EXPECT_NEAR(grid.width(2, 3), 2.0 * w0, 1e-15);
   EXPECT_NEAR(grid.upper().z(), 0.008, 1e-15);
+  EXPECT_EQ(
+      describe_grid(grid),
+      "fluid grid: x 3 cells in [0, 0.006] m (0.002 m); y 3 cells in [0, 0.006] m (graded, 0.002 to 0.002 "
+      "m); z 4 cells in [0, 0.008] m (graded, 0.001368 to 0.002736 m)\n");
   expect_upward_seepage_balance(scene, "graded upward seepage");
   const std::string vtr =
       darcydem::testing::file_contents(temp_path("graded upward seepage") + "/fluid_00001.vtr");

@@ -71,6 +71,10 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options);
 /// run log and `darcydem check` print them.
 template <int D>
 std::string describe_patches_and_barriers(const PoreFluid<D>& fluid);
+/// The fluid grid's cells along each axis, its extent and the cells' width
+/// (the first and last along a graded axis), one line for the run log.
+template <int D>
+std::string describe_grid(const FluidGrid<D>& grid);
 
 /// "1.256e-05 s", or what an infinite critical step means (no free particle).
 std::string describe_critical_step(double seconds);
