@@ -462,16 +462,7 @@ void PoreFluid<D>::assign_barriers() {
     const int k = barrier.axis;
     // The plane of faces nearest `at` (the scene reader checks that it is
     // one), between cell layers plane - 1 and plane along k.
-    long plane = 0;
-    if (grid.graded(k)) {
-      for (int i = 1; i <= grid.cells[k]; ++i) {
-        if (std::abs(grid.face_at(k, i) - barrier.at) <
-            std::abs(grid.face_at(k, static_cast<int>(plane)) - barrier.at))
-          plane = i;
-      }
-    } else {
-      plane = std::lround((barrier.at - grid.origin[k]) / grid.spacing[k]);
-    }
+    const int plane = grid.nearest_face(k, barrier.at);
     if (plane < 1 || plane >= grid.cells[k]) continue;
     for (std::size_t c = 0; c < grid.size(); ++c) {
       auto cc = grid.coords(c);

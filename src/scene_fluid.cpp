@@ -174,11 +174,7 @@ void check_barrier(const FluidBarrier<D>& barrier, const FluidGrid<D>& grid, Fai
   }
   if (grid.graded(k)) {
     // The interior face nearest `at`, within 1e-6 of the narrower cell beside it.
-    int nearest = 1;
-    for (int i = 1; i < grid.cells[k]; ++i) {
-      if (std::abs(grid.face_at(k, i) - barrier.at) < std::abs(grid.face_at(k, nearest) - barrier.at))
-        nearest = i;
-    }
+    const int nearest = std::clamp(grid.nearest_face(k, barrier.at), 1, grid.cells[k] - 1);
     const double tolerance = 1e-6 * std::min(grid.width(k, nearest - 1), grid.width(k, nearest));
     if (!(std::abs(grid.face_at(k, nearest) - barrier.at) <= tolerance)) {
       fail("at",

@@ -651,6 +651,18 @@ TEST(SceneErrors, GradedFluidGridIsReadAndChecked) {
                              "y = { faces = [0.0, 0.0015, 0.004] }");
   ASSERT_EQ(load_error(faces), "");
   EXPECT_DOUBLE_EQ(built_scene<2>(faces).fluid->grid.face_at(1, 1), 0.0015);
+  // A barrier on the graded axis: on its interior face, or refused naming the nearest.
+  const std::string barrier =
+      "\n[[fluid.barrier]]\nname = \"pile\"\naxis = \"y\"\nat = 0.0015\nfrom = [-0.0005]\nto = [0.0005]\n";
+  EXPECT_EQ(load_error(faces + barrier), "");
+  EXPECT_EQ(built_scene<2>(faces + barrier).fluid->barrier_faces(0), 1U);
+  auto bad = load_error(faces + replace(barrier, "at = 0.0015", "at = 0.0017"));
+  EXPECT_NE(
+      bad.find(
+          "[[fluid.barrier]] #1 key 'at': must be on a plane of faces between two cells inside the grid: "
+          "along y (graded) the nearest is at 0.0015 m"),
+      std::string::npos)
+      << bad;
 
   auto msg = load_error(replace(with_fluid(), uniform, uniform + axes));
   EXPECT_NE(msg.find("[fluid.grid] key 'origin': the grid is given axis by axis"), std::string::npos) << msg;

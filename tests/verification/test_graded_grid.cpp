@@ -75,6 +75,14 @@ TEST(GradedGrid, GeometryOfTheCells) {
   EXPECT_EQ(g.cell_along(0, 0.0079), 2);
   EXPECT_EQ(g.cell_along(0, 0.009), 3);
   EXPECT_EQ(g.cell_along(0, std::nan("")), -1);
+  // The nearest face: along x by distance, along y (uniform) rounded and
+  // clamped to 0 .. cells.
+  EXPECT_EQ(g.nearest_face(0, 0.0031), 2);
+  EXPECT_EQ(g.nearest_face(0, 0.0029), 1);
+  EXPECT_EQ(g.nearest_face(0, -1.0), 0);
+  EXPECT_EQ(g.nearest_face(0, 1.0), 3);
+  EXPECT_EQ(g.nearest_face(1, 0.0026), 1);
+  EXPECT_EQ(g.nearest_face(1, 0.1), 2);
   // Cell units: linear within each cell, beyond the ends with their widths.
   EXPECT_DOUBLE_EQ(g.cell_units(0, 0.006), 2.5);
   EXPECT_DOUBLE_EQ(g.cell_units(0, 0.0015), 0.5);

@@ -126,6 +126,15 @@ struct FluidGrid {
     const double s = std::floor((x - origin[axis]) / spacing[axis]);
     return static_cast<int>(std::clamp(s, -1.0, static_cast<double>(cells[axis])));
   }
+  /// The face (0 .. cells) along `axis` nearest to x.
+  [[nodiscard]] int nearest_face(int axis, double x) const {
+    if (!graded(axis)) return clamp_cell(std::round((x - origin[axis]) / spacing[axis]), 0, cells[axis]);
+    int nearest = 0;
+    for (int i = 1; i <= cells[axis]; ++i) {
+      if (std::abs(face_at(axis, i) - x) < std::abs(face_at(axis, nearest) - x)) nearest = i;
+    }
+    return nearest;
+  }
   /// x in cell units along `axis`: i + (x - face i) / width i in cell i,
   /// extended beyond the ends with the end cells' widths (NaN stays NaN).
   /// On a uniform axis (x - origin) / spacing.
