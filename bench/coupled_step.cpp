@@ -13,6 +13,8 @@
 //                                   the grains' fluid forces still every step);
 //                                   times are per DEM step, solver_iterations
 //                                   per fluid step
+//   BM_CoupledGraded/cells/threads  BM_CoupledStep with CG (Jacobi) on the same
+//                                   grid graded along z (ratio 2)
 //   BM_CoupledHeld/cells/M/threads  the same with the grains' fluid forces held
 //                                   between fluid steps (`fluid.hold_forces`):
 //                                   computed at the first DEM step after each
@@ -42,6 +44,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 #include "darcydem/fluid/pore_fluid.hpp"
 #include "packing.hpp"
@@ -77,11 +80,24 @@ void shape_grid(PoreFluid<3>& f, const Simulation<3>& sim, std::int64_t cells) {
   f.grid.origin = lo;
 }
 
-std::unique_ptr<PoreFluid<3>> make_fluid(const Simulation<3>& sim, std::int64_t cells, int solver) {
+/// With `graded`, the same grid's layers along z graded, the top one
+/// twice as tall as the bottom one (ratio 2), over the same height.
+std::unique_ptr<PoreFluid<3>> make_fluid(const Simulation<3>& sim, std::int64_t cells, int solver,
+                                         bool graded = false) {
   auto f = std::make_unique<PoreFluid<3>>(
       solver == 0 ? darcydem::PressureSolverKind::cholesky : darcydem::PressureSolverKind::cg, 1e-8,
       solver == 2 ? darcydem::CgPreconditioner::multigrid : darcydem::CgPreconditioner::jacobi);
   shape_grid(*f, sim, cells);
+  if (graded) {
+    const int n = f->grid.cells[2];
+    const double q = std::pow(2.0, 1.0 / (n - 1));
+    const double height = n * f->grid.spacing[2];
+    const double w0 = height * (q - 1.0) / (std::pow(q, n) - 1.0);
+    std::vector<double> faces{f->grid.origin.z()};
+    for (int i = 0; i < n; ++i) faces.push_back(faces.back() + w0 * std::pow(q, i));
+    faces.back() = f->grid.origin.z() + height;
+    f->grid.set_faces(2, faces);
+  }
   f->fluid = {1000.0, 1e-3, 1e5};
   f->drag = darcydem::DragLaw::ergun;
   f->permeability.model = darcydem::PermeabilityModel::kozeny_carman;
@@ -104,10 +120,10 @@ void BM_DemStep(benchmark::State& state) {
 // The coupled step, with a fluid step every `interval` DEM steps (the
 // scene's `fluid.steps_per_update`); the figures are per DEM step.
 void run_coupled(benchmark::State& state, std::int64_t cells, int solver, int threads, int interval,
-                 bool hold = false) {
+                 bool hold = false, bool graded = false) {
   omp_set_num_threads(threads);
   auto sim = bench::make_packing(kGrains);
-  auto fluid = make_fluid(sim, cells, solver);
+  auto fluid = make_fluid(sim, cells, solver, graded);
   fluid->steps_per_update = interval;
   fluid->hold_forces = hold;
   sim.force_field = fluid.get();
@@ -160,6 +176,12 @@ void run_coupled(benchmark::State& state, std::int64_t cells, int solver, int th
 
 void BM_CoupledStep(benchmark::State& state) {
   run_coupled(state, state.range(0), static_cast<int>(state.range(1)), static_cast<int>(state.range(2)), 1);
+}
+
+// The coupled step on the same grid graded along z (make_fluid): what a
+// graded axis costs (a search of its faces per grain, per-face geometry).
+void BM_CoupledGraded(benchmark::State& state) {
+  run_coupled(state, state.range(0), 1, static_cast<int>(state.range(1)), 1, false, true);
 }
 
 void BM_CoupledInterval(benchmark::State& state) {
@@ -253,6 +275,7 @@ BENCHMARK(BM_CoupledStep)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0)
     ->UseRealTime();
+BENCHMARK(BM_CoupledGraded)->Args({10'000, 1})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 BENCHMARK(BM_CoupledInterval)
     ->ArgsProduct({{10'000}, {2, 5, 10}, {1}})
     ->Args({10'000, 5, 2})
