@@ -89,14 +89,9 @@ std::unique_ptr<PoreFluid<3>> make_fluid(const Simulation<3>& sim, std::int64_t 
       solver == 2 ? darcydem::CgPreconditioner::multigrid : darcydem::CgPreconditioner::jacobi);
   shape_grid(*f, sim, cells);
   if (graded) {
-    const int n = f->grid.cells[2];
-    const double q = std::pow(2.0, 1.0 / (n - 1));
-    const double height = n * f->grid.spacing[2];
-    const double w0 = height * (q - 1.0) / (std::pow(q, n) - 1.0);
-    std::vector<double> faces{f->grid.origin.z()};
-    for (int i = 0; i < n; ++i) faces.push_back(faces.back() + w0 * std::pow(q, i));
-    faces.back() = f->grid.origin.z() + height;
-    f->grid.set_faces(2, faces);
+    const double bottom = f->grid.origin.z();
+    f->grid.set_faces(2, darcydem::graded_faces(bottom, bottom + f->grid.cells[2] * f->grid.spacing[2],
+                                                f->grid.cells[2], 2.0));
   }
   f->fluid = {1000.0, 1e-3, 1e5};
   f->drag = darcydem::DragLaw::ergun;

@@ -399,8 +399,7 @@ void PoreFluid<D>::build_pattern() {
     bf.area = grid.face_area(axis, cc);
     bf.half = 0.5 * grid.width(axis, cc[axis]);
   }
-  for (auto& w : wrap_faces_)
-    w.area = grid.any_graded() ? grid.face_area(w.axis, grid.coords(w.low)) : grid.face_area(w.axis);
+  for (auto& w : wrap_faces_) w.area = grid.face_area(w.axis, grid.coords(w.low));
   assign_patches();
   assign_barriers();
   matrix_.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));

@@ -182,18 +182,19 @@ void check_barrier(const FluidBarrier<D>& barrier, const FluidGrid<D>& grid, Fai
                        "the nearest is at {} m",
                        axis, TableReader::format_number(grid.face_at(k, nearest))));
     }
-  }
-  const double plane = grid.graded(k) ? 1.0 : (barrier.at - grid.origin[k]) / grid.spacing[k];
-  const double nearest = std::round(plane);
-  if (!(std::abs(plane - nearest) <= 1e-6 && nearest >= 1.0 && nearest <= grid.cells[k] - 1.0)) {
-    const double below =
-        grid.origin[k] + grid.spacing[k] * std::clamp(std::round(plane), 1.0, grid.cells[k] - 1.0);
-    fail("at",
-         fmt::format("must be on a plane of faces between two cells inside the grid: along {} they are at "
-                     "{} + n x {} m, n = 1 .. {} (the nearest: {} m)",
-                     axis, TableReader::format_number(grid.origin[k]),
-                     TableReader::format_number(grid.spacing[k]), grid.cells[k] - 1,
-                     TableReader::format_number(below)));
+  } else {
+    const double plane = (barrier.at - grid.origin[k]) / grid.spacing[k];
+    const double nearest = std::round(plane);
+    if (!(std::abs(plane - nearest) <= 1e-6 && nearest >= 1.0 && nearest <= grid.cells[k] - 1.0)) {
+      const double below =
+          grid.origin[k] + grid.spacing[k] * std::clamp(std::round(plane), 1.0, grid.cells[k] - 1.0);
+      fail("at",
+           fmt::format("must be on a plane of faces between two cells inside the grid: along {} they are at "
+                       "{} + n x {} m, n = 1 .. {} (the nearest: {} m)",
+                       axis, TableReader::format_number(grid.origin[k]),
+                       TableReader::format_number(grid.spacing[k]), grid.cells[k] - 1,
+                       TableReader::format_number(below)));
+    }
   }
   std::size_t faces = 1;
   for (int a = 0; a < D; ++a) {
@@ -210,6 +211,28 @@ void check_barrier(const FluidBarrier<D>& barrier, const FluidGrid<D>& grid, Fai
     fail("from",
          "the barrier holds no face: a face is in it when its centre lies within the barrier's extent along "
          "the other axes");
+  }
+}
+
+/// [fluid.grid] as origin, cells and size: cells of one size, at least
+/// `2 r_max` wide.
+template <int D>
+void read_uniform_grid(TableReader& g, FluidGrid<D>& grid, double r_max) {
+  const auto origin = g.numbers("origin", D);
+  const auto cells = g.numbers("cells", D);
+  const auto size = g.numbers("size", D);
+  for (int k = 0; k < D; ++k) {
+    grid.origin[k] = origin[k];
+    if (!(cells[k] >= 1.0) || cells[k] != std::floor(cells[k]) || cells[k] > 1e6)
+      g.fail("cells", "must be whole numbers of cells >= 1 along each axis");
+    grid.cells[k] = static_cast<int>(cells[k]);
+    g.check("size", size[k], is_positive, "> 0 m along each axis (the size of one cell)");
+    if (size[k] < 2.0 * r_max * (1.0 - 1e-12)) {
+      g.fail("size", fmt::format("cells must be at least one grain diameter wide: {:.4g} m along {} is less "
+                                 "than the largest diameter {:.4g} m",
+                                 size[k], "xyz"[k], 2.0 * r_max));
+    }
+    grid.spacing[k] = size[k];
   }
 }
 
@@ -271,18 +294,7 @@ void read_grid_axes(TableReader& g, FluidGrid<D>& grid, double r_max,
                  fmt::format("the scene is periodic along {}: the grid's cells along it must be of one "
                              "size (ratio = 1)",
                              name));
-        // Widths w_i = w_0 q^i, q = ratio^(1 / (cells - 1)), adding up to to - from.
-        const double q = std::pow(ratio, 1.0 / (n - 1.0));
-        double total = 0.0;
-        for (int i = 0; i < cells; ++i) total += std::pow(q, i);
-        faces.resize(static_cast<std::size_t>(cells) + 1);
-        faces[0] = from;
-        double sum = 0.0;
-        for (int i = 1; i < cells; ++i) {
-          sum += std::pow(q, i - 1);
-          faces[static_cast<std::size_t>(i)] = from + (to - from) * sum / total;
-        }
-        faces.back() = to;
+        faces = graded_faces(from, to, cells, ratio);
       }
     }
     if (!faces.empty()) {
@@ -462,23 +474,8 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
     for (int k = 0; k < D; ++k) per_axis = per_axis || g.has(std::string(1, "xyz"[k]));
     if (per_axis) {
       read_grid_axes<D>(g, fluid->grid, r_max, periodic.periodic);
-    }
-    const auto origin = per_axis ? std::vector<double>() : g.numbers("origin", D);
-    const auto cells = per_axis ? std::vector<double>() : g.numbers("cells", D);
-    const auto size = per_axis ? std::vector<double>() : g.numbers("size", D);
-    for (int k = 0; k < D && !per_axis; ++k) {
-      fluid->grid.origin[k] = origin[k];
-      if (!(cells[k] >= 1.0) || cells[k] != std::floor(cells[k]) || cells[k] > 1e6)
-        g.fail("cells", "must be whole numbers of cells >= 1 along each axis");
-      fluid->grid.cells[k] = static_cast<int>(cells[k]);
-      g.check("size", size[k], is_positive, "> 0 m along each axis (the size of one cell)");
-      if (size[k] < 2.0 * r_max * (1.0 - 1e-12)) {
-        g.fail("size",
-               fmt::format("cells must be at least one grain diameter wide: {:.4g} m along {} is less "
-                           "than the largest diameter {:.4g} m",
-                           size[k], "xyz"[k], 2.0 * r_max));
-      }
-      fluid->grid.spacing[k] = size[k];
+    } else {
+      read_uniform_grid<D>(g, fluid->grid, r_max);
     }
     // Along a periodic axis the grid spans the period: its ends meet.
     for (int k = 0; k < D; ++k) {

@@ -36,12 +36,8 @@ SeepageColumnAnalysis<D>::SeepageColumnAnalysis(SeepageColumnSpec spec, const Sc
   const auto& g = scene.fluid->grid;
   base_ = g.origin[D - 1];
   top_ = g.upper()[D - 1];
-  if (g.any_graded()) {
-    area_ = 1.0;
-    for (int k = 0; k < D - 1; ++k) area_ *= g.length(k);
-  } else {
-    area_ = g.cell_volume() / g.spacing[D - 1] * g.size() / g.cells[D - 1];
-  }
+  area_ = 1.0;
+  for (int k = 0; k < D - 1; ++k) area_ *= g.length(k);
   for (double r : scene.simulation.particles.radius) solid_volume_ += particle_volume<D>(r);
 }
 
@@ -68,11 +64,9 @@ void SeepageColumnAnalysis<D>::stage_started(const Scene<D>& scene, const std::s
     std::vector<double> layer_kappa(static_cast<std::size_t>(layers), 0.0);
     // The cells of a layer side by side (in parallel): their mean kappa,
     // weighted by their areas.
-    const double per_layer = static_cast<double>(g.size() / static_cast<std::size_t>(layers));
     for (std::size_t c = 0; c < g.size(); ++c) {
       const auto cc = g.coords(c);
-      const double share = g.any_graded() ? g.face_area(D - 1, cc) / area_ : 1.0 / per_layer;
-      layer_kappa[cc[D - 1]] += f.permeability_field()[c][D - 1] * share;
+      layer_kappa[cc[D - 1]] += f.permeability_field()[c][D - 1] * g.face_area(D - 1, cc) / area_;
     }
     double resistance = 0.0;
     for (int j = 0; j < layers; ++j) resistance += g.width(D - 1, j) / layer_kappa[j];
@@ -116,7 +110,7 @@ void SeepageColumnAnalysis<D>::after_step(const Scene<D>& scene) {
     std::vector<double> weight(static_cast<std::size_t>(layers), 0.0);
     for (std::size_t c = 0; c < g.size(); ++c) {
       const auto cc = g.coords(c);
-      const double w = g.any_graded() ? g.face_area(D - 1, cc) : 1.0;
+      const double w = g.face_area(D - 1, cc);
       sum[cc[D - 1]] += w * f.pressure()[c];
       weight[cc[D - 1]] += w;
     }

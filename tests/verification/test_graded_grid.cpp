@@ -20,15 +20,10 @@ using namespace darcydem;
 namespace {
 
 /// Faces from `from` to `to` in `cells` cells whose widths grow by `q`
-/// from one cell to the next.
+/// from one cell to the next (FluidGrid's graded_faces takes the ratio of
+/// the last to the first).
 std::vector<double> geometric_faces(double from, double to, int cells, double q) {
-  std::vector<double> w(static_cast<std::size_t>(cells));
-  double total = 0.0;
-  for (int i = 0; i < cells; ++i) total += w[static_cast<std::size_t>(i)] = std::pow(q, i);
-  std::vector<double> f{from};
-  for (double x : w) f.push_back(f.back() + (to - from) * x / total);
-  f.back() = to;
-  return f;
+  return graded_faces(from, to, cells, std::pow(q, cells - 1));
 }
 
 /// A frozen packing of spheres in [0, 0.01]^2 x [0, 0.02] (as in

@@ -31,13 +31,7 @@ PoreFluid<3> layer_fluid(bool periodic, double q, PressureSolverKind solver, CgP
   f.grid.origin = Vec<3>::Zero();
   f.grid.spacing = Vec<3>::Constant(kCell);
   f.grid.cells = {kCells, kCells, 10};
-  if (graded) {
-    std::vector<double> faces{0.0};
-    for (int i = 0; i < 10; ++i)
-      faces.push_back(faces.back() + 0.02 * std::pow(1.1, i) * 0.1 / (std::pow(1.1, 10) - 1.0));
-    faces.back() = 0.02;
-    f.grid.set_faces(2, faces);
-  }
+  if (graded) f.grid.set_faces(2, graded_faces(0.0, 0.02, 10, std::pow(1.1, 9)));
   f.grid.periodic = {periodic, periodic, false};
   f.fluid = {1000.0, 1.0e-3, 1e5};
   f.drag = DragLaw::ergun;

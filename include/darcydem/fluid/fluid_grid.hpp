@@ -205,6 +205,23 @@ struct FluidGrid {
   }
 };
 
+/// Face coordinates of `cells` cells from `from` to `to` whose widths grow
+/// (or shrink) geometrically, the last cell `ratio` times as wide as the
+/// first: w_i = w_0 q^i, q = ratio^(1 / (cells - 1)). The ends are exact.
+inline std::vector<double> graded_faces(double from, double to, int cells, double ratio) {
+  const double q = cells > 1 ? std::pow(ratio, 1.0 / (cells - 1.0)) : 1.0;
+  double total = 0.0;
+  for (int i = 0; i < cells; ++i) total += std::pow(q, i);
+  std::vector<double> faces{from};
+  double sum = 0.0;
+  for (int i = 0; i < cells; ++i) {
+    sum += std::pow(q, i);
+    faces.push_back(from + (to - from) * sum / total);
+  }
+  faces.back() = to;
+  return faces;
+}
+
 /// The 2D faces of the grid's box: x_min, x_max, y_min, y_max, z_min, z_max.
 inline constexpr const char* side_names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
 
