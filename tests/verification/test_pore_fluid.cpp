@@ -19,18 +19,37 @@ namespace {
 
 constexpr double g = 9.80665;
 
-/// A 3D packing of fixed spheres in [0, 0.01]^2 x [0, 0.02] (random
-/// sequential addition, radii 0.4..0.5 mm), with a 5 x 5 x 10 grid of 2 mm
-/// cells, inflow q at the bottom and the top drained.
-PoreFluid<3> frozen_packing(ParticleData<3>& p, DragLaw drag, PermeabilityModel model, double q,
-                            PressureSolverKind solver = PressureSolverKind::cholesky,
-                            CgPreconditioner preconditioner = CgPreconditioner::jacobi) {
+/// Spheres of radii 0.4..0.5 mm (times `scale`) placed at random without
+/// overlap (random sequential addition) in [0, 0.01]^2 x [0, 0.02]: a loose
+/// packing, n about 0.77 on average and 0.6..0.9 from cell to cell; 1200
+/// grains (about 5 per 2 mm cell) at scale 1, 9600 (38 per cell) at 0.5.
+Packing<3> loose_random_packing(double scale = 1.0) {
   RadiusDistribution radii;
   radii.kind = RadiusDistribution::Kind::uniform;
-  radii.min = 0.0004;
-  radii.max = 0.0005;
-  const auto pk = random_packing<3>(Vec<3>::Zero(), Vec<3>(0.01, 0.01, 0.02), 1200, radii, 11, 2000);
-  for (std::size_t i = 0; i < pk.position.size(); ++i) p.add(pk.position[i], pk.radius[i], 2650.0, 0, true);
+  radii.min = 0.0004 * scale;
+  radii.max = 0.0005 * scale;
+  const auto count = static_cast<std::int64_t>(std::lround(1200.0 / (scale * scale * scale)));
+  return random_packing<3>(Vec<3>::Zero(), Vec<3>(0.01, 0.01, 0.02), count, radii, 11, 2000);
+}
+
+/// Equal spheres of 0.9 mm on a cubic lattice of 1 mm, in the same box:
+/// every 2 mm cell holds 8 whole grains, so n = 1 - pi 0.9^3 / 6 = 0.618
+/// in every cell.
+Packing<3> regular_lattice_packing() {
+  return lattice_packing<3>(Vec<3>::Zero(), Vec<3>(0.01, 0.01, 0.02), 0.001, 0.00045);
+}
+
+/// The packing's spheres fixed in place, with a 5 x 5 x 10 grid of 2 mm
+/// cells, inflow q at the bottom and the top drained; Kozeny-Carman with
+/// the mean diameter (the scene's default).
+PoreFluid<3> frozen_packing(ParticleData<3>& p, const Packing<3>& pk, DragLaw drag, PermeabilityModel model,
+                            double q, PressureSolverKind solver = PressureSolverKind::cholesky,
+                            CgPreconditioner preconditioner = CgPreconditioner::jacobi) {
+  double diameters = 0.0;
+  for (std::size_t i = 0; i < pk.position.size(); ++i) {
+    p.add(pk.position[i], pk.radius[i], 2650.0, 0, true);
+    diameters += 2.0 * pk.radius[i];
+  }
   PoreFluid<3> f(solver, 1e-12, preconditioner);
   f.grid.origin = Vec<3>::Zero();
   f.grid.spacing = Vec<3>::Constant(0.002);
@@ -39,7 +58,7 @@ PoreFluid<3> frozen_packing(ParticleData<3>& p, DragLaw drag, PermeabilityModel 
   f.drag = drag;
   f.permeability.model = model;
   f.permeability.intrinsic = Vec<3>::Constant(1e-10);
-  f.permeability.diameter = 0.0009;
+  f.permeability.diameter = diameters / static_cast<double>(pk.position.size());
   f.sides[4] = {FluidBoundaryType::flux, TimeSeries::constant(q)};
   f.sides[5] = {FluidBoundaryType::drained, TimeSeries::constant(0.0)};
   f.initialize(p);
@@ -48,29 +67,48 @@ PoreFluid<3> frozen_packing(ParticleData<3>& p, DragLaw drag, PermeabilityModel 
   return f;
 }
 
+PoreFluid<3> frozen_packing(ParticleData<3>& p, DragLaw drag, PermeabilityModel model, double q,
+                            PressureSolverKind solver = PressureSolverKind::cholesky,
+                            CgPreconditioner preconditioner = CgPreconditioner::jacobi) {
+  return frozen_packing(p, loose_random_packing(), drag, model, q, solver, preconditioner);
+}
+
 /// Excess pressure on the bottom face: cell value plus the half-cell drop
 /// that carries the imposed flux, summed times the face areas (N).
 double bottom_thrust(const PoreFluid<3>& f, double q) {
   return darcydem::testing::floor_thrust(f, q, [](int, int) { return true; });
 }
 
-void expect_force_balance(DragLaw drag, PermeabilityModel model, double q) {
+/// The fluid's force on the grains of a packing in steady upward flow q,
+/// against the excess pressure's thrust on the floor.
+struct ForceBalance {
+  double seepage_miss = 0.0;  ///< (seepage force - drop x area) / (drop x area)
+  double total_miss = 0.0;    ///< the same with buoyancy on both sides
+  double sideways = 0.0;      ///< |horizontal force| / (drop x area + buoyancy)
+};
+ForceBalance force_balance(const Packing<3>& pk, DragLaw drag, PermeabilityModel model, double q) {
   ParticleData<3> p;
-  const auto f = frozen_packing(p, drag, model, q);
+  const auto f = frozen_packing(p, pk, drag, model, q);
   const auto [total, solid] = darcydem::testing::fluid_force_on_grains(f, p, g);
   const double buoyancy = f.fluid.density * g * solid;
   const double thrust = bottom_thrust(f, q);
   const double expected = thrust + buoyancy;
+  const ForceBalance b{(total.z() - buoyancy - thrust) / thrust, (total.z() - expected) / expected,
+                       std::hypot(total.x(), total.y()) / expected};
   std::printf(
-      "force balance: %zu grains, seepage force %.6e N against pressure drop x area %.6e N (%.3f %%)\n",
-      p.size(), total.z() - buoyancy, thrust, 100.0 * (total.z() - buoyancy - thrust) / thrust);
-  // Issue 3: within 1 %. The sum over grains of V_p grad u / (1 - n) equals
-  // the integral of grad u only on average over each cell, hence not exact.
-  EXPECT_NEAR(total.z(), expected, 0.01 * expected);
-  // The seepage part alone (without the buoyancy, which is exact) too.
-  EXPECT_NEAR(total.z() - buoyancy, thrust, 0.01 * thrust);
-  // No net sideways force (no sideways flow), to the same relative accuracy.
-  EXPECT_LT(std::hypot(total.x(), total.y()), 0.01 * expected);
+      "force balance: %zu grains, seepage force %.6e N against pressure drop x area %.6e N (%+.3f %%)\n",
+      p.size(), total.z() - buoyancy, thrust, 100.0 * b.seepage_miss);
+  return b;
+}
+
+/// Issue 3: the force on the grains is the drop times the area plus the
+/// buoyancy within 1 %, the seepage part alone too, and no net sideways
+/// force (no sideways flow) to the same relative accuracy.
+void expect_force_balance(const Packing<3>& pk, DragLaw drag, PermeabilityModel model, double q) {
+  const auto b = force_balance(pk, drag, model, q);
+  EXPECT_LT(std::abs(b.total_miss), 0.01);
+  EXPECT_LT(std::abs(b.seepage_miss), 0.01);
+  EXPECT_LT(b.sideways, 0.01);
 }
 
 }  // namespace
@@ -155,14 +193,65 @@ TEST(PoreFluid, MultigridConjugateGradientsAgreeWithCholesky) {
   expect_cg_agrees_with_cholesky(CgPreconditioner::multigrid);
 }
 
+// The sum over grains of V_p grad u / (1 - n) equals the integral of
+// grad u only on average over each cell: each grain takes the values of the
+// cell that holds its centre, though its volume is shared among cells.
+
 TEST(PoreFluid, ForceBalanceDarcyDrag) {
-  expect_force_balance(DragLaw::darcy, PermeabilityModel::constant, 1e-3);
+  // Constant k: measured -0.75 % with 5 grains per cell.
+  expect_force_balance(loose_random_packing(), DragLaw::darcy, PermeabilityModel::constant, 1e-3);
+}
+
+TEST(PoreFluid, ForceBalanceDarcyDragWithKozenyCarman) {
+  // With Kozeny-Carman each cell has its own k, and the drag of a grain
+  // goes as 1/((1 - n) k), a convex function of the cell's solid: cells
+  // holding more centres than their share of solid weigh too much. With 5
+  // grains per cell the sum is +3.0 % over the balance; with 38 per cell
+  // (the same box, grains of half the size) +0.34 %, within issue 3's 1 %.
+  const auto coarse =
+      force_balance(loose_random_packing(1.0), DragLaw::darcy, PermeabilityModel::kozeny_carman, 1e-3);
+  EXPECT_GT(coarse.seepage_miss, 0.0);
+  EXPECT_LT(coarse.seepage_miss, 0.05);
+  expect_force_balance(loose_random_packing(0.5), DragLaw::darcy, PermeabilityModel::kozeny_carman, 1e-3);
 }
 
 TEST(PoreFluid, ForceBalanceErgunWithKozenyCarman) {
   // Ergun's viscous term and Kozeny-Carman share the constant 150, so they
-  // balance; q = 1e-5 m/s keeps Ergun's inertial term (1.75 Re) below 1e-3.
-  expect_force_balance(DragLaw::ergun, PermeabilityModel::kozeny_carman, 1e-5);
+  // balance for equal grains in cells of one porosity. What remains is
+  // hand-derived: in each cell the grains take (1 - n) of the seepage force
+  // from the gradient and n from the drag, and the drag is beta / beta_KC
+  // times the balancing one, beta_KC = 150 mu (1-n)^2 / (n d^2) and beta
+  // Ergun's with its inertial term (1.75 Re, 3e-4 here at q = 1e-5 m/s)
+  // blended into Wen-Yu's (weight 1 - phi = 0.7 % at n = 0.618). Expected
+  // n (beta / beta_KC - 1) = -0.11 %; to 1e-5: the lattice fills its cells
+  // exactly, so only the solver's round-off remains.
+  const double q = 1e-5;
+  const auto b =
+      force_balance(regular_lattice_packing(), DragLaw::ergun, PermeabilityModel::kozeny_carman, q);
+  const FluidProperties water{1000.0, 1.0e-3, 2e9};
+  const double d = 0.0009;
+  const double n = 1.0 - std::numbers::pi * d * d * d / 6.0 / 1e-9;
+  const double beta_kc = 150.0 * water.viscosity * (1.0 - n) * (1.0 - n) / (n * d * d);
+  const double expected = n * (ergun_wen_yu_beta(n, d, q / n, water) / beta_kc - 1.0);
+  std::printf("expected from the laws: %+.4f %%\n", 100.0 * expected);
+  EXPECT_NEAR(b.seepage_miss, expected, 1e-5);
+  // So also within issue 3's 1 %, with the buoyancy and sideways.
+  EXPECT_LT(std::abs(b.total_miss), 0.01);
+  EXPECT_LT(b.sideways, 0.01);
+}
+
+TEST(PoreFluid, ErgunWithKozenyCarmanOnGradedGrainsAndLooseCells) {
+  // Where the premises fail, the balance is off by about 1 %, measured on
+  // the loose random packing with 38 grains per cell: Ergun takes each
+  // grain's own d (drag ~ sum V_p / d^2 ~ sum d), Kozeny-Carman the mean
+  // diameter (~ sum d^3 / d_mean^2), 1.2 % more for radii uniform in
+  // 0.2..0.25 mm; and cells above n = 0.8 blend into Wen-Yu. Measured
+  // -1.5 %; bound 3 %, and it must be below the balance (the first effect).
+  // With 5 grains per cell the centres' +3 % (above) cancels it to +0.7 %.
+  const auto b =
+      force_balance(loose_random_packing(0.5), DragLaw::ergun, PermeabilityModel::kozeny_carman, 1e-5);
+  EXPECT_LT(b.seepage_miss, 0.0);
+  EXPECT_GT(b.seepage_miss, -0.03);
 }
 
 TEST(PoreFluid, UserPermeabilityWithErgunBreaksTheBalance) {
