@@ -26,6 +26,8 @@
 //                                   volumes, their velocities, face sections)
 //   BM_GrainForces/cells/threads    the fluid's force on every grain alone
 //                                   (PoreFluid::particle_forces, Ergun drag)
+//   BM_OverlapsGraded/cells, BM_GrainForcesGraded/cells/threads
+//                                   the same two on the grid graded along z
 //
 // The grid covers the packing's base and is as tall as needed for the cell
 // count (fluid above the bed), with cells at least one grain wide.
@@ -213,10 +215,10 @@ void BM_PressureSolve(benchmark::State& state) {
   state.counters["solver_iterations"] = static_cast<double>(iterations) / steps;
 }
 
-void BM_Overlaps(benchmark::State& state) {
+void overlaps(benchmark::State& state, bool graded) {
   omp_set_num_threads(1);
   static auto sim = bench::make_packing(kGrains, 0);
-  auto fluid = make_fluid(sim, state.range(0), 1);
+  auto fluid = make_fluid(sim, state.range(0), 1, graded);
   const auto& grid = fluid->grid;
   const auto& p = sim.particles;
   std::vector<double> solid(grid.size());
@@ -240,10 +242,13 @@ void BM_Overlaps(benchmark::State& state) {
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-void BM_GrainForces(benchmark::State& state) {
+void BM_Overlaps(benchmark::State& state) { overlaps(state, false); }
+void BM_OverlapsGraded(benchmark::State& state) { overlaps(state, true); }
+
+void grain_forces(benchmark::State& state, bool graded) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
   static auto sim = bench::make_packing(kGrains, 0);
-  auto fluid = make_fluid(sim, state.range(0), 1);
+  auto fluid = make_fluid(sim, state.range(0), 1, graded);
   // A flow through the bed, so that gradients and drag are not zero.
   fluid->update(sim.particles, 1e-3, 1e-3);
   std::vector<Vec<3>> force(sim.particles.size());
@@ -255,6 +260,9 @@ void BM_GrainForces(benchmark::State& state) {
       1e-9 * static_cast<double>(sim.particles.size()) * static_cast<double>(state.iterations()),
       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
+
+void BM_GrainForces(benchmark::State& state) { grain_forces(state, false); }
+void BM_GrainForcesGraded(benchmark::State& state) { grain_forces(state, true); }
 
 BENCHMARK(BM_DemStep)
     ->Args({kGrains, 1})
@@ -292,6 +300,12 @@ BENCHMARK(BM_Overlaps)->Arg(10'000)->Unit(benchmark::kMillisecond)->MinTime(1.0)
 BENCHMARK(BM_GrainForces)
     ->Args({10'000, 1})
     ->Args({10'000, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->UseRealTime();
+BENCHMARK(BM_OverlapsGraded)->Arg(10'000)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK(BM_GrainForcesGraded)
+    ->Args({10'000, 1})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0)
     ->UseRealTime();

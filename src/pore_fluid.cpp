@@ -88,6 +88,15 @@ void PoreFluid<D>::build_geometry() {
     face_area_[k].clear();
     face_inv_distance_[k].clear();
     face_weight_[k].clear();
+    layer_centre_[k].clear();
+    layer_inv_width_[k].clear();
+    layer_inv_gap_[k].clear();
+    if (!grid.graded(k)) continue;
+    for (int i = 0; i < grid.cells[k]; ++i) {
+      layer_centre_[k].push_back(grid.centre_at(k, i));
+      layer_inv_width_[k].push_back(1.0 / grid.width(k, i));
+      if (i > 0) layer_inv_gap_[k].push_back(1.0 / (layer_centre_[k][i] - layer_centre_[k][i - 1]));
+    }
   }
   if (!grid.any_graded()) {
     uniform_volume_ = grid.cell_volume();
@@ -916,12 +925,11 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
     for (int k = 0; k < D; ++k) {
       const double cells = grid.cells[k];
       if (grid.graded(k)) {
-        // A graded axis: each grain's layer by a search of the faces, the
+        // A graded axis: each grain's layer from the faces' bins, the
         // fraction between the cell centres along x.
         for (std::int64_t j = 0; j < n; ++j) {
-          s[k][j] = grid.cell_units(k, p.position[begin + j][k]);
-          stencil_axis_any(k, s[k][j], face_cell[k][j], face_frac[k][j], centre_cell[k][j],
-                           centre_frac[k][j]);
+          s[k][j] = stencil_graded(k, p.position[begin + j][k], face_cell[k][j], face_frac[k][j],
+                                   centre_cell[k][j], centre_frac[k][j]);
           const bool in = s[k][j] >= 0.0 && s[k][j] < cells;
           inside[j] = (k == 0 || inside[j] > 0.0) && in ? 1.0 : 0.0;
         }

@@ -5,6 +5,7 @@
 // Terzaghi's consolidation, the exact grain/cell overlaps and the balance.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -83,6 +84,42 @@ TEST(GradedGrid, GeometryOfTheCells) {
   EXPECT_DOUBLE_EQ(g.cell_units(0, 0.0015), 0.5);
   EXPECT_DOUBLE_EQ(g.cell_units(0, 0.0), -1.0);
   EXPECT_DOUBLE_EQ(g.cell_units(0, 0.010), 3.5);
+}
+
+TEST(GradedGrid, TheCellOfACoordinateIsTheOneWhoseFacesEncloseIt) {
+  // cell_along looks the cell up by equal bins (FluidGrid::bin_cell), not
+  // by a search of the faces. By definition the cell i of x has
+  // face i <= x < face i+1: checked against the search itself on every
+  // face, just either side of it, and at random points, for a mild
+  // grading (40 cells, ratio 3), a steep one whose narrowest cell needs
+  // more bins than the table holds (200 cells, ratio 1e6: the cells
+  // below a bin's start are walked), and faces given by hand.
+  auto search = [](const std::vector<double>& f, double x) {
+    if (!(x >= f.front())) return -1;
+    return static_cast<int>(std::upper_bound(f.begin(), f.end(), x) - f.begin()) - 1;
+  };
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (const auto& faces : {graded_faces(-0.1, 0.3, 40, 3.0), graded_faces(0.0, 1.0, 200, 1e6),
+                            std::vector<double>{0.001, 0.0011, 0.004, 0.0041, 0.02}}) {
+    FluidGrid<3> g;
+    g.cells = {1, 1, 1};
+    g.set_faces(0, faces);
+    const int n = g.cells[0];
+    std::vector<double> xs;
+    for (double f : faces) {
+      xs.push_back(f);
+      xs.push_back(std::nextafter(f, -1e9));
+      xs.push_back(std::nextafter(f, 1e9));
+    }
+    const double lo = faces.front();
+    const double span = faces.back() - lo;
+    for (int i = 0; i < 20000; ++i) xs.push_back(lo + span * (1.2 * unit(rng) - 0.1));
+    for (double x : xs) {
+      const int expected = std::min(search(faces, x), n);
+      ASSERT_EQ(g.cell_along(0, x), expected) << "x = " << x << " on " << n << " cells";
+    }
+  }
 }
 
 TEST(GradedGrid, SteadyFlowThroughLayersInSeries) {

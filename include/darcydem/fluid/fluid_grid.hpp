@@ -30,6 +30,14 @@ struct FluidGrid {
   /// code that takes one size for the axis fails loudly). Empty: the axis
   /// is uniform, face i at origin[k] + i spacing[k].
   std::array<std::vector<double>, D> faces{};
+  /// Per graded axis, where to start looking for the cell of a coordinate
+  /// (cell_along): the axis cut into equal bins, as many as fit the
+  /// narrowest cell (up to max_bins), each holding the cell that contains
+  /// its start. A coordinate's cell is then its bin's or, when a bin is
+  /// no wider than every cell, the next one: one comparison, not a search.
+  std::array<std::vector<int>, D> bin_cell{};
+  std::array<double, D> bins_per_metre{};
+  static constexpr std::size_t max_bins = std::size_t{1} << 16;
 
   /// Makes axis k graded with faces at `at` (at least two, increasing).
   void set_faces(int k, std::vector<double> at) {
@@ -37,6 +45,17 @@ struct FluidGrid {
     cells[k] = static_cast<int>(at.size()) - 1;
     spacing[k] = std::numeric_limits<double>::quiet_NaN();
     faces[k] = std::move(at);
+    const double span = faces[k].back() - faces[k].front();
+    const auto bins = static_cast<std::size_t>(std::clamp(
+        std::ceil(span / min_width(k)), static_cast<double>(cells[k]), static_cast<double>(max_bins)));
+    bins_per_metre[k] = static_cast<double>(bins) / span;
+    bin_cell[k].resize(bins);
+    int i = 0;
+    for (std::size_t b = 0; b < bins; ++b) {
+      const double start = faces[k].front() + static_cast<double>(b) / bins_per_metre[k];
+      while (i + 1 < cells[k] && faces[k][static_cast<std::size_t>(i) + 1] <= start) ++i;
+      bin_cell[k][b] = i;
+    }
   }
   [[nodiscard]] bool graded(int k) const { return !faces[k].empty(); }
   [[nodiscard]] bool any_graded() const {
@@ -119,9 +138,19 @@ struct FluidGrid {
   /// NaN position is -1).
   [[nodiscard]] int cell_along(int axis, double x) const {
     if (graded(axis)) {
-      if (!(x == x)) return -1;
       const auto& f = faces[axis];
-      return static_cast<int>(std::upper_bound(f.begin(), f.end(), x) - f.begin()) - 1;
+      if (!(x >= f.front())) return -1;  // below, or NaN
+      if (x >= f.back()) return cells[axis];
+      const auto& bin = bin_cell[axis];
+      const auto b =
+          std::min(static_cast<std::size_t>((x - f.front()) * bins_per_metre[axis]), bin.size() - 1);
+      // From the bin's cell, up past the faces at or below x (one at most
+      // unless the bins were capped), and down should rounding have put x
+      // in the bin after its own.
+      auto i = static_cast<std::size_t>(bin[b]);
+      while (f[i + 1] <= x) ++i;
+      while (x < f[i]) --i;
+      return static_cast<int>(i);
     }
     const double s = std::floor((x - origin[axis]) / spacing[axis]);
     return static_cast<int>(std::clamp(s, -1.0, static_cast<double>(cells[axis])));

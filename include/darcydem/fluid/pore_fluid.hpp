@@ -283,6 +283,21 @@ class PoreFluid final : public ParticleForceField<D> {
     const double hi = grid.centre_at(k, centre_cell + 1);
     centre_frac = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
   }
+  /// stencil_axis_any for coordinate x on graded axis k, from the layers'
+  /// centres, inverse widths and inverse gaps between centres
+  /// (build_geometry); returns x in cell units (FluidGrid::cell_units).
+  double stencil_graded(int k, double x, int& face_cell, double& face_frac, int& centre_cell,
+                        double& centre_frac) const {
+    const int last = grid.cells[k] - 1;
+    const auto i = static_cast<std::size_t>(std::clamp(grid.cell_along(k, x), 0, last));
+    const double s = static_cast<double>(i) + (x - grid.faces[k][i]) * layer_inv_width_[k][i];
+    stencil_axis(k, s, face_cell, face_frac, centre_cell, centre_frac);
+    if (last > 0 && s == s) {
+      const auto c = static_cast<std::size_t>(centre_cell);
+      centre_frac = std::clamp((x - layer_centre_[k][c]) * layer_inv_gap_[k][c], 0.0, 1.0);
+    }
+    return s;
+  }
   /// Index in the face arrays of axis A of the stencil's lower corner for
   /// component A: the face below the holding cell along A, the lower cell
   /// centre along the others.
@@ -299,8 +314,8 @@ class PoreFluid final : public ParticleForceField<D> {
   /// each axis, the pair as one vector (GCC/Clang vector extension): one
   /// load and one multiply-add per lerp for both.
   template <int A>
-  [[nodiscard]] std::array<double, 2> interpolate_component(std::size_t base,
-                                                            const std::array<double, D>& fr) const {
+  [[nodiscard, gnu::always_inline]] std::array<double, 2> interpolate_component(
+      std::size_t base, const std::array<double, D>& fr) const {
     using Pair = double __attribute__((vector_size(16)));
     const std::array<double, 2>* g = face_gq_[A].data() + base;
     auto load = [&](std::size_t at) {
@@ -462,6 +477,9 @@ class PoreFluid final : public ParticleForceField<D> {
   double uniform_volume_ = 1.0;          ///< the cells' volume without graded axes
   std::vector<double> volume_;           ///< per cell, with graded axes (build_geometry)
   std::array<std::vector<double>, D> face_area_, face_inv_distance_, face_weight_;  ///< (build_geometry)
+  /// Per graded axis, per layer of cells: the centre's coordinate, 1/width
+  /// and 1/(distance to the next centre) (build_geometry, stencil_graded).
+  std::array<std::vector<double>, D> layer_centre_, layer_inv_width_, layer_inv_gap_;
   std::array<std::vector<double>, D> solid_face_flux_;  ///< m^3/s of solid through each face
   std::vector<Face> faces_;
   /// A face across a periodic end of the grid: between the cell `low` on
