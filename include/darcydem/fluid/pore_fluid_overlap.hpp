@@ -242,7 +242,7 @@ inline std::array<double, N> lane_of(const std::array<Lanes, N>& v, int l) {
 
 /// The cuts along a graded axis k (FluidGrid::faces, not periodic) of the
 /// grains [start, start + n): as the uniform axes' loop in for_each_overlap,
-/// with the home cell found by a search of the faces; beyond the grid's
+/// with the home cell from FluidGrid::cell_along; beyond the grid's
 /// ends the home cell (-1 or cells) is as wide as the end cell.
 template <int D>
 void cut_graded_axis(const FluidGrid<D>& grid, int k, const ParticleData<D>& p, std::size_t start,
