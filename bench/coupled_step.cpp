@@ -28,6 +28,8 @@
 //                                   (PoreFluid::particle_forces, Ergun drag)
 //   BM_OverlapsGraded/cells, BM_GrainForcesGraded/cells/threads
 //                                   the same two on the grid graded along z
+//   BM_GrainForcesOverlaps/cells/threads
+//                                   BM_GrainForces with drag_cells = overlaps
 //
 // The grid covers the packing's base and is as tall as needed for the cell
 // count (fluid above the bed), with cells at least one grain wide.
@@ -245,10 +247,11 @@ void overlaps(benchmark::State& state, bool graded) {
 void BM_Overlaps(benchmark::State& state) { overlaps(state, false); }
 void BM_OverlapsGraded(benchmark::State& state) { overlaps(state, true); }
 
-void grain_forces(benchmark::State& state, bool graded) {
+void grain_forces(benchmark::State& state, bool graded, bool overlaps = false) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
   static auto sim = bench::make_packing(kGrains, 0);
   auto fluid = make_fluid(sim, state.range(0), 1, graded);
+  if (overlaps) fluid->drag_cells = darcydem::DragCells::overlaps;
   // A flow through the bed, so that gradients and drag are not zero.
   fluid->update(sim.particles, 1e-3, 1e-3);
   std::vector<Vec<3>> force(sim.particles.size());
@@ -263,6 +266,7 @@ void grain_forces(benchmark::State& state, bool graded) {
 
 void BM_GrainForces(benchmark::State& state) { grain_forces(state, false); }
 void BM_GrainForcesGraded(benchmark::State& state) { grain_forces(state, true); }
+void BM_GrainForcesOverlaps(benchmark::State& state) { grain_forces(state, false, true); }
 
 BENCHMARK(BM_DemStep)
     ->Args({kGrains, 1})
@@ -306,6 +310,12 @@ BENCHMARK(BM_GrainForces)
 BENCHMARK(BM_OverlapsGraded)->Arg(10'000)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
 BENCHMARK(BM_GrainForcesGraded)
     ->Args({10'000, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->UseRealTime();
+BENCHMARK(BM_GrainForcesOverlaps)
+    ->Args({10'000, 1})
+    ->Args({10'000, 2})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0)
     ->UseRealTime();

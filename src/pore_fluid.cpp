@@ -913,7 +913,7 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
   const bool periodic = grid.any_periodic();
   // Ergun/Wen-Yu or the Darcy law: each compiled on its own, so that a
   // grain does only its law's work.
-  auto run = [&]<bool Ergun>(std::int64_t b) {
+  auto run = [&]<bool Ergun, bool Spread>(std::int64_t b) {
     const std::int64_t begin = b * chunk;
     const std::int64_t n = std::min(count, begin + chunk) - begin;
     std::array<std::array<double, chunk>, D> s;
@@ -978,13 +978,21 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
       std::array<double, D> wrapped_grad{};
       std::array<double, D> wrapped_flux{};
       bool wrap = false;
-      if (periodic) {
+      if (periodic && !Spread) {
         std::array<double, D> sj{};
         for (int k = 0; k < D; ++k) sj[k] = s[k][j];
         wrap = near_periodic_end(sj);
         if (wrap) interpolate_wrapped(sj, wrapped_grad, wrapped_flux);
       }
       auto component = [&]<int A>() {
+        if constexpr (Spread) {
+          // The means over the cells the grain overlaps (spread_drag).
+          const GrainDrag& gd = grain_drag_[static_cast<std::size_t>(i)];
+          grad[A][j] = gd.grad[A];
+          slip[A][j] = gd.fluid_velocity[A] - p.velocity[i][A];
+          if constexpr (!Ergun) darcy[A][j] = gd.law[A];
+          return;
+        }
         std::array<double, D> fr{};
         for (int k = 0; k < D; ++k) fr[k] = k == A ? face_frac[k][j] : centre_frac[k][j];
         const auto v = wrap ? std::array<double, 2>{wrapped_grad[A], wrapped_flux[A]}
@@ -997,10 +1005,11 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
       component.template operator()<1>();
       if constexpr (D == 3) component.template operator()<2>();
       if constexpr (Ergun) {
-        viscous[j] = cd.law[0];
-        inertial[j] = cd.law[1];
-        wen_yu[j] = cd.law[2];
-        re[j] = cd.law[3];
+        const auto& law = Spread ? grain_drag_[static_cast<std::size_t>(i)].law : cd.law;
+        viscous[j] = law[0];
+        inertial[j] = law[1];
+        wen_yu[j] = law[2];
+        re[j] = law[3];
       }
     }
     // Slip speed and Re.
@@ -1065,21 +1074,83 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
     }
   };
   const std::int64_t chunks = (count + chunk - 1) / chunk;
-  auto run_all = [&]<bool Ergun>() {
+  auto run_all = [&]<bool Ergun, bool Spread>() {
     if (count > parallel_threshold) {
 #pragma omp parallel for schedule(static)
-      for (std::int64_t b = 0; b < chunks; ++b) run.template operator()<Ergun>(b);
+      for (std::int64_t b = 0; b < chunks; ++b) run.template operator()<Ergun, Spread>(b);
     } else {
-      for (std::int64_t b = 0; b < chunks; ++b) run.template operator()<Ergun>(b);
+      for (std::int64_t b = 0; b < chunks; ++b) run.template operator()<Ergun, Spread>(b);
     }
   };
-  if (drag == DragLaw::ergun) {
-    run_all.template operator()<true>();
+  const bool ergun = drag == DragLaw::ergun;
+  if (drag_cells == DragCells::overlaps) {
+    spread_drag(p);
+    if (ergun) {
+      run_all.template operator()<true, true>();
+    } else {
+      run_all.template operator()<false, true>();
+    }
+  } else if (ergun) {
+    run_all.template operator()<true, false>();
   } else {
-    run_all.template operator()<false>();
+    run_all.template operator()<false, false>();
   }
   held_ = {&force, p.size(), gravity};
   force_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
+template <int D>
+void PoreFluid<D>::spread_drag(const ParticleData<D>& p) const {
+  // Per cell: the mean gradient -mu qbar / kappa and the fluid velocity
+  // v_s + qbar / n (qbar: darcy_velocity).
+  const std::vector<Vec<D>> qbar = darcy_velocity();
+  std::vector<std::array<double, 2 * D>> cell(grid.size());
+  for (std::size_t c = 0; c < grid.size(); ++c) {
+    for (int k = 0; k < D; ++k) {
+      cell[c][k] = -fluid.viscosity * qbar[c][k] / kappa_[c][k];
+      cell[c][D + k] = cell_drag_[c].solid_velocity[k] + qbar[c][k] * cell_drag_[c].inv_n;
+    }
+  }
+  // Grains in blocks in parallel; each grain's sums are its own, so the
+  // result does not depend on the number of threads.
+  const std::size_t count = p.size();
+  grain_drag_.assign(count, GrainDrag{});
+  const bool ergun = drag == DragLaw::ergun;
+  const std::size_t blocks = std::clamp<std::size_t>(count / 25'000, 1, 8);
+  auto block = [&](std::size_t b) {
+    for_each_overlap(
+        p, count * b / blocks, count * (b + 1) / blocks,
+        [&](std::size_t c, std::size_t i, double v) {
+          const CellDrag& cd = cell_drag_[c];
+          GrainDrag& gd = grain_drag_[i];
+          gd.volume += v;
+          for (int m = 0; m < 4; ++m) gd.law[m] += v * cd.law[m];
+          for (int k = 0; k < D; ++k) {
+            gd.grad[k] += v * cell[c][k];
+            const double w = ergun ? v : v * cd.law[k];
+            gd.weight[k] += w;
+            gd.fluid_velocity[k] += w * cell[c][D + k];
+          }
+        },
+        [](int, std::size_t, std::size_t, double) {}, false);
+  };
+  const auto nb = static_cast<std::int64_t>(blocks);
+#pragma omp parallel for schedule(static) if (blocks > 1)
+  for (std::int64_t b = 0; b < nb; ++b) block(static_cast<std::size_t>(b));
+  // Sums to means; a grain outside the grid keeps zeros (its force is not
+  // the grid's).
+#pragma omp parallel for schedule(static) if (count > static_cast<std::size_t>(parallel_threshold))
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i) {
+    GrainDrag& gd = grain_drag_[static_cast<std::size_t>(i)];
+    if (gd.volume > 0.0) {
+      const double inv = 1.0 / gd.volume;
+      for (double& x : gd.law) x *= inv;
+      for (double& x : gd.grad) x *= inv;
+    }
+    for (int k = 0; k < D; ++k) {
+      if (gd.weight[k] > 0.0) gd.fluid_velocity[k] /= gd.weight[k];
+    }
+  }
 }
 
 template <int D>

@@ -447,6 +447,8 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   fluid->fluid.bulk_modulus = r.check("bulk_modulus", r.number("bulk_modulus"), is_positive, "> 0 Pa");
   const std::string drag = r.choice("drag", {"darcy", "ergun"});
   fluid->drag = drag == "ergun" ? DragLaw::ergun : DragLaw::darcy;
+  if (r.optional_choice("drag_cells", {"centre", "overlaps"}) == "overlaps")
+    fluid->drag_cells = DragCells::overlaps;
   if (r.has("steps_per_update")) fluid->steps_per_update = read_steps_per_update(r);
   fluid->hold_forces = r.boolean_or("hold_forces", false);
   if (const auto level = r.optional_number("water_level")) {

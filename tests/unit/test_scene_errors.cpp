@@ -294,6 +294,25 @@ TEST(SceneErrors, FluidUnknownKeySuggestsTheNearOne) {
   EXPECT_NE(msg.find("Did you mean 'viscosity'?"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, FluidDragCellsAreChecked) {
+  const std::string good =
+      replace(with_fluid(), "drag = \"darcy\"", "drag = \"darcy\"\ndrag_cells = \"overlaps\"");
+  EXPECT_EQ(load_error(good), "");
+  const std::string bad = replace(good, "\"overlaps\"", "\"overlap\"");
+  const auto line =
+      1 + std::count(bad.begin(), bad.begin() + static_cast<std::ptrdiff_t>(bad.find("drag_cells")), '\n');
+  const auto msg = load_error(bad);
+  std::string at = ":";
+  at += std::to_string(line);
+  at += ':';
+  EXPECT_NE(msg.find(at), std::string::npos) << msg;
+  EXPECT_NE(
+      msg.find("[fluid] key 'drag_cells': \"overlap\" is not allowed; one of \"centre\", \"overlaps\" (did "
+               "you mean \"overlaps\"?)"),
+      std::string::npos)
+      << msg;
+}
+
 TEST(SceneErrors, FluidCellsNarrowerThanAGrainAreRefused) {
   const auto msg = load_error(replace(with_fluid(), "size = [0.001, 0.002]", "size = [0.0005, 0.002]"));
   EXPECT_NE(msg.find("[fluid.grid]"), std::string::npos) << msg;

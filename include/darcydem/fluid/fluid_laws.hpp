@@ -42,6 +42,13 @@ enum class DragLaw {
   ergun,  ///< Ergun (n < 0.8) blended into Wen-Yu (n > 0.8)
 };
 
+/// Which cells a grain's drag takes its porosity, permeability and solid
+/// velocity from.
+enum class DragCells {
+  centre,    ///< the cell that holds the grain's centre (the paper, PFC)
+  overlaps,  ///< every cell the grain overlaps, weighted by the overlap volumes
+};
+
 /// Ergun's beta (the paper's Eq. 9): 150 mu (1-n)^2 / (d^2 n) + 1.75 rho_f (1-n) |slip| / d.
 inline double ergun_beta(double n, double d, double slip, const FluidProperties& f) {
   return 150.0 * f.viscosity * (1.0 - n) * (1.0 - n) / (d * d * n) + 1.75 * f.density * (1.0 - n) * slip / d;

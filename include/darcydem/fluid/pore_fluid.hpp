@@ -63,6 +63,12 @@ class PoreFluid final : public ParticleForceField<D> {
   FluidProperties fluid;
   PermeabilitySpec<D> permeability;
   DragLaw drag = DragLaw::darcy;
+  /// centre: each grain's drag from the cell holding its centre; overlaps:
+  /// from every cell it overlaps, weighted by the overlap volumes, so that
+  /// the drag summed over a cell's grains is what its porosity and
+  /// permeability give (exact force balance with few grains per cell), at
+  /// the cost of an overlap computation in every force evaluation.
+  DragCells drag_cells = DragCells::centre;
   int steps_per_update = 1;  ///< DEM steps per fluid step
   /// Hold each grain's fluid force from the first DEM step after a fluid
   /// step until the next fluid step (the coupling interval of PFC's and
@@ -530,6 +536,25 @@ class PoreFluid final : public ParticleForceField<D> {
     Vec<D> gravity = Vec<D>::Zero();
   };
   mutable HeldForces held_;
+  /// With drag_cells = overlaps, per grain, the means over the cells it
+  /// overlaps weighted by the overlap volumes (spread_drag): the cells'
+  /// drag coefficients (CellDrag::law), their mean excess-pressure gradient
+  /// -mu qbar / kappa (qbar the mean of a cell's two face fluxes along each
+  /// axis: the gradient of the half-cell reconstruction that the two-point
+  /// fluxes imply, so summed over the cells it telescopes to the pressure
+  /// on the grid's faces), and their fluid velocity v_s + qbar / n, weighted
+  /// by the volumes times the coefficient of that axis (Darcy: then law x
+  /// (fluid_velocity - v) is the weighted sum of the cells' drags) or by
+  /// the volumes (Ergun). Scratch for particle_forces.
+  struct GrainDrag {
+    std::array<double, 4> law{};
+    std::array<double, D> grad{};
+    std::array<double, D> fluid_velocity{};
+    std::array<double, D> weight{};  ///< the fluid velocity's weights, summed
+    double volume = 0.0;             ///< the grain's volume in the grid
+  };
+  mutable std::vector<GrainDrag> grain_drag_;
+  void spread_drag(const ParticleData<D>& p) const;
   FluidBalance last_, total_;
   std::uint64_t updates_ = 0;
   double time_ = 0.0;
