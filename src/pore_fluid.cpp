@@ -1139,7 +1139,8 @@ void PoreFluid<D>::spread_drag(const ParticleData<D>& p) const {
   for (std::int64_t b = 0; b < nb; ++b) block(static_cast<std::size_t>(b));
   // Sums to means; a grain outside the grid keeps zeros (its force is not
   // the grid's).
-#pragma omp parallel for schedule(static) if (count > static_cast<std::size_t>(parallel_threshold))
+  const bool parallel = static_cast<std::int64_t>(count) > parallel_threshold;
+#pragma omp parallel for schedule(static) if (parallel)
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i) {
     GrainDrag& gd = grain_drag_[static_cast<std::size_t>(i)];
     if (gd.volume > 0.0) {
