@@ -135,6 +135,18 @@ void expect_shifted_layer_shifts_every_field(bool graded) {
   }
   EXPECT_GT(near_end, 50U) << "grains within half a cell of an end must be exercised";
   EXPECT_LT(worst_f, 1e-9 * largest_f);
+  // With each grain's force spread over the cells it overlaps
+  // (drag_cells = overlaps), whose overlaps wrap across the ends: the same.
+  auto sa = stepped(a, true, PressureSolverKind::cholesky, CgPreconditioner::jacobi, graded);
+  auto sb = stepped(b, true, PressureSolverKind::cholesky, CgPreconditioner::jacobi, graded);
+  sa.drag_cells = DragCells::overlaps;
+  sb.drag_cells = DragCells::overlaps;
+  sa.particle_forces(a.after, Vec<3>(0, 0, -kGravity), force_a);
+  sb.particle_forces(b.after, Vec<3>(0, 0, -kGravity), force_b);
+  double worst_spread = 0.0;
+  for (std::size_t i = 0; i < force_a.size(); ++i)
+    worst_spread = std::max(worst_spread, (force_a[i] - force_b[i]).norm());
+  EXPECT_LT(worst_spread, 1e-9 * largest_f);
   std::printf(
       "periodic layer shifted by (2, 1) cells: solid %.2e of a cell, pressure %.2e, flux %.2e, force %.2e of "
       "the "
@@ -225,6 +237,28 @@ TEST(PeriodicFluid, SeepageForceOfAnEndlessLayerBalancesTheBottomPressure) {
       std::hypot(total.x(), total.y()) / thrust);
   EXPECT_NEAR(seepage, thrust, 0.01 * thrust);
   EXPECT_LT(std::hypot(total.x(), total.y()), 1e-6 * thrust);
+  // Kozeny-Carman and each grain's force spread over the cells it overlaps
+  // (drag_cells = overlaps, wrapping across the ends): the cells' sums
+  // telescope to the floor's pressure, to round-off (1e-9).
+  f.permeability.model = PermeabilityModel::kozeny_carman;
+  f.permeability.diameter = 0.0009;
+  f.drag_cells = DragCells::overlaps;
+  f.initialize(a.before);
+  f.update(a.before, 1000.0, 1000.0);
+  f.particle_forces(a.before, Vec<3>(0, 0, -kGravity), force);
+  double spread = -buoyancy;
+  for (const auto& x : force) spread += x.z();
+  double floor = 0.0;
+  for (int i = 0; i < kCells; ++i) {
+    for (int j = 0; j < kCells; ++j) {
+      const std::size_t c = f.grid.index({i, j, 0});
+      const double kappa = f.permeability_field()[c][2];
+      floor += (f.pressure()[c] + 1e-3 * f.fluid.viscosity / kappa * 0.5 * kCell) * kCell * kCell;
+    }
+  }
+  std::printf("endless layer, Kozeny-Carman, drag spread over the overlaps: %.9e N against %.9e N\n", spread,
+              floor);
+  EXPECT_NEAR(spread, floor, 1e-9 * floor);
 }
 
 }  // namespace
