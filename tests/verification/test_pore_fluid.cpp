@@ -291,6 +291,47 @@ TEST(PoreFluid, DragSpreadOverTheOverlappedCellsBalancesExactly) {
   EXPECT_GT(loose.seepage_miss, -0.03);
 }
 
+TEST(PoreFluid, SpreadDragWeighsEachCellByTheGrainsOverlap) {
+  // drag_cells = overlaps with the Darcy drag: the force on a grain goes
+  // with its own velocity as -V_p beta_bar v, beta_bar the mean over its
+  // cells of n^2 mu / ((1 - n) kappa) (n clamped as for the permeability)
+  // weighted by its overlap volumes. Hand-derived from the cells' fields
+  // and the grain's overlaps (for_each_overlap) for every grain of the
+  // frozen loose packing that spans more than one cell, changing its
+  // velocity by 1 mm/s along each axis in turn; to 1e-9.
+  ParticleData<3> p;
+  auto f = frozen_packing(p, loose_random_packing(), DragLaw::darcy, PermeabilityModel::kozeny_carman, 1e-3);
+  f.drag_cells = DragCells::overlaps;
+  std::vector<std::vector<std::pair<std::size_t, double>>> cells(p.size());
+  f.for_each_overlap(p, [&](std::size_t c, std::size_t i, double v) { cells[i].emplace_back(c, v); });
+  std::vector<Vec<3>> before(p.size()), after(p.size());
+  f.particle_forces(p, Vec<3>(0, 0, -g), before);
+  std::size_t spanning = 0;
+  double worst = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    for (auto& v : p.velocity) v[k] += 1e-3;
+    f.particle_forces(p, Vec<3>(0, 0, -g), after);
+    for (auto& v : p.velocity) v[k] -= 1e-3;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (cells[i].size() < 2) continue;
+      spanning += k == 0 ? 1U : 0U;
+      double volume = 0.0;
+      double beta = 0.0;
+      for (const auto& [c, v] : cells[i]) {
+        const double n =
+            std::clamp(f.porosity()[c], f.permeability.min_porosity, f.permeability.max_porosity);
+        volume += v;
+        beta += v * n * n * f.fluid.viscosity / ((1.0 - n) * f.permeability_field()[c][k]);
+      }
+      const double expected = -particle_volume<3>(p.radius[i]) * beta / volume * 1e-3;
+      const double change = after[i][k] - before[i][k];
+      worst = std::max(worst, std::abs(change - expected) / std::abs(expected));
+    }
+  }
+  EXPECT_GT(spanning, 500U);
+  EXPECT_LT(worst, 1e-9);
+}
+
 TEST(PoreFluid, DragSpreadOverTheOverlappedCellsBalancesExactlyIn2D) {
   // The same in 2D: discs of radii 0.4..0.5 mm at random in a 10 x 20 mm
   // box, 5 x 10 cells of 2 mm (about 2.4 discs per cell), Kozeny-Carman, the
