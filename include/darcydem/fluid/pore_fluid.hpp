@@ -284,10 +284,14 @@ class PoreFluid final : public ParticleForceField<D> {
     // x back from its cell units (FluidGrid::cell_units).
     const int i = std::clamp(static_cast<int>(std::floor(std::clamp(s, -1.0, grid.cells[k] + 1.0))), 0,
                              grid.cells[k] - 1);
-    const double x = grid.face_at(k, i) + (s - i) * grid.width(k, i);
-    const double lo = grid.centre_at(k, centre_cell);
-    const double hi = grid.centre_at(k, centre_cell + 1);
-    centre_frac = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
+    centre_frac = graded_centre_frac(k, grid.face_at(k, i) + (s - i) * grid.width(k, i), centre_cell);
+  }
+  /// On graded axis k, the fraction of x from the centre of layer
+  /// `centre_cell` to the next one's, clamped to [0, 1] (build_geometry's
+  /// layer centres and inverse gaps).
+  [[nodiscard]] double graded_centre_frac(int k, double x, int centre_cell) const {
+    const auto c = static_cast<std::size_t>(centre_cell);
+    return std::clamp((x - layer_centre_[k][c]) * layer_inv_gap_[k][c], 0.0, 1.0);
   }
   /// stencil_axis_any for coordinate x on graded axis k, from the layers'
   /// centres, inverse widths and inverse gaps between centres
@@ -298,10 +302,7 @@ class PoreFluid final : public ParticleForceField<D> {
     const auto i = static_cast<std::size_t>(std::clamp(grid.cell_along(k, x), 0, last));
     const double s = static_cast<double>(i) + (x - grid.faces[k][i]) * layer_inv_width_[k][i];
     stencil_axis(k, s, face_cell, face_frac, centre_cell, centre_frac);
-    if (last > 0 && s == s) {
-      const auto c = static_cast<std::size_t>(centre_cell);
-      centre_frac = std::clamp((x - layer_centre_[k][c]) * layer_inv_gap_[k][c], 0.0, 1.0);
-    }
+    if (last > 0 && s == s) centre_frac = graded_centre_frac(k, x, centre_cell);
     return s;
   }
   /// Index in the face arrays of axis A of the stencil's lower corner for
