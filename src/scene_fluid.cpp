@@ -451,11 +451,8 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
     fluid->drag_cells = DragCells::overlaps;
   if (r.has("steps_per_update")) fluid->steps_per_update = read_steps_per_update(r);
   fluid->hold_forces = r.boolean_or("hold_forces", false);
-  if (const auto level = r.optional_number("water_level")) {
-    fluid->water_level = r.check(
-        "water_level", *level, [](double v) { return std::isfinite(v); },
-        "a finite height, m (y in 2D, z in 3D)");
-  }
+  // Any finite height (the reader refuses nan and inf).
+  if (const auto level = r.optional_number("water_level")) fluid->water_level = *level;
 
   double r_max = 0.0;
   double d_sum = 0.0;

@@ -1,6 +1,7 @@
 #include "darcydem/scene/toml_reader.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -92,7 +93,11 @@ const toml::node* TableReader::get(std::string_view key) {
 std::optional<double> TableReader::optional_number(std::string_view key) {
   const toml::node* n = get(key);
   if (n == nullptr) return std::nullopt;
-  if (auto v = n->value<double>(); v && (n->is_floating_point() || n->is_integer())) return *v;
+  if (auto v = n->value<double>(); v && (n->is_floating_point() || n->is_integer())) {
+    // TOML has nan and inf; no key of a scene means either.
+    if (!std::isfinite(*v)) fail(key, "must be a finite number, got " + format_number(*v));
+    return *v;
+  }
   fail(key, "must be a number, got " + type_name(*n));
 }
 
@@ -186,6 +191,10 @@ std::optional<std::vector<double>> TableReader::optional_numbers(std::string_vie
   for (const auto& e : *a) {
     auto v = e.value<double>();
     if (!v) fail(key, fmt::format("must be an array of {} numbers", n));
+    if (!std::isfinite(*v)) {
+      fail(key, fmt::format("must be an array of {} finite numbers, got {} at element {}", n,
+                            format_number(*v), out.size() + 1));
+    }
     out.push_back(*v);
   }
   return out;
@@ -206,6 +215,10 @@ std::vector<double> TableReader::number_list(std::string_view key) {
   for (const auto& e : *a) {
     auto v = e.value<double>();
     if (!v) fail(key, "must be a non-empty array of numbers");
+    if (!std::isfinite(*v)) {
+      fail(key, fmt::format("must be an array of finite numbers, got {} at element {}", format_number(*v),
+                            out.size() + 1));
+    }
     out.push_back(*v);
   }
   return out;
