@@ -455,12 +455,7 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   if (const auto level = r.optional_number("water_level")) fluid->water_level = *level;
 
   double r_max = 0.0;
-  double d_sum = 0.0;
-  for (double x : particles.radius) {
-    r_max = std::max(r_max, x);
-    d_sum += 2.0 * x;
-  }
-  const double d_mean = particles.size() > 0 ? d_sum / static_cast<double>(particles.size()) : 0.0;
+  for (double x : particles.radius) r_max = std::max(r_max, x);
 
   // [fluid.grid]
   {
@@ -512,7 +507,9 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
     p.allow({"diameter", "anisotropy", "hydraulic_conductivity", "intrinsic"});
     if (model == "kozeny_carman") {
       spec.model = PermeabilityModel::kozeny_carman;
-      spec.diameter = p.check("diameter", p.number_or("diameter", d_mean), is_positive, "> 0 m");
+      spec.diameter =
+          p.check("diameter", p.number_or("diameter", specific_surface_diameter<D>(particles.radius)),
+                  is_positive, "> 0 m");
       if (auto a = p.optional_numbers("anisotropy", D)) {
         for (int k = 0; k < D; ++k)
           spec.anisotropy[k] = p.check("anisotropy", (*a)[k], is_positive, "> 0 on every axis");

@@ -310,6 +310,27 @@ y_max = { type = "drained", pressure = 0.0 }
 
 TEST(SceneErrors, GoodFluidSceneLoads) { EXPECT_EQ(load_error(with_fluid()), ""); }
 
+TEST(SceneErrors, KozenyCarmanDiameterDefaultsToTheSpecificSurfaceOne) {
+  // Without `diameter`: the grains' sum d^2 / sum d (discs). Two columns
+  // of 3 grains, d = 1 and 0.5 mm: (3 + 0.75) / (3 + 1.5) = 5/6 mm (the
+  // arithmetic mean would be 0.75 mm).
+  const std::string second = R"(
+[[particles]]
+generator = "column"
+material = "sand"
+base = [0.01, 0.0]
+count = 3
+radius = 0.00025
+)";
+  const std::string text = replace(with_fluid(), "[fluid]\n", second + "\n[fluid]\n");
+  ASSERT_EQ(load_error(text), "");
+  EXPECT_NEAR(built_scene<2>(text).fluid->permeability.diameter, 5.0e-3 / 6.0, 1e-15);
+  // Given, it is taken as it is.
+  const std::string given =
+      replace(with_fluid(), "model = \"kozeny_carman\"\n", "model = \"kozeny_carman\"\ndiameter = 0.0012\n");
+  EXPECT_EQ(built_scene<2>(given).fluid->permeability.diameter, 0.0012);
+}
+
 TEST(SceneErrors, FluidUnknownKeySuggestsTheNearOne) {
   const auto msg = load_error(replace(with_fluid(), "viscosity = 1.0e-3", "viscosty = 1.0e-3"));
   EXPECT_NE(msg.find("unknown key 'viscosty'"), std::string::npos) << msg;

@@ -41,15 +41,11 @@ Packing<3> regular_lattice_packing() {
 
 /// The packing's spheres fixed in place, with a 5 x 5 x 10 grid of 2 mm
 /// cells, inflow q at the bottom and the top drained; Kozeny-Carman with
-/// the mean diameter (the scene's default).
+/// the scene's default diameter, the packing's specific_surface_diameter.
 PoreFluid<3> frozen_packing(ParticleData<3>& p, const Packing<3>& pk, DragLaw drag, PermeabilityModel model,
                             double q, PressureSolverKind solver = PressureSolverKind::cholesky,
                             CgPreconditioner preconditioner = CgPreconditioner::jacobi) {
-  double diameters = 0.0;
-  for (std::size_t i = 0; i < pk.position.size(); ++i) {
-    p.add(pk.position[i], pk.radius[i], 2650.0, 0, true);
-    diameters += 2.0 * pk.radius[i];
-  }
+  for (std::size_t i = 0; i < pk.position.size(); ++i) p.add(pk.position[i], pk.radius[i], 2650.0, 0, true);
   PoreFluid<3> f(solver, 1e-12, preconditioner);
   f.grid.origin = Vec<3>::Zero();
   f.grid.spacing = Vec<3>::Constant(0.002);
@@ -58,7 +54,7 @@ PoreFluid<3> frozen_packing(ParticleData<3>& p, const Packing<3>& pk, DragLaw dr
   f.drag = drag;
   f.permeability.model = model;
   f.permeability.intrinsic = Vec<3>::Constant(1e-10);
-  f.permeability.diameter = diameters / static_cast<double>(pk.position.size());
+  f.permeability.diameter = specific_surface_diameter<3>(p.radius);
   f.sides[4] = {FluidBoundaryType::flux, TimeSeries::constant(q)};
   f.sides[5] = {FluidBoundaryType::drained, TimeSeries::constant(0.0)};
   f.initialize(p);
@@ -243,17 +239,23 @@ TEST(PoreFluid, ForceBalanceErgunWithKozenyCarman) {
 }
 
 TEST(PoreFluid, ErgunWithKozenyCarmanOnGradedGrainsAndLooseCells) {
-  // Where the premises fail, the balance is off by about 1 %, measured on
-  // the loose random packing with 38 grains per cell: Ergun takes each
-  // grain's own d (drag ~ sum V_p / d^2 ~ sum d), Kozeny-Carman the mean
-  // diameter (~ sum d^3 / d_mean^2), 1.2 % more for radii uniform in
-  // 0.2..0.25 mm; and cells above n = 0.8 blend into Wen-Yu. Measured
-  // -1.5 %; bound 3 %, and it must be below the balance (the first effect).
-  // With 5 grains per cell the centres' +3 % (above) cancels it to +0.7 %.
+  // Graded grains (radii uniform in 0.2..0.25 mm), loose cells, 38 grains
+  // per cell. Ergun takes each grain's own d, so the drag goes with
+  // sum V_p / d^2 ~ sum d; the pressure drop goes with 1 / d_KC^2. The
+  // scene's default d_KC, the specific-surface (Sauter) diameter sum d^3 /
+  // sum d^2, is within 0.2 % of the one that balances them exactly,
+  // sqrt(sum d^3 / sum d): the drag about 0.4 % above. The arithmetic mean
+  // diameter (the default before session 22) is 0.6 % below it, and the
+  // balance was off by -1.49 %, outside issue 3's 1 %. Other offsets: the
+  // centres' +0.34 % at 38 per cell (ForceBalanceDarcyDragWithKozenyCarman)
+  // and the cells above n = 0.8 blended into Wen-Yu. Measured -0.27 %;
+  // bound: the issue's 1 %.
   const auto b =
       force_balance(loose_random_packing(0.5), DragLaw::ergun, PermeabilityModel::kozeny_carman, 1e-5);
-  EXPECT_LT(b.seepage_miss, 0.0);
-  EXPECT_GT(b.seepage_miss, -0.03);
+  EXPECT_LT(std::abs(b.seepage_miss), 0.01);
+  EXPECT_LT(std::abs(b.total_miss), 0.01);
+  // With 5 grains per cell the centres' +3 % dominates (+2.2 %, not
+  // asserted); drag_cells = overlaps takes it away (the test below).
 }
 
 TEST(PoreFluid, DragSpreadOverTheOverlappedCellsBalancesExactly) {
@@ -276,9 +278,10 @@ TEST(PoreFluid, DragSpreadOverTheOverlappedCellsBalancesExactly) {
     EXPECT_LT(b.sideways, 0.01) << name;
   }
   // Ergun with Kozeny-Carman: exactly the centre's figure on the regular
-  // lattice (every grain in one cell), and on the loose packing the
-  // polydispersity and Wen-Yu offset of ErgunWithKozenyCarmanOnGradedGrains
-  // AndLooseCells (-1.5 %) without the centres' +3 %: measured -1.34 %.
+  // lattice (every grain in one cell), and on the loose packing (5 grains
+  // per cell) the offsets of ErgunWithKozenyCarmanOnGradedGrainsAndLooseCells
+  // without the centres' +3 %: measured -0.12 % (-1.34 % with the
+  // arithmetic mean diameter); bound: issue 3's 1 %.
   const auto regular = force_balance(regular_lattice_packing(), DragLaw::ergun,
                                      PermeabilityModel::kozeny_carman, 1e-5, DragCells::overlaps);
   EXPECT_NEAR(regular.seepage_miss,
@@ -287,8 +290,7 @@ TEST(PoreFluid, DragSpreadOverTheOverlappedCellsBalancesExactly) {
               1e-12);
   const auto loose = force_balance(loose_random_packing(1.0), DragLaw::ergun,
                                    PermeabilityModel::kozeny_carman, 1e-5, DragCells::overlaps);
-  EXPECT_LT(loose.seepage_miss, 0.0);
-  EXPECT_GT(loose.seepage_miss, -0.03);
+  EXPECT_LT(std::abs(loose.seepage_miss), 0.01);
 }
 
 TEST(PoreFluid, SpreadDragWeighsEachCellByTheGrainsOverlap) {
@@ -346,11 +348,9 @@ TEST(PoreFluid, DragSpreadOverTheOverlappedCellsBalancesExactlyIn2D) {
   const auto pk = random_packing<2>(Vec<2>::Zero(), Vec<2>(0.01, 0.02), 120, radii, 5, 4000);
   ParticleData<2> p;
   double solid = 0.0;
-  double diameters = 0.0;
   for (std::size_t i = 0; i < pk.position.size(); ++i) {
     p.add(pk.position[i], pk.radius[i], 2650.0, 0, true);
     solid += std::numbers::pi * pk.radius[i] * pk.radius[i];
-    diameters += 2.0 * pk.radius[i];
   }
   const double q = 1e-3;
   PoreFluid<2> f(PressureSolverKind::cholesky);
@@ -360,7 +360,7 @@ TEST(PoreFluid, DragSpreadOverTheOverlappedCellsBalancesExactlyIn2D) {
   f.drag = DragLaw::darcy;
   f.drag_cells = DragCells::overlaps;
   f.permeability.model = PermeabilityModel::kozeny_carman;
-  f.permeability.diameter = diameters / static_cast<double>(pk.position.size());
+  f.permeability.diameter = specific_surface_diameter<2>(p.radius);
   f.sides[2] = {FluidBoundaryType::flux, TimeSeries::constant(q)};
   f.sides[3] = {FluidBoundaryType::drained, TimeSeries::constant(0.0)};
   f.initialize(p);

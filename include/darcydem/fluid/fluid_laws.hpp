@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "darcydem/core/vec.hpp"
 
@@ -35,6 +36,26 @@ struct PermeabilitySpec {
 /// permeability d^2 n^3 / (150 (1 - n)^2), m^2.
 inline double kozeny_carman(double diameter, double n) {
   return diameter * diameter * n * n * n / (150.0 * (1.0 - n) * (1.0 - n));
+}
+
+/// Kozeny-Carman's d for grains of several sizes: the diameter of equal
+/// grains with the same specific surface (solid surface over solid volume:
+/// 6/d for spheres, 4/d for discs), sum d^3 / sum d^2 in 3D (the Sauter
+/// mean; Carrier's 2003 "effective diameter", the harmonic mean of the
+/// sizes weighted by volume) and sum d^2 / sum d in 2D. For equal grains it
+/// is their diameter; 0 without grains.
+template <int D>
+double specific_surface_diameter(const std::vector<double>& radius) {
+  static_assert(D == 2 || D == 3);
+  double volume_like = 0.0;   // sum d^D
+  double surface_like = 0.0;  // sum d^(D-1)
+  for (double r : radius) {
+    const double d = 2.0 * r;
+    const double surface = D == 3 ? d * d : d;
+    surface_like += surface;
+    volume_like += surface * d;
+  }
+  return surface_like > 0.0 ? volume_like / surface_like : 0.0;
 }
 
 enum class DragLaw {
