@@ -126,8 +126,15 @@ int main(int argc, char** argv) {
                              "' is not allowed: a number of seconds >= 0 (0: only when interrupted)";
           },
           "SECONDS >= 0"));
-  run_cmd->add_option("--threads,-j", threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+  run_cmd->add_option("--threads,-j", threads, "OpenMP threads (default 0: all cores)")
+      ->check(CLI::Validator(
+          [](const std::string& value) {
+            int n = -1;
+            return CLI::detail::lexical_cast(value, n) && n >= 0
+                       ? std::string()
+                       : "'" + value + "' is not allowed: a whole number of threads >= 0 (0: all cores)";
+          },
+          "N >= 0"));
 
   std::string check_file;
   auto* check_cmd = app.add_subcommand("check", "validate a scene without running it");
@@ -136,6 +143,12 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (*check_cmd) return dispatch(check_file, RunFlags{"", true});
+    if (std::error_code ec;
+        std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec)) {
+      std::cerr << fmt::format("error: --out '{}' is a file; give a directory (it is made if absent)\n",
+                               out_dir);
+      return 2;
+    }
     if (!force && !resume && !darcydem::output_dir_is_free(out_dir)) {
       std::cerr << fmt::format("error: output directory '{}' is not empty; use --force to write into it\n",
                                out_dir);

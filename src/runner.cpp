@@ -210,7 +210,10 @@ template <int D>
 RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   auto& sim = scene.simulation;
   const fs::path out = options.out_dir;
-  fs::create_directories(out);
+  if (std::error_code ec; !fs::create_directories(out, ec) && ec) {
+    throw std::runtime_error(
+        fmt::format("cannot make the output directory '{}': {}", out.string(), ec.message()));
+  }
   const fs::path checkpoint_path = out / "checkpoint.bin";
   const fs::path probes_path = out / "probes.csv";
   std::ofstream probes;

@@ -67,6 +67,16 @@ rows2=$(wc -l < "$work/long/probes.csv" 2>/dev/null || echo 0)
 "$exe" run "$scene" --out "$work/bad_every" --checkpoint-every -1 > /dev/null 2>"$work/err"; rc=$?
 [ $rc -ne 0 ] && grep -q "^--checkpoint-every: '-1' is not allowed: a number of seconds >= 0" "$work/err" \
   && ok "a bad --checkpoint-every is refused with what is allowed" || bad "--checkpoint-every -1 ($rc)"
+"$exe" run "$scene" --out "$work/bad_threads" --threads -2 > /dev/null 2>"$work/err"; rc=$?
+[ $rc -ne 0 ] && grep -q "^--threads: '-2' is not allowed: a whole number of threads >= 0 (0: all cores)" "$work/err" \
+  && ok "a bad --threads is refused with what is allowed" || bad "--threads -2 ($rc): $(cat "$work/err")"
+touch "$work/a_file"
+"$exe" run "$scene" --out "$work/a_file" > /dev/null 2>"$work/err"; rc=$?
+[ $rc -eq 2 ] && grep -q "^error: --out '.*a_file' is a file; give a directory" "$work/err" \
+  && ok "--out naming a file is refused as such" || bad "--out a file ($rc): $(cat "$work/err")"
+"$exe" run "$scene" --out "$work/a_file/sub" > /dev/null 2>"$work/err"; rc=$?
+[ $rc -eq 1 ] && grep -q "^error: cannot make the output directory '.*a_file/sub': " "$work/err" \
+  && ok "an output directory that cannot be made is named" || bad "--out under a file ($rc): $(cat "$work/err")"
 # Killed outright (no chance to write at the end): the checkpoint written
 # every 0.3 s of wall time is there to resume from.
 bash -c 'timeout -s KILL 2 "$0" run "$1" --out "$2" --checkpoint-every 0.3; true' \
