@@ -336,6 +336,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
           fluid->hold_forces && fluid->steps_per_update > 1 ? " (grain forces held between them)" : "",
           sides);
       *options.log << describe_grid(fluid->grid);
+      *options.log << describe_permeability(*fluid, sim.particles);
       *options.log << describe_patches_and_barriers(*fluid);
     }
   }
@@ -564,6 +565,34 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid) {
   return out;
 }
 
+template <int D>
+std::string describe_permeability(const PoreFluid<D>& fluid, const ParticleData<D>& particles) {
+  const auto& spec = fluid.permeability;
+  std::string out = "permeability: ";
+  if (spec.model == PermeabilityModel::kozeny_carman) {
+    // Given or by default: said when it is the grains' (to round-off).
+    const double grains = specific_surface_diameter<D>(particles.radius);
+    const bool by_default = std::abs(spec.diameter - grains) <= 1e-9 * grains;
+    out += fmt::format("Kozeny-Carman, d = {:.6g} m{}", spec.diameter,
+                       by_default ? " (the grains' specific-surface diameter)" : "");
+    if (spec.anisotropy != Vec<D>::Ones()) {
+      out += ", anisotropy";
+      for (int k = 0; k < D; ++k) out += fmt::format(" {:.4g}", spec.anisotropy[k]);
+    }
+  } else {
+    out += "constant, k =";
+    for (int k = 0; k < D; ++k)
+      out += fmt::format(" {:.4g}", spec.intrinsic[k] * fluid.fluid.unit_weight() / fluid.fluid.viscosity);
+    out += " m/s";
+  }
+  out += fmt::format("; porosity taken in [{:.4g}, {:.4g}]; drag {}{}\n", spec.min_porosity,
+                     spec.max_porosity, fluid.drag == DragLaw::darcy ? "darcy" : "ergun",
+                     fluid.drag_cells == DragCells::overlaps ? " over the overlapped cells" : "");
+  return out;
+}
+
+template std::string describe_permeability<2>(const PoreFluid<2>&, const ParticleData<2>&);
+template std::string describe_permeability<3>(const PoreFluid<3>&, const ParticleData<3>&);
 template std::string describe_patches_and_barriers<2>(const PoreFluid<2>&);
 template std::string describe_patches_and_barriers<3>(const PoreFluid<3>&);
 template std::string describe_grid<2>(const FluidGrid<2>&);

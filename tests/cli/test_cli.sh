@@ -22,6 +22,12 @@ scene="$src/examples/column_settling/column.toml"
 "$exe" check "$src/examples/fluid_cases/graded_upward_seepage.toml" \
   | grep -q "^  fluid grid: x 3 cells in \[0, 0.006\] m (0.002 m); .* z 4 cells in \[0, 0.008\] m (graded, 0.001368 to 0.002736 m)$" \
   && ok "check describes a graded fluid grid" || bad "check: graded grid"
+# Kozeny-Carman's d by default: that of the example's equal 0.98 mm spheres.
+"$exe" check "$src/examples/fluid_cases/upward_seepage_bed.toml" \
+  | grep -q "^  permeability: Kozeny-Carman, d = 0.00098 m (the grains' specific-surface diameter); porosity taken in \[0.05, 0.9\]; drag darcy$" \
+  && ok "check gives Kozeny-Carman's diameter and the drag law" || bad "check: permeability"
+"$exe" check "$src/examples/fluid_cases/sheet_pile.toml" | grep -q "^  permeability: constant, k = 0.001 0.001 m/s;" \
+  && ok "check gives a constant hydraulic conductivity per axis" || bad "check: constant permeability"
 "$exe" check "$src/examples/fluid_cases/sheet_pile.toml" | grep -q "critical step none (no particle is free to move)$" \
   && ok "check says what an infinite critical step means (only fixed particles)" || bad "check: critical step"
 "$exe" check "$src/examples/fluid_cases/sheet_pile_heave.toml" | grep -q "OK (2D, 508 particles, 4 walls" \

@@ -76,6 +76,12 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid);
 template <int D>
 std::string describe_grid(const FluidGrid<D>& grid);
 
+/// The permeability model and the drag law, one line for the run log and
+/// `darcydem check`: Kozeny-Carman's d (saying when it is the grains'
+/// specific-surface diameter, the default) or the constant k per axis.
+template <int D>
+std::string describe_permeability(const PoreFluid<D>& fluid, const ParticleData<D>& particles);
+
 /// "1.256e-05 s", or what an infinite critical step means (no free particle).
 std::string describe_critical_step(double seconds);
 
