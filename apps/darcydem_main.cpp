@@ -42,9 +42,14 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
   const bool check_only = flags.check_only;
   auto scene = darcydem::build_scene<D>(root, file, text);
   if (check_only) {
-    std::cout << fmt::format("{}: OK ({}D, {} particles, {} walls, {} stages, time step {:.4g} s)\n", file, D,
-                             scene.simulation.particles.size(), scene.simulation.walls.size(),
-                             scene.stages.size(), scene.simulation.time_step);
+    // The stages' durations in steps: at most, as a stage may stop early.
+    double duration = 0.0;
+    for (const auto& stage : scene.stages) duration += stage.duration;
+    std::cout << fmt::format(
+        "{}: OK ({}D, {} particles, {} walls, {} stage{}, time step {:.4g} s, at most {:.0f} steps)\n", file,
+        D, scene.simulation.particles.size(), scene.simulation.walls.size(), scene.stages.size(),
+        scene.stages.size() == 1 ? "" : "s", scene.simulation.time_step,
+        std::ceil(duration / scene.simulation.time_step));
     if (scene.fluid) {
       const auto& f = *scene.fluid;
       const double dry = scene.simulation.critical_time_step();

@@ -17,6 +17,12 @@ bad() { echo "FAILED: $1"; failed=$((failed + 1)); }
 scene="$src/examples/column_settling/column.toml"
 "$exe" check "$scene" | grep -q "OK (2D, 50 particles" && ok "check accepts the example" || bad "check"
 
+# The stages' 1 s in steps of the time step it gives (printed to 4
+# digits, so to 1e-3).
+"$exe" check "$scene" | awk '/OK \(2D/ { match($0, /time step [0-9.e+-]+ s, at most [0-9]+ steps/); split(substr($0, RSTART, RLENGTH), w, " ");
+  dt = w[3]; n = w[7]; exit !(n > 0 && (n * dt - 1.0)^2 < 1e-6) }' \
+  && ok "check gives the stages' length in steps" || bad "check: steps ($("$exe" check "$scene" | head -1))"
+
 "$exe" check "$src/examples/fluid_cases/bed_with_inlet.toml" | grep -q "^  patch inlet on z_min: 9 faces, 3.6e-05 m^2, no_flow$" \
   && ok "check prints a boundary patch's faces and area" || bad "check: patch"
 "$exe" check "$src/examples/fluid_cases/graded_upward_seepage.toml" \
