@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 namespace darcydem {
 
 template <int D>
@@ -20,7 +22,12 @@ void LinkedCells<D>::build(const std::vector<Vec<D>>& points, double cell_size, 
     }
   }
   if (!lo.allFinite() || !hi.allFinite()) {
-    throw std::runtime_error("a particle position is not finite (the simulation blew up)");
+    const auto bad =
+        std::find_if(points.begin(), points.end(), [](const Vec<D>& p) { return !p.allFinite(); });
+    throw std::runtime_error(
+        fmt::format("the position of particle {} is not finite: the simulation blew up (forces too large for "
+                    "the time step: check the contact stiffnesses, gravity and the pore fluid's values)",
+                    bad - points.begin()));
   }
   periodic_ = cell.periodic;
   for (int k = 0; k < D; ++k) {
