@@ -927,6 +927,18 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                               : sim.critical_time_step();
   if (scene.time_step.automatic) {
     sim.time_step = scene.time_step.safety_factor * critical;
+    if (!(std::isfinite(sim.time_step) && sim.time_step > 0.0)) {
+      const toml::table* t = root["simulation"].as_table();
+      TableReader r(*t, "[simulation]", file);
+      r.fail(
+          "time_step",
+          std::isinf(critical)
+              ? std::string("\"auto\" needs a particle free to move (the critical time step comes from the "
+                            "free particles' masses and contacts); give a number of seconds")
+              : fmt::format("\"auto\" gives {:.4g} s, from a critical time step of {:.4g} s: a density, "
+                            "contact stiffness or pore-fluid value is out of range",
+                            sim.time_step, critical));
+    }
   } else {
     if (scene.time_step.value > critical) {
       const toml::table* t = root["simulation"].as_table();

@@ -310,6 +310,22 @@ y_max = { type = "drained", pressure = 0.0 }
 
 TEST(SceneErrors, GoodFluidSceneLoads) { EXPECT_EQ(load_error(with_fluid()), ""); }
 
+TEST(SceneErrors, AnAutomaticTimeStepThatIsNoneIsRefused) {
+  // A density of 1e-300 kg/m^3 with a pore fluid makes the critical step
+  // (here the drag's relaxation time, mass over drag) underflow to 0; the
+  // run used to stop at its first step with "time step not set".
+  auto msg = load_error(replace(with_fluid(), "density = 2650.0", "density = 1e-300"));
+  EXPECT_NE(
+      msg.find(":4:13: error: [simulation] key 'time_step': \"auto\" gives 0 s, from a critical time step of "
+               "0 s: a density, contact stiffness or pore-fluid value is out of range"),
+      std::string::npos)
+      << msg;
+  // Every particle fixed: no critical step to take a fraction of.
+  const std::string fixed = "[[particles]]\ngenerator = \"column\"\nmaterial = \"sand\"\nfixed = true\n";
+  msg = load_error(replace(kGood, "[[particles]]\ngenerator = \"column\"\nmaterial = \"sand\"\n", fixed));
+  EXPECT_NE(msg.find("key 'time_step': \"auto\" needs a particle free to move"), std::string::npos) << msg;
+}
+
 TEST(SceneErrors, KozenyCarmanDiameterDefaultsToTheSpecificSurfaceOne) {
   // Without `diameter`: the grains' sum d^2 / sum d (discs). Two columns
   // of 3 grains, d = 1 and 0.5 mm: (3 + 0.75) / (3 + 1.5) = 5/6 mm (the
