@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
+
+#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -17,6 +20,21 @@
 
 namespace darcydem {
 namespace {
+
+/// Refuses a generator's particle count that this machine's memory could
+/// not hold: 256 bytes a particle is less than its state alone (a
+/// checkpoint takes about 350), so only counts that cannot run are refused,
+/// before the generator tries to make them.
+void check_count_fits(const TableReader& r, std::string_view key, double count) {
+  constexpr double bytes_each = 256.0;
+  const double memory =
+      static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  if (memory > 0.0 && count * bytes_each > memory) {
+    r.fail(key, fmt::format("{:.4g} particles would need at least {:.3g} GB ({} bytes each), more than this "
+                            "machine's {:.3g} GB of memory",
+                            count, count * bytes_each / 1e9, bytes_each, memory / 1e9));
+  }
+}
 
 const std::vector<std::string> kTopLevel = {"simulation", "periodic",  "material", "contact",
                                             "wall",       "particles", "output",   "probe",
@@ -558,9 +576,13 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
           r.optional_choice("arrangement", D == 2 ? std::vector<std::string>{"square", "hexagonal"}
                                                   : std::vector<std::string>{"cubic", "fcc"})
               .value_or(D == 2 ? "square" : "cubic");
-      pk = arrangement == "hexagonal" || arrangement == "fcc"
-               ? dense_lattice_packing<D>(lo, hi, spacing, radius)
-               : lattice_packing<D>(lo, hi, spacing, radius);
+      const bool dense = arrangement == "hexagonal" || arrangement == "fcc";
+      // Sites per spacing^D: 1 cubic or square, sqrt 2 fcc, 2/sqrt 3 hexagonal.
+      double sites = dense ? 1.5 : 1.0;
+      for (int k = 0; k < D; ++k) sites *= std::max(0.0, (hi[k] - lo[k]) / spacing + 1.0);
+      check_count_fits(r, "spacing", sites);
+      pk = dense ? dense_lattice_packing<D>(lo, hi, spacing, radius)
+                 : lattice_packing<D>(lo, hi, spacing, radius);
     } else if (gen == "column") {
       const Vec<D> base = to_vec<D>(r.numbers("base", D));
       Vec<D> up = Vec<D>::Zero();
@@ -568,6 +590,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       const Vec<D> axis = read_direction<D>(r, "axis", up);
       const auto count = r.integer("count");
       if (count < 1) r.fail("count", "must be >= 1");
+      check_count_fits(r, "count", static_cast<double>(count));
+      if (count > std::numeric_limits<int>::max()) r.fail("count", "must be at most 2^31 - 1");
       const double radius = r.check("radius", r.number("radius"), is_positive, "> 0 m");
       const double gap = r.check("gap", r.number_or("gap", 0.0), is_non_negative, ">= 0 m");
       pk = column_packing<D>(base, axis, static_cast<int>(count), radius, gap);
@@ -576,6 +600,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       const Vec<D> hi = to_vec<D>(r.numbers("max", D));
       const auto count = r.integer("count");
       if (count < 1) r.fail("count", "must be >= 1");
+      check_count_fits(r, "count", static_cast<double>(count));
       const RadiusDistribution dist = read_radius(r);
       for (int k = 0; k < D; ++k) {
         if (hi[k] - lo[k] < 2.0 * dist.largest())

@@ -140,6 +140,28 @@ TEST(SceneErrors, NonFiniteNumbersAreRefusedWhereTheyStand) {
       << msg;
 }
 
+TEST(SceneErrors, ParticleCountsNoMemoryCouldHoldAreRefusedBeforeTheyAreMade) {
+  // 2e12 particles at 256 bytes each are 512 TB, more than any machine
+  // this runs on; `check` used to try to make them (2^31 - 1 ran out of
+  // its 60 s under a fuzzer).
+  auto msg = load_error(replace(kGood, "count = 3", "count = 2000000000000"));
+  EXPECT_NE(
+      msg.find(":27:9: error: [[particles]] #1 key 'count': 2e+12 particles would need at least 5.12e+05 GB "
+               "(256 bytes each), more than this machine's"),
+      std::string::npos)
+      << msg;
+  // A lattice's sites, from its box and spacing: (0.999 m / 2 um + 1) (1 m / 2 um + 1) = 2.498e11.
+  const std::string lattice =
+      "generator = \"lattice\"\nmaterial = \"sand\"\nmin = [0.0, 0.001]\nmax = [1.0, 1.0]\nspacing = 2e-6\n"
+      "radius = 1e-6\n";
+  msg = load_error(
+      replace(kGood,
+              "generator = \"column\"\nmaterial = \"sand\"\nbase = [0.0, 0.0]\ncount = 3\nradius = "
+              "0.0005\n",
+              lattice));
+  EXPECT_NE(msg.find("key 'spacing': 2.498e+11 particles would need at least"), std::string::npos) << msg;
+}
+
 TEST(SceneErrors, NegativeDensityIsRefused) {
   const auto msg = load_error(replace(kGood, "density = 2650.0", "density = -1.0"));
   EXPECT_NE(msg.find("key 'density': must be > 0 kg/m^3, got -1"), std::string::npos) << msg;
