@@ -977,6 +977,19 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     }
     sim.time_step = scene.time_step.value;
   }
+  // Viscous damping is explicit: each half kick scales a velocity by
+  // 1 - c dt/2, which reverses it from c dt = 2 on (and grows it beyond 4).
+  if (const toml::array* stages = root["stage"].as_array()) {
+    for (std::size_t i = 0; i < scene.stages.size() && i < stages->size(); ++i) {
+      const auto& c = scene.stages[i].viscous_damping;
+      if (c && *c * sim.time_step >= 2.0) {
+        TableReader r(*(*stages)[i].as_table(), fmt::format("[[stage]] #{}", i + 1), file);
+        r.fail("viscous_damping", fmt::format("must be below 2 / time step = {:.4g} 1/s (explicit damping "
+                                              "reverses the velocities beyond it), got {:.4g}",
+                                              2.0 / sim.time_step, *c));
+      }
+    }
+  }
   return scene;
 }
 

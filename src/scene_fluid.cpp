@@ -507,9 +507,11 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
     p.allow({"diameter", "anisotropy", "hydraulic_conductivity", "intrinsic"});
     if (model == "kozeny_carman") {
       spec.model = PermeabilityModel::kozeny_carman;
-      spec.diameter =
-          p.check("diameter", p.number_or("diameter", specific_surface_diameter<D>(particles.radius)),
-                  is_positive, "> 0 m");
+      spec.diameter = p.check(
+          "diameter", p.number_or("diameter", specific_surface_diameter<D>(particles.radius)),
+          // d^2 enters kappa: it must neither underflow to 0 nor overflow.
+          [](double d) { return d > 0.0 && std::isnormal(d * d) && std::isfinite(d * d); },
+          "> 0 m, with d^2 neither 0 nor infinite in double precision");
       if (auto a = p.optional_numbers("anisotropy", D)) {
         for (int k = 0; k < D; ++k)
           spec.anisotropy[k] = p.check("anisotropy", (*a)[k], is_positive, "> 0 on every axis");

@@ -162,6 +162,18 @@ TEST(SceneErrors, ParticleCountsNoMemoryCouldHoldAreRefusedBeforeTheyAreMade) {
   EXPECT_NE(msg.find("key 'spacing': 2.498e+11 particles would need at least"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, ViscousDampingTheExplicitStepCannotTakeIsRefused) {
+  // Each half kick scales the velocity by 1 - c dt/2: from c dt = 2 on it
+  // reverses it. 1e30 1/s made the run blow up; 1e3 1/s is far below 2/dt.
+  const std::string stage = "gravity = [0.0, -9.81]\n";
+  ASSERT_EQ(load_error(replace(kGood, stage, stage + "viscous_damping = 1e3\n")), "");
+  const auto msg = load_error(replace(kGood, stage, stage + "viscous_damping = 1e30\n"));
+  EXPECT_NE(msg.find(":34:19: error: [[stage]] #1 key 'viscous_damping': must be below 2 / time step = "),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("got 1e+30"), std::string::npos) << msg;
+}
+
 TEST(SceneErrors, NegativeDensityIsRefused) {
   const auto msg = load_error(replace(kGood, "density = 2650.0", "density = -1.0"));
   EXPECT_NE(msg.find("key 'density': must be > 0 kg/m^3, got -1"), std::string::npos) << msg;
@@ -363,6 +375,16 @@ radius = 0.00025
   const std::string text = replace(with_fluid(), "[fluid]\n", second + "\n[fluid]\n");
   ASSERT_EQ(load_error(text), "");
   EXPECT_NEAR(built_scene<2>(text).fluid->permeability.diameter, 5.0e-3 / 6.0, 1e-15);
+  // One whose square underflows to 0 (kappa = 0: the run blew up at its
+  // first step) or overflows is refused.
+  for (const std::string bad : {"1e-300", "1e200"}) {
+    const auto msg = load_error(replace(with_fluid(), "model = \"kozeny_carman\"\n",
+                                        "model = \"kozeny_carman\"\ndiameter = " + bad + "\n"));
+    EXPECT_NE(
+        msg.find("key 'diameter': must be > 0 m, with d^2 neither 0 nor infinite in double precision, got"),
+        std::string::npos)
+        << msg;
+  }
   // Given, it is taken as it is.
   const std::string given =
       replace(with_fluid(), "model = \"kozeny_carman\"\n", "model = \"kozeny_carman\"\ndiameter = 0.0012\n");
