@@ -622,6 +622,16 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         r.fail("file", e.what());
       }
     }
+    // Sizes and boxes near the end of double precision (radius = 1e308)
+    // can place a particle at infinity.
+    for (std::size_t i = 0; i < pk.position.size(); ++i) {
+      if (!pk.position[i].allFinite() || !std::isfinite(pk.radius[i])) {
+        r.fail_table(
+            fmt::format("the {} generator places its particle {} at a position that is not finite: "
+                        "its sizes or box are beyond double precision",
+                        gen, i));
+      }
+    }
     const Vec<D> velocity =
         to_vec<D>(r.optional_numbers("velocity", D).value_or(std::vector<double>(D, 0.0)));
     if (pk.position.empty()) r.fail_table("made no particles (is the box smaller than one particle?)");

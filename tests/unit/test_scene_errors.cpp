@@ -174,6 +174,18 @@ TEST(SceneErrors, ViscousDampingTheExplicitStepCannotTakeIsRefused) {
   EXPECT_NE(msg.find("got 1e+30"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, AGeneratorThatPlacesParticlesAtInfinityIsRefused) {
+  // Three discs of radius 1e308 in a column: their spacing 2r = 2e308 is
+  // beyond double precision, so the centres are. `check` used to stop with
+  // "the simulation blew up" (found by scripts/fuzz_scenes.py).
+  const auto msg = load_error(replace(kGood, "radius = 0.0005", "radius = 1e308"));
+  EXPECT_NE(
+      msg.find(":23:1: error: [[particles]] #1: the column generator places its particle 0 at a position "
+               "that is not finite"),
+      std::string::npos)
+      << msg;
+}
+
 TEST(SceneErrors, NegativeDensityIsRefused) {
   const auto msg = load_error(replace(kGood, "density = 2650.0", "density = -1.0"));
   EXPECT_NE(msg.find("key 'density': must be > 0 kg/m^3, got -1"), std::string::npos) << msg;
