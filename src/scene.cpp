@@ -960,13 +960,14 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   const double critical = scene.fluid
                               ? scene.fluid->critical_time_step(sim.particles, sim.critical_time_step())
                               : sim.critical_time_step();
+  // Refusals of [simulation] time_step, at the key.
+  auto refuse_time_step = [&](const std::string& message) {
+    TableReader(*root["simulation"].as_table(), "[simulation]", file).fail("time_step", message);
+  };
   if (scene.time_step.automatic) {
     sim.time_step = scene.time_step.safety_factor * critical;
     if (!(std::isfinite(sim.time_step) && sim.time_step > 0.0)) {
-      const toml::table* t = root["simulation"].as_table();
-      TableReader r(*t, "[simulation]", file);
-      r.fail(
-          "time_step",
+      refuse_time_step(
           std::isinf(critical)
               ? std::string("\"auto\" needs a particle free to move (the critical time step comes from the "
                             "free particles' masses and contacts); give a number of seconds")
@@ -976,14 +977,12 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     }
   } else {
     if (scene.time_step.value > critical) {
-      const toml::table* t = root["simulation"].as_table();
-      TableReader r(*t, "[simulation]", file);
-      r.fail("time_step",
-             fmt::format("{:.4g} s is larger than the critical time step {:.4g} s "
-                         "(1/omega of the fastest contact mode of the lightest grain, normal or with "
-                         "friction turning it, or the Rayleigh step; with the pore fluid's K_f/n and "
-                         "drag if any); use a smaller value or \"auto\"",
-                         scene.time_step.value, critical));
+      refuse_time_step(
+          fmt::format("{:.4g} s is larger than the critical time step {:.4g} s "
+                      "(1/omega of the fastest contact mode of the lightest grain, normal or with "
+                      "friction turning it, or the Rayleigh step; with the pore fluid's K_f/n and "
+                      "drag if any); use a smaller value or \"auto\"",
+                      scene.time_step.value, critical));
     }
     sim.time_step = scene.time_step.value;
   }

@@ -20,10 +20,8 @@ std::vector<std::string> side_list() {
 TimeSeries read_series(TableReader& r, std::string_view key, const std::string& unit) {
   const toml::node* n = r.raw(key);
   if (n == nullptr) r.fail_table(fmt::format("missing required key '{}' ({})", key, unit));
-  if (auto v = n->value<double>(); v && (n->is_floating_point() || n->is_integer())) {
-    if (!std::isfinite(*v)) r.fail(key, "must be a finite number");
-    return TimeSeries::constant(*v);
-  }
+  // A number as the reader takes one (finite, or refused at the key).
+  if (n->is_floating_point() || n->is_integer()) return TimeSeries::constant(r.number(key));
   const toml::table* t = n->as_table();
   if (t == nullptr) {
     r.fail(key, fmt::format("must be a number ({}) or a table {{ times = [...], values = [...] }}", unit));
@@ -510,7 +508,7 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
       spec.diameter = p.check(
           "diameter", p.number_or("diameter", specific_surface_diameter<D>(particles.radius)),
           // d^2 enters kappa: it must neither underflow to 0 nor overflow.
-          [](double d) { return d > 0.0 && std::isnormal(d * d) && std::isfinite(d * d); },
+          [](double d) { return d > 0.0 && std::isnormal(d * d); },
           "> 0 m, with d^2 neither 0 nor infinite in double precision");
       if (auto a = p.optional_numbers("anisotropy", D)) {
         for (int k = 0; k < D; ++k)
