@@ -223,36 +223,8 @@ void PoreFluid<D>::compute_wall_solid(const std::vector<Wall<D>>& walls) {
       throw std::logic_error("PoreFluid: a solid wall that is not among the box walls given");
     const Wall<D>& wall = walls[w];
     const SolidBox<D> box{wall.point, wall.half, wall.axes};
-    // The cells the box's bounding box reaches (a box beyond the grid's
-    // ends takes up no cell there, also on a periodic axis).
-    const Vec<D> reach = box.bounding_half();
-    std::array<int, D> lo{};
-    std::array<int, D> hi{};
-    bool outside = false;
-    for (int k = 0; k < D; ++k) {
-      const int first = grid.cell_along(k, box.centre[k] - reach[k]);
-      const int last = grid.cell_along(k, box.centre[k] + reach[k]);
-      outside = outside || last < 0 || first >= grid.cells[k];
-      lo[k] = std::max(first, 0);
-      hi[k] = std::min(last, grid.cells[k] - 1);
-    }
-    if (outside) continue;
-    std::array<int, D> c = lo;
-    while (true) {
-      Vec<D> corner;
-      Vec<D> far;
-      for (int k = 0; k < D; ++k) {
-        corner[k] = grid.face_at(k, c[k]);
-        far[k] = grid.face_at(k, c[k] + 1);
-      }
-      wall_solid_[grid.index(c)] += box_cell_volume(box, corner, far);
-      int k = 0;
-      while (k < D && ++c[k] > hi[k]) {
-        c[k] = lo[k];
-        ++k;
-      }
-      if (k == D) break;
-    }
+    for_each_box_cell(grid, box,
+                      [&](const std::array<int, D>& c, double v) { wall_solid_[grid.index(c)] += v; });
   }
 }
 
@@ -477,7 +449,7 @@ void PoreFluid<D>::assign_barriers() {
       if (cc[k] != plane - 1) continue;
       if (!barrier.holds(grid.centre(cc))) continue;
       ++cc[k];
-      blocked_.push_back({k, c, grid.face_index(k, cc)});
+      blocked_.push_back({k, c, grid.face_index(k, cc), b});
       ++barrier_faces_[b];
     }
   }

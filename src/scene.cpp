@@ -155,6 +155,25 @@ Eigen::Matrix<double, D, D> read_box_rotation(TableReader& r) {
 /// fixed, unturned box flat along one axis (a plate); the barrier lies on
 /// that plane over the box's corners as given, lo and hi. Refused at the
 /// wall's 'impermeable' key otherwise; the grid checks it later.
+/// For a `wall_fluid_force` probe on wall w: the index of its barrier in
+/// the fluid's (an impermeable plate's: the walls' barriers come after
+/// the [[fluid.barrier]] tables and take their walls' names, which are
+/// unique, so the last of that name is the wall's), or -1 for a box that
+/// displaces the fluid. Refused at the probe's 'wall' for any other wall,
+/// which the water passes through.
+template <int D>
+std::int64_t fluid_thrust_barrier(TableReader& r, const PoreFluid<D>& fluid,
+                                  const std::vector<Wall<D>>& walls, std::size_t w) {
+  if (std::find(fluid.solid_walls.begin(), fluid.solid_walls.end(), w) != fluid.solid_walls.end()) return -1;
+  for (std::size_t b = fluid.barriers.size(); b-- > 0;) {
+    if (walls[w].is_box && fluid.barriers[b].name == walls[w].name) return static_cast<std::int64_t>(b);
+  }
+  r.fail("wall", fmt::format("wall \"{}\" lets the pore water through, so the water pushes on it nowhere: "
+                             "\"wall_fluid_force\" needs a box wall with displaces_fluid = true or an "
+                             "impermeable plate (impermeable = true)",
+                             walls[w].name));
+}
+
 template <int D>
 WallBarrier<D> plate_barrier(TableReader& r, const Wall<D>& w, const Vec<D>& box_lo, const Vec<D>& box_hi) {
   // A plate that the pore fluid cannot cross either: a barrier on its plane.
@@ -696,14 +715,15 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       r.fail("name", fmt::format("probe \"{}\" is defined twice", p.name));
     }
     probe_names.push_back(p.name);
-    const std::string q = r.choice(
-        "quantity", {"particle_position", "particle_velocity", "wall_position", "wall_force",
-                     "kinetic_energy", "contact_count", "coordination", "max_overlap", "unbalanced_force",
-                     "pore_pressure", "pore_pressure_profile", "fluid_inflow", "fluid_balance",
-                     "fluid_iterations", "particles_in_box", "mean_particle_position", "stress", "porosity"});
+    const std::string q =
+        r.choice("quantity",
+                 {"particle_position", "particle_velocity", "wall_position", "wall_force", "wall_fluid_force",
+                  "kinetic_energy", "contact_count", "coordination", "max_overlap", "unbalanced_force",
+                  "pore_pressure", "pore_pressure_profile", "fluid_inflow", "fluid_balance",
+                  "fluid_iterations", "particles_in_box", "mean_particle_position", "stress", "porosity"});
     r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points", "min", "max"});
     const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
-                             q == "fluid_balance" || q == "fluid_iterations";
+                             q == "fluid_balance" || q == "fluid_iterations" || q == "wall_fluid_force";
     if (fluid_probe && !scene.fluid) {
       r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
     }
@@ -799,8 +819,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         r.fail("particle", "must be a particle index (0-based, in creation order) or \"top\"");
       }
       p.component = static_cast<int>(axis_component<D>(r, "component", true));
-    } else if (q == "wall_position" || q == "wall_force") {
-      p.quantity = q == "wall_position" ? ProbeQuantity::wall_position : ProbeQuantity::wall_force;
+    } else if (q == "wall_position" || q == "wall_force" || q == "wall_fluid_force") {
+      p.quantity = q == "wall_position" ? ProbeQuantity::wall_position
+                   : q == "wall_force"  ? ProbeQuantity::wall_force
+                                        : ProbeQuantity::wall_fluid_force;
       const std::string w = r.string("wall");
       auto it = wall_index.find(w);
       if (it == wall_index.end()) {
@@ -810,6 +832,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         r.fail("wall", fmt::format("no wall named \"{}\"{}", w, hint));
       }
       p.wall = it->second;
+      if (p.quantity == ProbeQuantity::wall_fluid_force)
+        p.barrier = fluid_thrust_barrier(r, *scene.fluid, sim.walls, p.wall);
       p.component = static_cast<int>(axis_component<D>(r, "component", true));
     } else {
       for (auto k : {"particle", "component", "wall"}) {

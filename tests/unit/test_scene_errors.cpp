@@ -899,5 +899,36 @@ TEST(SceneErrors, WallsThatDisplaceTheFluidAreChecked) {
       << msg;
 }
 
+TEST(SceneErrors, TheWaterThrustProbeNeedsAWallTheWaterCannotPass) {
+  // wall_fluid_force on a box that displaces the fluid, on an impermeable
+  // plate (its barrier, the grid's only one), and refused on the floor,
+  // a plane the water passes, and without a fluid.
+  const std::string box =
+      "\n[[wall]]\nname = \"block\"\nbox = { min = [0.0006, 0.0], max = [0.0016, 0.004] }\n"
+      "material = \"sand\"\ndisplaces_fluid = true\n";
+  const std::string plate =
+      "\n[[wall]]\nname = \"pile\"\nbox = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }\n"
+      "material = \"sand\"\nimpermeable = true\n";
+  auto probe = [](const std::string& wall) {
+    return "\n[[probe]]\nname = \"thrust\"\nquantity = \"wall_fluid_force\"\nwall = \"" + wall +
+           "\"\ncomponent = \"y\"\n";
+  };
+  EXPECT_EQ(load_error(with_wall(box + plate) + probe("block")), "");
+  const auto on_box = built_scene<2>(with_wall(box + plate) + probe("block"));
+  EXPECT_EQ(on_box.output.probes.back().barrier, -1);
+  const auto on_plate = built_scene<2>(with_wall(box + plate) + probe("pile"));
+  EXPECT_EQ(on_plate.output.probes.back().barrier, 0);
+  auto msg = load_error(with_wall(box + plate) + probe("floor"));
+  EXPECT_NE(msg.find("[[probe]] #1 key 'wall': wall \"floor\" lets the pore water through"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("needs a box wall with displaces_fluid = true or an impermeable plate"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(std::string(kGood) + probe("floor"));
+  EXPECT_NE(msg.find("\"wall_fluid_force\" needs a pore fluid"), std::string::npos) << msg;
+}
+
 }  // namespace
 }  // namespace darcydem

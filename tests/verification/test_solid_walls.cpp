@@ -145,4 +145,106 @@ TEST(SolidWalls, AFixedWallTakesItsShareOfEachCellsPorosity) {
   for (double u : f.pressure()) EXPECT_EQ(u, 0.0);
 }
 
+/// Steady upward flow through the empty grid of empty_grid<3> (cells of
+/// 1 cm, 4 x 4 x 8, k = 1e-10 m^2, mu = 1e-3 Pa s): q = 1e-5 m/s in at the
+/// bottom, the top drained, so u(z) = (q mu / k)(H - z) = 100 (0.08 - z)
+/// Pa, linear. With K_f = 2e9 Pa the grid's consolidation time is about
+/// H^2 mu n / (k K_f) = 3e-5 s: three implicit steps of 1 s reach the
+/// steady state to the solver's tolerance. `walls[0]` is fixed.
+PoreFluid<3> steady_column(std::vector<Wall<3>>& walls) {
+  PoreFluid<3> f = empty_grid<3>(0.01, {4, 4, 8});
+  f.sides[4] = {FluidBoundaryType::flux, TimeSeries::constant(1e-5)};
+  walls[0].motion = WallMotion::fixed;
+  ParticleData<3> none;
+  f.initialize(none, walls);
+  for (int s = 1; s <= 3; ++s) f.update(none, 1.0, s, walls);
+  return f;
+}
+
+// The thrust of the excess pore pressure on a box wall that displaces the
+// fluid, -(integral of u n dA) over its wetted surface: in a pressure
+// field linear in space, closed forms.
+
+TEST(WallThrust, ABoxInsideTheGridFeelsMinusItsVolumeTimesTheGradient) {
+  // A box 1.5 x 1 x 2 cm turned 0.4 rad about (1, 2, 3), centred in the
+  // grid, all of it inside: Archimedes in the excess pressure, -V grad u
+  // = V q mu / k = 3e-6 x 100 = 3e-4 N upwards, whatever its orientation.
+  const Eigen::Matrix3d axes =
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Vec<3> centre(0.02, 0.02, 0.04);
+  const Vec<3> half(0.0075, 0.005, 0.01);
+  std::vector<Wall<3>> walls{moving_box<3>(centre - half, centre + half, Vec<3>::Zero(), axes)};
+  const PoreFluid<3> f = steady_column(walls);
+  const double gradient = -1e-5 * 1e-3 / 1e-10;  // Pa/m
+  // The field: linear to the solver's tolerance (1e-13 relative).
+  EXPECT_NEAR(f.pressure_at(Vec<3>(0.02, 0.02, 0.005)), -gradient * 0.075, 1e-9);
+  const Vec<3> thrust = f.box_thrust(walls[0]);
+  const double expected = -3e-6 * gradient;
+  // The cells' parts of the box are exact to round-off (1e-12 of the box)
+  // and the gradient uniform to the solver's tolerance: 1e-9 of the thrust
+  // is far above both and far below any error of the formula (a cell's
+  // share of the box is 1e-2 of it or more).
+  EXPECT_NEAR(thrust.z(), expected, 1e-9 * expected);
+  EXPECT_NEAR(thrust.x(), 0.0, 1e-9 * expected);
+  EXPECT_NEAR(thrust.y(), 0.0, 1e-9 * expected);
+}
+
+TEST(WallThrust, ABoxThroughASideFeelsThePressureOnItsWettedFaceOnly) {
+  // A rod 1.5 x 1.5 cm through the bottom side (the inlet, u = 8 Pa
+  // there), its upper end at z = 0.03 m inside the grid: the water pushes
+  // on that end only, down, with u(0.03) = 5 Pa: -5 A. Without the side's
+  // term (its section times the inlet's pressure) the volume's term alone
+  // would give +3 A, the wrong way.
+  const double a = 0.015 * 0.015;
+  std::vector<Wall<3>> walls{
+      moving_box<3>(Vec<3>(0.012, 0.007, -0.02), Vec<3>(0.027, 0.022, 0.03), Vec<3>::Zero())};
+  const PoreFluid<3> f = steady_column(walls);
+  const Vec<3> down = f.box_thrust(walls[0]);
+  EXPECT_NEAR(down.z(), -5.0 * a, 1e-9 * 5.0 * a);
+  EXPECT_NEAR(down.x(), 0.0, 1e-9 * 5.0 * a);
+  // The same rod through the drained top (u = 0 there), its lower end at
+  // z = 0.05: u = 3 Pa pushes it up, +3 A.
+  std::vector<Wall<3>> top{
+      moving_box<3>(Vec<3>(0.012, 0.007, 0.05), Vec<3>(0.027, 0.022, 0.11), Vec<3>::Zero())};
+  const PoreFluid<3> g = steady_column(top);
+  EXPECT_NEAR(g.box_thrust(top[0]).z(), 3.0 * a, 1e-9 * 3.0 * a);
+  // Beyond the grid: no water on it.
+  Wall<3> away = top[0];
+  away.point.z() += 0.1;
+  EXPECT_EQ(g.box_thrust(away), Vec<3>::Zero());
+}
+
+TEST(WallThrust, APlateAcrossTheFlowHoldsThePressureDifference2D) {
+  // A 2D grid of 1 cm cells, 6 x 6, drained at 50 Pa below and 0 above,
+  // with an impermeable plate across its whole width at y = 0.03: no flow,
+  // 50 Pa everywhere below it and 0 above, so the plate takes 50 Pa over
+  // 6 cm, 3 N/m upwards. A box wall over x in [0.01, 0.03], y in [0.02,
+  // 0.04] across the plate feels 50 Pa on its lower face and nothing on
+  // its upper one: 50 x 0.02 = 1 N/m upwards (the jump across the barrier
+  // in its section; the cells' gradients are zero).
+  PoreFluid<2> f = empty_grid<2>(0.01, {6, 6});
+  f.sides[2] = {FluidBoundaryType::drained, TimeSeries::constant(50.0)};
+  FluidBarrier<2> plate;
+  plate.name = "plate";
+  plate.axis = 1;
+  plate.at = 0.03;
+  plate.lo = {0.0, 0.03};
+  plate.hi = {0.06, 0.03};
+  f.barriers = {plate};
+  std::vector<Wall<2>> walls{moving_box<2>(Vec<2>(0.01, 0.02), Vec<2>(0.03, 0.04), Vec<2>::Zero())};
+  walls[0].motion = WallMotion::fixed;
+  ParticleData<2> none;
+  f.initialize(none, walls);
+  for (int s = 1; s <= 3; ++s) f.update(none, 1.0, s, walls);
+  ASSERT_EQ(f.barrier_faces(0), 6u);
+  // The pressures to the solver's tolerance; the thrusts are sums of a few
+  // of them times exact areas.
+  const Vec<2> on_plate = f.barrier_thrust(0);
+  EXPECT_NEAR(on_plate.y(), 3.0, 1e-9);
+  EXPECT_EQ(on_plate.x(), 0.0);
+  const Vec<2> on_box = f.box_thrust(walls[0]);
+  EXPECT_NEAR(on_box.y(), 1.0, 1e-9);
+  EXPECT_NEAR(on_box.x(), 0.0, 1e-9);
+}
+
 }  // namespace

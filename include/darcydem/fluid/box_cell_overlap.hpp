@@ -5,11 +5,14 @@
 // by interval; a rotated one is clipped as a convex polygon (2D) or
 // polyhedron (3D) by the cell's sides, and its area or volume summed from
 // triangles or tetrahedra about an inner point.
+#include <algorithm>
+#include <array>
 #include <type_traits>
 
 #include <Eigen/Core>
 
 #include "darcydem/core/vec.hpp"
+#include "darcydem/fluid/fluid_grid.hpp"
 
 namespace darcydem {
 
@@ -33,5 +36,39 @@ struct SolidBox {
 template <int D>
 [[nodiscard]] double box_cell_volume(const SolidBox<D>& box, const std::type_identity_t<Vec<D>>& lo,
                                      const std::type_identity_t<Vec<D>>& hi);
+
+/// f(cell coordinates, volume) for each cell of `grid` that the box's
+/// bounding box reaches, with the box's exact volume in it (possibly 0).
+/// A box beyond the grid's ends takes up no cell there, also on a periodic
+/// axis.
+template <int D, class F>
+void for_each_box_cell(const FluidGrid<D>& grid, const SolidBox<D>& box, F&& f) {
+  const Vec<D> reach = box.bounding_half();
+  std::array<int, D> lo{};
+  std::array<int, D> hi{};
+  for (int k = 0; k < D; ++k) {
+    const int first = grid.cell_along(k, box.centre[k] - reach[k]);
+    const int last = grid.cell_along(k, box.centre[k] + reach[k]);
+    if (last < 0 || first >= grid.cells[k]) return;
+    lo[k] = std::max(first, 0);
+    hi[k] = std::min(last, grid.cells[k] - 1);
+  }
+  std::array<int, D> c = lo;
+  while (true) {
+    Vec<D> corner;
+    Vec<D> far;
+    for (int k = 0; k < D; ++k) {
+      corner[k] = grid.face_at(k, c[k]);
+      far[k] = grid.face_at(k, c[k] + 1);
+    }
+    f(c, box_cell_volume(box, corner, far));
+    int k = 0;
+    while (k < D && ++c[k] > hi[k]) {
+      c[k] = lo[k];
+      ++k;
+    }
+    if (k == D) return;
+  }
+}
 
 }  // namespace darcydem

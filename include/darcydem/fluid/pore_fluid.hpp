@@ -185,6 +185,21 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] std::size_t grains_outside(const ParticleData<D>& particles) const;
   /// Of those, the grains below water_level: in free water.
   [[nodiscard]] std::size_t grains_in_free_water(const ParticleData<D>& particles) const;
+  /// The excess pore pressure's thrust on a box wall that displaces the
+  /// fluid (one of solid_walls), -(integral of u n dA) over the part of
+  /// its surface in the grid, N (2D: per metre): by the divergence theorem,
+  /// -(sum over cells of the box's volume there times the cell's gradient,
+  /// the mean of its two faces') plus, where the box crosses a side of the
+  /// grid, its section there times the side's pressure along the side's
+  /// outward normal, and where it crosses a barrier, its section times the
+  /// jump. Exact for a pressure linear in space. The hydrostatic part
+  /// (buoyancy) is not in it: u is the excess pressure.
+  [[nodiscard]] Vec<D> box_thrust(const Wall<D>& box) const;
+  /// The excess pore pressure's thrust on barrier b (an impermeable
+  /// plate's), N (2D: per metre): over the faces it closes, the pressure
+  /// of the cell below minus that of the cell above times the face's
+  /// area, along its axis.
+  [[nodiscard]] Vec<D> barrier_thrust(std::size_t barrier) const;
   /// Flow into the grid through one side in the last step, m^3/s.
   [[nodiscard]] double side_inflow(int side) const { return side_inflow_[side]; }
   /// Flow into the grid through one patch (index in `patches`) in the last
@@ -518,6 +533,7 @@ class PoreFluid final : public ParticleForceField<D> {
     int axis;
     std::size_t cell_below;
     std::size_t face;
+    std::size_t barrier;  ///< in `barriers`
   };
   std::vector<BlockedFace> blocked_;
   std::vector<std::size_t> barrier_faces_;  ///< faces per barrier

@@ -21,6 +21,8 @@ enum class ProbeQuantity {
   particle_velocity,
   wall_position,
   wall_force,
+  wall_fluid_force,  ///< the excess pore pressure's thrust on a wall (PoreFluid::box_thrust, barrier_thrust),
+                     ///< N
   kinetic_energy,
   contact_count,
   coordination,
@@ -42,6 +44,9 @@ struct ProbeSpec {
   std::int64_t particle = -1;  ///< creation index; -1: the topmost particle
   int component = 0;           ///< 0..D-1, or -1 for the norm
   std::size_t wall = 0;
+  /// wall_fluid_force: the wall's barrier in PoreFluid::barriers (an
+  /// impermeable plate), or -1 (a box that displaces the fluid)
+  std::int64_t barrier = -1;
   std::vector<double> position;  ///< pore_pressure: the point, m
   int side = 0;                  ///< fluid_inflow: x_min, x_max, y_min, ...
   /// particles_in_box, mean_particle_position, stress, porosity: the box, m
