@@ -191,6 +191,7 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
     w.motion = c.motion;
     w.velocity = c.motion == WallMotion::velocity ? c.velocity : Vec<D>::Zero();
     w.servo = c.servo;
+    w.servo_axis = c.servo_axis;
   }
 }
 
@@ -367,6 +368,9 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   };
   auto fluid_step = [&] {
     fluid->update(sim.particles, static_cast<double>(since_update) * dt, sim.time, sim.walls);
+    // The water's thrust on the walls that displace it, for the servos
+    // that count it (ServoControl::with_pore_water).
+    for (std::size_t w : fluid->solid_walls) sim.walls[w].water_force = fluid->box_thrust(sim.walls[w]);
     since_update = 0;
     fluid_iterations += static_cast<std::uint64_t>(fluid->last_solve().iterations);
     fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);

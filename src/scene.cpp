@@ -214,8 +214,13 @@ WallBarrier<D> plate_barrier(TableReader& r, const Wall<D>& w, const Vec<D>& box
   return b;
 }
 
+/// A wall's motion: `velocity`, `servo` or `fixed`. A servo moves a plane
+/// along its normal and a box (`box`) along its `direction`; its load may
+/// count the pore water's thrust (`load = "total"`) on a box that
+/// displaces the fluid (`displaces_fluid`).
 template <int D>
-void read_wall_motion(TableReader& r, Vec<D>& velocity, WallMotion& motion, ServoControl& servo) {
+void read_wall_motion(TableReader& r, bool box, bool displaces_fluid, Vec<D>& velocity, WallMotion& motion,
+                      ServoControl& servo, Vec<D>& servo_axis) {
   r.allow({"velocity", "servo", "fixed"});
   const int given = int(r.has("velocity")) + int(r.has("servo")) + int(r.has("fixed"));
   if (given > 1) r.fail_table("give only one of 'velocity', 'servo' or 'fixed'");
@@ -228,6 +233,23 @@ void read_wall_motion(TableReader& r, Vec<D>& velocity, WallMotion& motion, Serv
     servo.target_force = sr.check("target_force", sr.number("target_force"), is_non_negative, ">= 0 N");
     servo.gain = sr.check("gain", sr.number("gain"), is_positive, "> 0 m/(s N)");
     servo.max_speed = sr.check("max_speed", sr.number("max_speed"), is_positive, "> 0 m/s");
+    if (box) {
+      if (!sr.has("direction")) {
+        sr.fail_table(
+            "a box wall's servo needs 'direction' = [" + std::to_string(D) +
+            " numbers]: the way the box moves to load the grains more, e.g. [0, -1] for a lid pushing down "
+            "in 2D");
+      }
+      servo_axis = read_direction<D>(sr, "direction", std::nullopt);
+    } else if (sr.has("direction")) {
+      sr.fail("direction", "a plane wall's servo moves it along its normal; 'direction' is for box walls");
+    }
+    servo.with_pore_water = sr.optional_choice("load", {"grains", "total"}) == "total";
+    if (servo.with_pore_water && !displaces_fluid) {
+      sr.fail("load",
+              "\"total\" adds the pore water's thrust, which only a box wall with displaces_fluid = true "
+              "takes (the water passes through any other wall); give \"grains\", the default");
+    }
     sr.finish();
   } else if (r.has("fixed")) {
     if (!r.boolean_or("fixed", true))
@@ -547,9 +569,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       w.normal = read_direction<D>(r, "normal", std::nullopt);
     }
     w.material = materials.lookup(r, "material", r.string("material"));
-    read_wall_motion<D>(r, w.velocity, w.motion, w.servo);
-    if (w.is_box && w.motion == WallMotion::servo)
-      r.fail("servo", "a box wall cannot be servo-controlled (it has no normal); give 'velocity' or 'fixed'");
+    read_wall_motion<D>(r, w.is_box, r.boolean_or("displaces_fluid", false), w.velocity, w.motion, w.servo,
+                        w.servo_axis);
     const bool impermeable = r.boolean_or("impermeable", false);
     if (impermeable) {
       wall_barriers.push_back(plate_barrier<D>(r, w, box_lo, box_hi));
@@ -893,14 +914,12 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         TableReader cr(*ct, fmt::format("{} walls.{}", r.where(), name.str()), file);
         WallChange<D> c;
         c.wall = it->second;
-        read_wall_motion<D>(cr, c.velocity, c.motion, c.servo);
+        const bool displaces = std::find(solid_walls.begin(), solid_walls.end(), c.wall) != solid_walls.end();
+        read_wall_motion<D>(cr, sim.walls[c.wall].is_box, displaces, c.velocity, c.motion, c.servo,
+                            c.servo_axis);
         if (wall_is_barrier[c.wall] && c.motion != WallMotion::fixed) {
           cr.fail(c.motion == WallMotion::velocity ? "velocity" : "servo",
                   "an impermeable wall cannot move: its barrier is fixed in the fluid grid");
-        }
-        if (sim.walls[c.wall].is_box && c.motion == WallMotion::servo) {
-          cr.fail("servo",
-                  "a box wall cannot be servo-controlled (it has no normal); give 'velocity' or 'fixed'");
         }
         cr.finish();
         s.walls.push_back(c);

@@ -45,4 +45,14 @@ double consolidation_degree(const SeepageColumnParameters& p, double time) {
                        p, time, [](double k) { return 8.0 / (pi * pi * k * k); }, false);
 }
 
+double consolidation_pressure(const SeepageColumnParameters& p, double stress, double distance, double time) {
+  const double b = p.compressibility / (p.compressibility + p.fluid_storage);
+  if (time <= 0.0) return distance > 0.0 ? b * stress : 0.0;
+  const double h = p.height;
+  return b * stress *
+         series(
+             p, time, [&](double k) { return 4.0 / (pi * k) * std::sin(k * pi * distance / (2.0 * h)); },
+             false);
+}
+
 }  // namespace darcydem

@@ -226,7 +226,36 @@ TEST(SceneErrors, BoxWallsAreChecked) {
       load_error(replace(good, "material = \"sand\"\n\n[[particles]]",
                          "material = \"sand\"\nservo = { target_force = 1.0, gain = 1.0, max_speed = 1.0 }\n"
                          "\n[[particles]]"));
-  EXPECT_NE(msg.find("key 'servo': a box wall cannot be servo-controlled"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("[[wall]] #2 servo: a box wall's servo needs 'direction' = [2 numbers]: the way the box "
+                     "moves to load the grains more"),
+            std::string::npos)
+      << msg;
+  EXPECT_EQ(
+      load_error(replace(good, "material = \"sand\"\n\n[[particles]]",
+                         "material = \"sand\"\nservo = { target_force = 1.0, gain = 1.0, max_speed = 1.0, "
+                         "direction = [-1.0, 0.0] }\n\n[[particles]]")),
+      "");
+  // The pore water's thrust: only on a box that displaces the fluid (here
+  // there is none: no [fluid]).
+  msg = load_error(replace(good, "material = \"sand\"\n\n[[particles]]",
+                           "material = \"sand\"\nservo = { target_force = 1.0, gain = 1.0, max_speed = 1.0, "
+                           "direction = [-1.0, 0.0], load = \"total\" }\n\n[[particles]]"));
+  EXPECT_NE(msg.find("servo key 'load': \"total\" adds the pore water's thrust, which only a box wall with "
+                     "displaces_fluid = true takes"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "material = \"sand\"\n\n[[particles]]",
+                           "material = \"sand\"\nservo = { target_force = 1.0, gain = 1.0, max_speed = 1.0, "
+                           "direction = [-1.0, 0.0], load = \"all\" }\n\n[[particles]]"));
+  EXPECT_NE(msg.find("key 'load'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("grains"), std::string::npos) << msg;
+  // A plane's servo moves along its normal.
+  msg = load_error(
+      replace(kGood, "normal = [0.0, 1.0]\nmaterial = \"sand\"",
+              "normal = [0.0, 1.0]\nmaterial = \"sand\"\nservo = { target_force = 1.0, gain = 1.0, "
+              "max_speed = 1.0, direction = [0.0, 1.0] }"));
+  EXPECT_NE(msg.find("key 'direction': a plane wall's servo moves it along its normal"), std::string::npos)
+      << msg;
   msg = load_error(replace(good, "box = { min = [0.002, 0.0], max = [0.002, 0.002] }", ""));
   EXPECT_NE(msg.find("a wall needs 'point' and 'normal' (an infinite plane) or 'box"), std::string::npos)
       << msg;
@@ -235,12 +264,18 @@ TEST(SceneErrors, BoxWallsAreChecked) {
   // A disc that starts inside the plate is refused like one behind a plane.
   msg = load_error(replace(good, "min = [0.002, 0.0]", "min = [0.0003, 0.0]"));
   EXPECT_NE(msg.find("overlaps wall \"pile\""), std::string::npos) << msg;
-  // A stage cannot make it a servo wall either.
+  // A stage makes it a servo wall with its direction.
   msg = load_error(replace(good, "gravity = [0.0, -9.81]",
                            "gravity = [0.0, -9.81]\nwalls.pile = { servo = { target_force = 1.0, gain = 1.0, "
                            "max_speed = 1.0 } }"));
-  EXPECT_NE(msg.find("walls.pile key 'servo': a box wall cannot be servo-controlled"), std::string::npos)
-      << msg;
+  EXPECT_NE(msg.find("walls.pile servo: a box wall's servo needs 'direction'"), std::string::npos) << msg;
+  const std::string staged =
+      replace(good, "gravity = [0.0, -9.81]",
+              "gravity = [0.0, -9.81]\nwalls.pile = { servo = { target_force = 1.0, gain = "
+              "1.0, max_speed = 1.0, direction = [-2.0, 0.0] } }");
+  EXPECT_EQ(load_error(staged), "");
+  const auto scene = built_scene<2>(staged);
+  EXPECT_EQ(scene.stages.front().walls.front().servo_axis, Vec<2>(-1.0, 0.0));  // normalised
 }
 
 TEST(SceneErrors, BoxWallRotationsAreReadAndChecked) {

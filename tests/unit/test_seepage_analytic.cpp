@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "darcydem/analysis/seepage_analytic.hpp"
 
@@ -86,4 +87,35 @@ TEST(SeepageAnalytic, ConsolidationDegree) {
   auto q = reference(1e5);
   const double b = q.compressibility / (q.compressibility + q.fluid_storage);
   EXPECT_NEAR(darcydem::consolidation_degree(q, 1e-12), 1.0 - b, 1e-3);
+}
+
+TEST(SeepageAnalytic, ConsolidationPressure) {
+  // The isochrones of the same consolidation: their mean over the column
+  // is the share of the load the water still carries, so
+  //   (1/H) integral of u dz = stress (1 - U)
+  // with U from consolidation_degree, a different series (the midpoint
+  // rule on 2000 points: 1e-6 of the stress). At the sealed end the
+  // pressure starts at B stress and falls; at the drained end it is 0.
+  auto p = reference(1e5);
+  const double stress = 500.0;
+  const double b = p.compressibility / (p.compressibility + p.fluid_storage);
+  const double cv = p.consolidation_coefficient();
+  for (double tv : {0.01, 0.1, 0.197, 0.5, 1.0}) {
+    const double t = tv * p.height * p.height / cv;
+    constexpr int n = 2000;
+    double mean = 0.0;
+    for (int i = 0; i < n; ++i)
+      mean += darcydem::consolidation_pressure(p, stress, (i + 0.5) * p.height / n, t) / n;
+    EXPECT_NEAR(mean, stress * (1.0 - darcydem::consolidation_degree(p, t)), 1e-5 * stress) << tv;
+    EXPECT_EQ(darcydem::consolidation_pressure(p, stress, 0.0, t), 0.0);
+  }
+  const double early = 1e-6 * p.height * p.height / cv;
+  EXPECT_NEAR(darcydem::consolidation_pressure(p, stress, p.height, early), b * stress, 1e-6 * stress);
+  // At the sealed end by Tv = 0.848 (U = 0.9 for B = 1): u / (B stress) =
+  // (4/pi) exp(-pi^2 Tv / 4) to the next term's 1e-8.
+  const double late = 0.848 * p.height * p.height / cv;
+  EXPECT_NEAR(
+      darcydem::consolidation_pressure(p, stress, p.height, late),
+      b * stress * 4.0 / std::numbers::pi * std::exp(-std::numbers::pi * std::numbers::pi * 0.848 / 4.0),
+      1e-6 * stress);
 }

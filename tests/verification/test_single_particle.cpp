@@ -194,9 +194,11 @@ namespace {
 // A servo-controlled lid presses a column of 5 discs onto a floor, no
 // gravity. In equilibrium the lid's load equals the target, the floor
 // carries the same force (balance), and each of the 6 linear contacts is
-// compressed by F / k_n, so the lid sits 6 F / k_n below the touching
-// height. Tolerance 0.5%: the servo's residual error once settled.
-TEST(ServoWall, ReachesTargetLoadAndSpringCompression) {
+// compressed by F / k_n, so the lid's face sits 6 F / k_n below the
+// touching height. Tolerance 0.5%: the servo's residual error once settled.
+// `lid` comes with its motion set; `face` is how far its pressing face lies
+// below its point. Returns the simulation after 200 000 steps.
+Simulation<2> pressed_column(Wall<2> lid, double face) {
   ContactSpec spec;
   spec.normal_stiffness = 1e5;
   spec.restitution = 0.3;
@@ -204,8 +206,7 @@ TEST(ServoWall, ReachesTargetLoadAndSpringCompression) {
   const double r = 5e-4;
   for (int i = 0; i < 5; ++i) sim.particles.add(Vec<2>(0, r + 2 * r * i), r, 2650.0, 0, false);
   sim.walls.push_back(testing::plane<2>(Vec<2>(0, 0), Vec<2>(0, 1), "floor"));
-  auto lid = testing::plane<2>(Vec<2>(0, 10 * r + 1e-5), Vec<2>(0, -1), "lid");
-  lid.motion = WallMotion::servo;
+  lid.point = Vec<2>(0, 10 * r + 1e-5 + face);
   lid.servo.target_force = 2.0;  // N
   lid.servo.gain = 1e-3;         // m/s per N
   lid.servo.max_speed = 0.05;
@@ -218,7 +219,28 @@ TEST(ServoWall, ReachesTargetLoadAndSpringCompression) {
   EXPECT_NEAR(sim.walls[1].load(), f, 0.005 * f);
   EXPECT_NEAR(sim.walls[0].load(), f, 0.005 * f);
   const double expected_top = 10 * r - 6 * f / spec.normal_stiffness;
-  EXPECT_NEAR(sim.walls[1].point.y(), expected_top, 0.005 * 6 * f / spec.normal_stiffness);
+  EXPECT_NEAR(sim.walls[1].point.y() - face, expected_top, 0.005 * 6 * f / spec.normal_stiffness);
+  return sim;
+}
+
+TEST(ServoWall, ReachesTargetLoadAndSpringCompression) {
+  auto lid = testing::plane<2>(Vec<2>::Zero(), Vec<2>(0, -1), "lid");
+  lid.motion = WallMotion::servo;
+  pressed_column(lid, 0.0);
+}
+
+// The same with the lid a box (a block 2 mm thick, wider than the discs)
+// servo-controlled along its direction, down: it pushes along
+// `servo_axis`, reads its load against it and moves along it only.
+TEST(ServoWall, ABoxLidPushesAlongItsDirection) {
+  Wall<2> lid;
+  lid.name = "lid";
+  lid.is_box = true;
+  lid.half = Vec<2>(2e-3, 1e-3);
+  lid.motion = WallMotion::servo;
+  lid.servo_axis = Vec<2>(0, -1);
+  const auto sim = pressed_column(lid, lid.half.y());
+  EXPECT_EQ(sim.walls[1].velocity.x(), 0.0);
 }
 
 }  // namespace

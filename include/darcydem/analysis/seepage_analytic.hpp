@@ -40,5 +40,11 @@ double seepage_uplift(const SeepageColumnParameters& p, double time);
 /// with B = m_v / (m_v + n/K_f) the share of the load the pore fluid takes
 /// at once (1 for an incompressible fluid). `inflow` is not used.
 double consolidation_degree(const SeepageColumnParameters& p, double time);
+/// The excess pore pressure of the same consolidation at distance z from
+/// the drained end (0..H) and time t after a load stress `stress` (Pa),
+///   u = B stress sum_m 4 / ((2m+1) pi) sin((2m+1) pi z / (2H)) exp(-(2m+1)^2 pi^2 Tv / 4),
+/// B as above. At z = H, the sealed end (under an impermeable loaded
+/// piston), the sine is (-1)^m.
+double consolidation_pressure(const SeepageColumnParameters& p, double stress, double distance, double time);
 
 }  // namespace darcydem

@@ -73,6 +73,7 @@ struct WallChange {
   WallMotion motion = WallMotion::fixed;
   Vec<D> velocity = Vec<D>::Zero();
   ServoControl servo;
+  Vec<D> servo_axis = Vec<D>::Zero();  ///< a box's (Wall::servo_axis)
 };
 
 template <int D>

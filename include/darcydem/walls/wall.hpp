@@ -7,8 +7,11 @@
 // as a sheet pile, a baffle or a hopper's side); particles touch it
 // from any side, on a face, an edge or a corner, along the line from the
 // box's nearest point to their centre. A wall is fixed, moves at a
-// prescribed velocity, or (planes only) is servo-controlled so that the load
-// the particles put on it approaches a target force.
+// prescribed velocity, or is servo-controlled so that the load on it
+// approaches a target force: a plane along its normal, a box along its
+// servo_axis; the load is what the particles put on it, and with
+// `with_pore_water` also the pore water's thrust (a box that displaces the
+// fluid: an impermeable piston).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -22,9 +25,10 @@ namespace darcydem {
 enum class WallMotion { fixed, velocity, servo };
 
 struct ServoControl {
-  double target_force = 0.0;  ///< N, compressive load wanted on the wall
-  double gain = 0.0;          ///< m/(s N): wall speed per newton of load error
-  double max_speed = 0.0;     ///< m/s
+  double target_force = 0.0;     ///< N, compressive load wanted on the wall
+  double gain = 0.0;             ///< m/(s N): wall speed per newton of load error
+  double max_speed = 0.0;        ///< m/s
+  bool with_pore_water = false;  ///< the load includes Wall::water_force
 };
 
 template <int D>
@@ -40,13 +44,20 @@ struct Wall {
   WallMotion motion = WallMotion::fixed;
   Vec<D> velocity = Vec<D>::Zero();  ///< m/s (velocity mode; servo sets it)
   ServoControl servo;
+  /// A servo-controlled box's direction of motion as its load grows short
+  /// of the target (unit; a plane moves along its normal).
+  Vec<D> servo_axis = Vec<D>::Zero();
   Vec<D> force = Vec<D>::Zero();  ///< N, force the particles exert on the wall
+  /// N, the pore water's thrust on the wall as of the last fluid step, set
+  /// by whoever steps the fluid when servo.with_pore_water asks for it
+  /// (PoreFluid::box_thrust).
+  Vec<D> water_force = Vec<D>::Zero();
   Vec<D> point_at_build = Vec<D>::Zero();
 
   /// The state a checkpoint keeps (the name comes from the scene).
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(point, normal, material, motion, velocity, servo, force, point_at_build);
+    ar(point, normal, material, motion, velocity, servo, servo_axis, force, water_force, point_at_build);
   }
 
   /// Where a particle centred at x stands against the wall: the gap from
@@ -84,8 +95,16 @@ struct Wall {
     const Vec<D> shift = point - point_at_build;
     return is_box ? shift.norm() : std::abs(shift.dot(normal));
   }
-  /// Compressive load on the wall (N): the force's component against the normal.
-  [[nodiscard]] double load() const { return -force.dot(normal); }
+  /// The direction the wall moves in to load the particles more: a
+  /// plane's normal, a box's servo_axis.
+  [[nodiscard]] Vec<D> push_direction() const { return is_box ? servo_axis : normal; }
+  /// Compressive load on the wall (N): the force's component against
+  /// push_direction(), the particles' and, with servo.with_pore_water, the
+  /// pore water's.
+  [[nodiscard]] double load() const {
+    const Vec<D> f = servo.with_pore_water ? Vec<D>(force + water_force) : force;
+    return -f.dot(push_direction());
+  }
 
   /// Updates the servo velocity from the last load and moves the wall.
   void advance(double dt) {
@@ -93,7 +112,7 @@ struct Wall {
       double speed = servo.gain * (servo.target_force - load());
       if (speed > servo.max_speed) speed = servo.max_speed;
       if (speed < -servo.max_speed) speed = -servo.max_speed;
-      velocity = speed * normal;
+      velocity = speed * push_direction();
     } else if (motion == WallMotion::fixed) {
       velocity.setZero();
     }
