@@ -148,8 +148,7 @@ class Model {
 
  private:
   void fluid_step() {
-    fluid()->update(sim().particles, static_cast<double>(since_update_) * sim().time_step, sim().time,
-                    sim().walls);
+    darcydem::fluid_step(sim(), *fluid(), since_update_);
     since_update_ = 0;
   }
 
@@ -320,11 +319,13 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["name"] = w.name;
               d["point"] = as_tuple<D>(w.point);
               d["force"] = as_tuple<D>(w.force);
+              d["water_force"] = as_tuple<D>(w.water_force);
               walls.append(d);
             }
             return walls;
           },
-          "each wall's name, point (a box: its centre), m, and the force the particles exert on it, N")
+          "each wall's name, point (a box: its centre), m, the force the particles exert on it, N, and "
+          "on a box that displaces the fluid the pore water's thrust, N (zero on other walls)")
       .def(
           "kinetic_energy", [](const M& s) { return s.sim().kinetic_energy(); }, "J")
       .def(

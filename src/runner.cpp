@@ -367,10 +367,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     last_checkpoint = Clock::now();
   };
   auto fluid_step = [&] {
-    fluid->update(sim.particles, static_cast<double>(since_update) * dt, sim.time, sim.walls);
-    // The water's thrust on the walls that displace it, for the servos
-    // that count it (ServoControl::with_pore_water).
-    for (std::size_t w : fluid->solid_walls) sim.walls[w].water_force = fluid->box_thrust(sim.walls[w]);
+    darcydem::fluid_step<D>(sim, *fluid, since_update);
     since_update = 0;
     fluid_iterations += static_cast<std::uint64_t>(fluid->last_solve().iterations);
     fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);
@@ -601,6 +598,14 @@ template std::string describe_patches_and_barriers<2>(const PoreFluid<2>&);
 template std::string describe_patches_and_barriers<3>(const PoreFluid<3>&);
 template std::string describe_grid<2>(const FluidGrid<2>&);
 template std::string describe_grid<3>(const FluidGrid<3>&);
+template <int D>
+void fluid_step(Simulation<D>& sim, PoreFluid<D>& fluid, std::uint64_t steps) {
+  fluid.update(sim.particles, static_cast<double>(steps) * sim.time_step, sim.time, sim.walls);
+  for (std::size_t w : fluid.solid_walls) sim.walls[w].water_force = fluid.box_thrust(sim.walls[w]);
+}
+
+template void fluid_step<2>(Simulation<2>&, PoreFluid<2>&, std::uint64_t);
+template void fluid_step<3>(Simulation<3>&, PoreFluid<3>&, std::uint64_t);
 template void apply_stage<2>(Simulation<2>&, PoreFluid<2>*, const Stage<2>&);
 template void apply_stage<3>(Simulation<3>&, PoreFluid<3>*, const Stage<3>&);
 template RunSummary run_scene<2>(Scene<2>&, const RunOptions&);

@@ -312,5 +312,35 @@ class PilePenetration(unittest.TestCase):
         grains = float(np.sum(4.0 / 3.0 * np.pi * model.radii**3))
         self.assertLess(abs(f.balance["imbalance"]), 1e-12 * grains)
 
+class SealedPiston(unittest.TestCase):
+    """examples/fluid_cases/consolidation_sealed_piston.toml: its two stages
+    stepped from Python give the program's run, servo, water's thrust and
+    all."""
+
+    def test_stepping_both_stages_gives_the_run_of_the_program(self):
+        scene = os.path.join(SOURCE, "examples", "fluid_cases", "consolidation_sealed_piston.toml")
+        out = os.path.join(tempfile.mkdtemp(), "out")
+        summary = darcydem.run(scene, out=out)
+        self.assertEqual(summary["stages_completed"], ["settle", "load"])
+        model = darcydem.load(scene)
+        settle = round(1.5 / model.time_step)
+        model.step(settle)
+        model.apply_stage("load")
+        model.step(summary["steps"] - settle)
+        with open(os.path.join(out, "particles_final.csv")) as f:
+            rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))][1:]
+        final = np.array([[float(v) for v in r] for r in rows])
+        np.testing.assert_array_equal(model.positions, final[:, :2])
+        # The piston's water thrust is the pressure under it times its
+        # width (1 mm): the top cell's, to the cell's O(h^2) (1e-3 of it
+        # at most here, where the pressure has all but drained).
+        piston = next(w for w in model.walls if w["name"] == "piston")
+        top = float(model.fluid.pressure[0, -1])
+        self.assertGreater(top, 0.0)
+        self.assertAlmostEqual(piston["water_force"][1], top * 0.001, delta=1e-3 * top * 0.001)
+        # Sideways the two side walls' pressures cancel, to round-off.
+        self.assertLess(abs(piston["water_force"][0]), 1e-12 * abs(piston["water_force"][1]))
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

@@ -273,6 +273,27 @@ TEST(Checkpoint, ResumedBedWithServoLidAndHeldForcesWritesTheSameFiles) {
   fs::remove_all(dir);
 }
 
+/// Runs `scene` whole into dir/whole (its stages all `stages`), then into
+/// dir/parts stopped at step `stop` (with `stages_before` stages done) and
+/// resumed: the two must write the same files. Removes dir.
+template <int D>
+void expect_resumed_run_writes_the_same_files(const std::string& scene, const fs::path& dir,
+                                              std::size_t stages, std::uint64_t stop,
+                                              std::size_t stages_before) {
+  const fs::path whole = dir / "whole";
+  const fs::path parts = dir / "parts";
+  const RunSummary a = run<D>(scene, whole, 0, false);
+  ASSERT_EQ(a.stages_completed.size(), stages);
+  const RunSummary first = run<D>(scene, parts, stop, false);
+  ASSERT_TRUE(first.interrupted);
+  ASSERT_EQ(first.stages_completed.size(), stages_before);
+  const RunSummary last = run<D>(scene, parts, 0, true);
+  EXPECT_FALSE(last.interrupted);
+  EXPECT_EQ(last.steps, a.steps);
+  expect_same_files(whole, parts);
+  fs::remove_all(dir);
+}
+
 TEST(Checkpoint, ResumedPileWritesTheSameFiles) {
   // examples/fluid_cases/pile_penetration.toml, shortened: 0.03 s of
   // settling, 0.05 s of push (the rod's tip in the grid after 0.025 s of
@@ -293,20 +314,19 @@ TEST(Checkpoint, ResumedPileWritesTheSameFiles) {
   }
   const std::string scene = (dir / "pile.toml").string();
   std::ofstream(scene) << text;
-  const fs::path whole = dir / "whole";
-  const fs::path parts = dir / "parts";
-  const RunSummary a = run<3>(scene, whole, 0, false);
-  ASSERT_EQ(a.stages_completed.size(), 3U);
   // Settling takes 25 900 steps, the tip reaches the grid 21 600 steps
   // later and the push ends at 69 100.
-  const RunSummary first = run<3>(scene, parts, 60000, false);
-  ASSERT_TRUE(first.interrupted);
-  ASSERT_EQ(first.stages_completed.size(), 1U);
-  const RunSummary last = run<3>(scene, parts, 0, true);
-  EXPECT_FALSE(last.interrupted);
-  EXPECT_EQ(last.steps, a.steps);
-  expect_same_files(whole, parts);
-  fs::remove_all(dir);
+  expect_resumed_run_writes_the_same_files<3>(scene, dir, 3, 60000, 1);
+}
+
+TEST(Checkpoint, ResumedSealedPistonWritesTheSameFiles) {
+  // examples/fluid_cases/consolidation_sealed_piston.toml, stopped 0.02 s
+  // into the load stage (step 169 000 of 278 339: the settling takes
+  // 167 003): the servo's direction and the water's thrust on the piston,
+  // which its next speed reads, must come back.
+  expect_resumed_run_writes_the_same_files<2>(
+      std::string(DARCYDEM_SOURCE_DIR) + "/examples/fluid_cases/consolidation_sealed_piston.toml",
+      fresh_dir("sealed_piston"), 2, 169000, 1);
 }
 
 // What is refused, with the file and the reason: no checkpoint (the run

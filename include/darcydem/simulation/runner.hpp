@@ -53,6 +53,14 @@ struct RunSummary {
 template <int D>
 void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage);
 
+/// One fluid step covering the `steps` DEM steps since the last one: the
+/// pore fluid's update with the walls where they are now, then the water's
+/// thrust on each wall that displaces it (Wall::water_force, which a servo
+/// with `load = "total"` counts). The runner and the Python module step
+/// alike through it.
+template <int D>
+void fluid_step(Simulation<D>& sim, PoreFluid<D>& fluid, std::uint64_t steps);
+
 /// Whether the stage sets a coupling interval other than the fluid's
 /// current one: a new interval starts afresh, so the DEM steps since the
 /// last fluid step get theirs before the stage applies.
