@@ -156,17 +156,17 @@ Eigen::Matrix<double, D, D> read_box_rotation(TableReader& r) {
 /// that plane over the box's corners as given, lo and hi. Refused at the
 /// wall's 'impermeable' key otherwise; the grid checks it later.
 /// For a `wall_fluid_force` probe on wall w: the index of its barrier in
-/// the fluid's (an impermeable plate's: the walls' barriers come after
+/// the fluid's if it is an impermeable plate (`impermeable`: the walls' barriers come after
 /// the [[fluid.barrier]] tables and take their walls' names, which are
 /// unique, so the last of that name is the wall's), or -1 for a box that
 /// displaces the fluid. Refused at the probe's 'wall' for any other wall,
 /// which the water passes through.
 template <int D>
 std::int64_t fluid_thrust_barrier(TableReader& r, const PoreFluid<D>& fluid,
-                                  const std::vector<Wall<D>>& walls, std::size_t w) {
+                                  const std::vector<Wall<D>>& walls, std::size_t w, bool impermeable) {
   if (std::find(fluid.solid_walls.begin(), fluid.solid_walls.end(), w) != fluid.solid_walls.end()) return -1;
-  for (std::size_t b = fluid.barriers.size(); b-- > 0;) {
-    if (walls[w].is_box && fluid.barriers[b].name == walls[w].name) return static_cast<std::int64_t>(b);
+  for (std::size_t b = fluid.barriers.size(); impermeable && b-- > 0;) {
+    if (fluid.barriers[b].name == walls[w].name) return static_cast<std::int64_t>(b);
   }
   r.fail("wall", fmt::format("wall \"{}\" lets the pore water through, so the water pushes on it nowhere: "
                              "\"wall_fluid_force\" needs a box wall with displaces_fluid = true or an "
@@ -854,7 +854,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       }
       p.wall = it->second;
       if (p.quantity == ProbeQuantity::wall_fluid_force)
-        p.barrier = fluid_thrust_barrier(r, *scene.fluid, sim.walls, p.wall);
+        p.barrier = fluid_thrust_barrier(r, *scene.fluid, sim.walls, p.wall, wall_is_barrier[p.wall]);
       p.component = static_cast<int>(axis_component<D>(r, "component", true));
     } else {
       for (auto k : {"particle", "component", "wall"}) {

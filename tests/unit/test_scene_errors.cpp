@@ -963,6 +963,16 @@ TEST(SceneErrors, TheWaterThrustProbeNeedsAWallTheWaterCannotPass) {
   EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
   msg = load_error(std::string(kGood) + probe("floor"));
   EXPECT_NE(msg.find("\"wall_fluid_force\" needs a pore fluid"), std::string::npos) << msg;
+  // A box the water passes is refused even when a [[fluid.barrier]]
+  // shares its name (only an impermeable plate's barrier is the wall's).
+  const std::string permeable =
+      "\n[[wall]]\nname = \"block\"\nbox = { min = [0.0006, 0.0], max = [0.0016, 0.004] }\nmaterial = "
+      "\"sand\"\n";
+  const std::string namesake =
+      "\n[[fluid.barrier]]\nname = \"block\"\naxis = \"y\"\nat = 0.002\nfrom = [-0.0005]\nto = [0.0005]\n";
+  EXPECT_EQ(load_error(with_wall(permeable) + namesake), "");
+  msg = load_error(with_wall(permeable) + namesake + probe("block"));
+  EXPECT_NE(msg.find("wall \"block\" lets the pore water through"), std::string::npos) << msg;
 }
 
 }  // namespace
