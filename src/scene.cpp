@@ -151,16 +151,12 @@ Eigen::Matrix<double, D, D> read_box_rotation(TableReader& r) {
   return axes;
 }
 
-/// The barrier of an impermeable wall (`impermeable = true`): it must be a
-/// fixed, unturned box flat along one axis (a plate); the barrier lies on
-/// that plane over the box's corners as given, lo and hi. Refused at the
-/// wall's 'impermeable' key otherwise; the grid checks it later.
 /// For a `wall_fluid_force` probe on wall w: the index of its barrier in
-/// the fluid's if it is an impermeable plate (`impermeable`: the walls' barriers come after
-/// the [[fluid.barrier]] tables and take their walls' names, which are
-/// unique, so the last of that name is the wall's), or -1 for a box that
-/// displaces the fluid. Refused at the probe's 'wall' for any other wall,
-/// which the water passes through.
+/// the fluid's if it is an impermeable plate (`impermeable`: the walls'
+/// barriers come after the [[fluid.barrier]] tables and take their walls'
+/// names, which are unique, so the last of that name is the wall's), or -1
+/// for a box that displaces the fluid. Refused at the probe's 'wall' for
+/// any other wall, which the water passes through.
 template <int D>
 std::int64_t fluid_thrust_barrier(TableReader& r, const PoreFluid<D>& fluid,
                                   const std::vector<Wall<D>>& walls, std::size_t w, bool impermeable) {
@@ -174,6 +170,10 @@ std::int64_t fluid_thrust_barrier(TableReader& r, const PoreFluid<D>& fluid,
                              walls[w].name));
 }
 
+/// The barrier of an impermeable wall (`impermeable = true`): it must be a
+/// fixed, unturned box flat along one axis (a plate); the barrier lies on
+/// that plane over the box's corners as given, lo and hi. Refused at the
+/// wall's 'impermeable' key otherwise; the grid checks it later.
 template <int D>
 WallBarrier<D> plate_barrier(TableReader& r, const Wall<D>& w, const Vec<D>& box_lo, const Vec<D>& box_hi) {
   // A plate that the pore fluid cannot cross either: a barrier on its plane.
@@ -569,14 +569,14 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       w.normal = read_direction<D>(r, "normal", std::nullopt);
     }
     w.material = materials.lookup(r, "material", r.string("material"));
-    read_wall_motion<D>(r, w.is_box, r.boolean_or("displaces_fluid", false), w.velocity, w.motion, w.servo,
-                        w.servo_axis);
+    const bool displaces_fluid = r.boolean_or("displaces_fluid", false);
+    read_wall_motion<D>(r, w.is_box, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis);
     const bool impermeable = r.boolean_or("impermeable", false);
     if (impermeable) {
       wall_barriers.push_back(plate_barrier<D>(r, w, box_lo, box_hi));
     }
     wall_is_barrier.push_back(impermeable);
-    if (r.boolean_or("displaces_fluid", false)) {
+    if (displaces_fluid) {
       if (!w.is_box) {
         r.fail("displaces_fluid",
                "only a box wall takes up pore volume; a plane wall is a side of the domain (the fluid grid's "

@@ -21,8 +21,7 @@ enum class ProbeQuantity {
   particle_velocity,
   wall_position,
   wall_force,
-  wall_fluid_force,  ///< the excess pore pressure's thrust on a wall (PoreFluid::box_thrust, barrier_thrust),
-                     ///< N
+  wall_fluid_force,  ///< the excess pore water's thrust on a wall, N (PoreFluid::box_thrust, barrier_thrust)
   kinetic_energy,
   contact_count,
   coordination,

@@ -48,9 +48,10 @@ struct Wall {
   /// of the target (unit; a plane moves along its normal).
   Vec<D> servo_axis = Vec<D>::Zero();
   Vec<D> force = Vec<D>::Zero();  ///< N, force the particles exert on the wall
-  /// N, the pore water's thrust on the wall as of the last fluid step, set
-  /// by whoever steps the fluid when servo.with_pore_water asks for it
-  /// (PoreFluid::box_thrust).
+  /// N, the pore water's thrust on the wall as of the last fluid step: set
+  /// on every box that displaces the fluid by whoever steps the fluid
+  /// (fluid_step, PoreFluid::box_thrust), zero on other walls; a servo
+  /// counts it with servo.with_pore_water.
   Vec<D> water_force = Vec<D>::Zero();
   Vec<D> point_at_build = Vec<D>::Zero();
 
