@@ -219,11 +219,14 @@ void PoreFluid<D>::compute_wall_solid(const std::vector<Wall<D>>& walls) {
   if (solid_walls.empty() && wall_solid_.size() == n) return;  // zeros, as they were
   wall_solid_.assign(n, 0.0);
   for (std::size_t w : solid_walls) {
-    if (w >= walls.size() || !walls[w].is_box)
-      throw std::logic_error("PoreFluid: a solid wall that is not among the box walls given");
+    if (w >= walls.size())
+      throw std::logic_error("PoreFluid: a solid wall that is not among the walls given");
     const Wall<D>& wall = walls[w];
-    const SolidBox<D> box{wall.point, wall.half, wall.axes};
-    for_each_box_cell(grid, box,
+    // A box, or the half-space behind a plane.
+    const std::optional<SolidBox<D>> box = wall.is_box ? SolidBox<D>{wall.point, wall.half, wall.axes}
+                                                       : behind_plane(grid, wall.point, wall.normal);
+    if (!box) continue;
+    for_each_box_cell(grid, *box,
                       [&](const std::array<int, D>& c, double v) { wall_solid_[grid.index(c)] += v; });
   }
 }

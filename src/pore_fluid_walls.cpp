@@ -38,10 +38,24 @@ double box_section(const SolidBox<D>& box, const FluidGrid<D>& grid, int axis, d
 }  // namespace
 
 template <int D>
-Vec<D> PoreFluid<D>::box_thrust(const Wall<D>& wall) const {
-  if (!initialized_) throw std::logic_error("PoreFluid::box_thrust before initialize");
-  if (!wall.is_box) throw std::logic_error("PoreFluid::box_thrust of a plane wall");
-  const SolidBox<D> box{wall.point, wall.half, wall.axes};
+Vec<D> PoreFluid<D>::wall_thrust(const Wall<D>& wall) const {
+  if (!initialized_) throw std::logic_error("PoreFluid::wall_thrust before initialize");
+  if (wall.is_box) return box_thrust(SolidBox<D>{wall.point, wall.half, wall.axes});
+  // A plane: the half-space behind it, its face kept a hundred-thousandth
+  // of a cell inside the grid (ten times box_section's slab), so that a
+  // plane on or beyond the side it faces takes that side's pressure; the
+  // thrust is along its normal (the box's sides beyond the grid are dry).
+  const int axis = grid_axis_of<D>(wall.normal);
+  if (axis < 0) throw std::logic_error("PoreFluid::wall_thrust of a plane not normal to a grid axis");
+  const int layer = wall.normal[axis] > 0.0 ? 0 : grid.cells[axis] - 1;
+  const double inside = 1e-5 * grid.width(axis, layer);
+  const auto box = behind_plane(grid, wall.point, wall.normal, inside);
+  if (!box) return Vec<D>::Zero();
+  return box_thrust(*box).dot(wall.normal) * wall.normal;
+}
+
+template <int D>
+Vec<D> PoreFluid<D>::box_thrust(const SolidBox<D>& box) const {
   Vec<D> thrust = Vec<D>::Zero();
   // -(integral of grad u over the box's part in the grid), cell by cell.
   for_each_box_cell(grid, box, [&](const std::array<int, D>& c, double v) {
@@ -91,8 +105,8 @@ Vec<D> PoreFluid<D>::barrier_thrust(std::size_t barrier) const {
   return thrust;
 }
 
-template Vec<2> PoreFluid<2>::box_thrust(const Wall<2>&) const;
-template Vec<3> PoreFluid<3>::box_thrust(const Wall<3>&) const;
+template Vec<2> PoreFluid<2>::wall_thrust(const Wall<2>&) const;
+template Vec<3> PoreFluid<3>::wall_thrust(const Wall<3>&) const;
 template Vec<2> PoreFluid<2>::barrier_thrust(std::size_t) const;
 template Vec<3> PoreFluid<3>::barrier_thrust(std::size_t) const;
 

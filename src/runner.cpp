@@ -601,7 +601,7 @@ template std::string describe_grid<3>(const FluidGrid<3>&);
 template <int D>
 void fluid_step(Simulation<D>& sim, PoreFluid<D>& fluid, std::uint64_t steps) {
   fluid.update(sim.particles, static_cast<double>(steps) * sim.time_step, sim.time, sim.walls);
-  for (std::size_t w : fluid.solid_walls) sim.walls[w].water_force = fluid.box_thrust(sim.walls[w]);
+  for (std::size_t w : fluid.solid_walls) sim.walls[w].water_force = fluid.wall_thrust(sim.walls[w]);
 }
 
 template void fluid_step<2>(Simulation<2>&, PoreFluid<2>&, std::uint64_t);

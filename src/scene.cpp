@@ -155,7 +155,7 @@ Eigen::Matrix<double, D, D> read_box_rotation(TableReader& r) {
 /// the fluid's if it is an impermeable plate (`impermeable`: the walls'
 /// barriers come after the [[fluid.barrier]] tables and take their walls'
 /// names, which are unique, so the last of that name is the wall's), or -1
-/// for a box that displaces the fluid. Refused at the probe's 'wall' for
+/// for a wall that displaces the fluid. Refused at the probe's 'wall' for
 /// any other wall, which the water passes through.
 template <int D>
 std::int64_t fluid_thrust_barrier(TableReader& r, const PoreFluid<D>& fluid,
@@ -165,7 +165,7 @@ std::int64_t fluid_thrust_barrier(TableReader& r, const PoreFluid<D>& fluid,
     if (fluid.barriers[b].name == walls[w].name) return static_cast<std::int64_t>(b);
   }
   r.fail("wall", fmt::format("wall \"{}\" lets the pore water through, so the water pushes on it nowhere: "
-                             "\"wall_fluid_force\" needs a box wall with displaces_fluid = true or an "
+                             "\"wall_fluid_force\" needs a wall with displaces_fluid = true or an "
                              "impermeable plate (impermeable = true)",
                              walls[w].name));
 }
@@ -216,7 +216,7 @@ WallBarrier<D> plate_barrier(TableReader& r, const Wall<D>& w, const Vec<D>& box
 
 /// A wall's motion: `velocity`, `servo` or `fixed`. A servo moves a plane
 /// along its normal and a box (`box`) along its `direction`; its load may
-/// count the pore water's thrust (`load = "total"`) on a box that
+/// count the pore water's thrust (`load = "total"`) on a wall that
 /// displaces the fluid (`displaces_fluid`).
 template <int D>
 void read_wall_motion(TableReader& r, bool box, bool displaces_fluid, Vec<D>& velocity, WallMotion& motion,
@@ -247,8 +247,8 @@ void read_wall_motion(TableReader& r, bool box, bool displaces_fluid, Vec<D>& ve
     servo.with_pore_water = sr.optional_choice("load", {"grains", "total"}) == "total";
     if (servo.with_pore_water && !displaces_fluid) {
       sr.fail("load",
-              "\"total\" adds the pore water's thrust, which only a box wall with displaces_fluid = true "
-              "takes (the water passes through any other wall); give \"grains\", the default");
+              "\"total\" adds the pore water's thrust, which only a wall with displaces_fluid = true takes "
+              "(the water passes through any other wall); give \"grains\", the default");
     }
     sr.finish();
   } else if (r.has("fixed")) {
@@ -525,7 +525,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   std::vector<std::string> wall_names;
   std::vector<WallBarrier<D>> wall_barriers;
   std::vector<bool> wall_is_barrier;
-  std::vector<std::size_t> solid_walls;  // box walls that take up pore volume
+  std::vector<std::size_t> solid_walls;  // walls that take up pore volume
   std::string solid_wall_prefix;         // where the first was asked for
   for_each_table(top, "wall", "wall", [&](TableReader& r, int) {
     Wall<D> w;
@@ -577,12 +577,13 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     }
     wall_is_barrier.push_back(impermeable);
     if (displaces_fluid) {
-      if (!w.is_box) {
+      if (!w.is_box && grid_axis_of<D>(w.normal) < 0) {
         r.fail("displaces_fluid",
-               "only a box wall takes up pore volume; a plane wall is a side of the domain (the fluid grid's "
-               "sides take their conditions from [fluid.boundary])");
+               "a plane wall takes up the pore volume behind it only with its normal along an axis of the "
+               "fluid grid (e.g. [0, -1] for a platen over a 2D sample); give a box wall for any other "
+               "orientation");
       }
-      if (w.half.minCoeff() == 0.0) {
+      if (w.is_box && w.half.minCoeff() == 0.0) {
         r.fail("displaces_fluid",
                "a plate (min = max along an axis) has no volume to take up; give it a thickness");
       }

@@ -235,12 +235,12 @@ TEST(SceneErrors, BoxWallsAreChecked) {
                          "material = \"sand\"\nservo = { target_force = 1.0, gain = 1.0, max_speed = 1.0, "
                          "direction = [-1.0, 0.0] }\n\n[[particles]]")),
       "");
-  // The pore water's thrust: only on a box that displaces the fluid (here
+  // The pore water's thrust: only on a wall that displaces the fluid (here
   // there is none: no [fluid]).
   msg = load_error(replace(good, "material = \"sand\"\n\n[[particles]]",
                            "material = \"sand\"\nservo = { target_force = 1.0, gain = 1.0, max_speed = 1.0, "
                            "direction = [-1.0, 0.0], load = \"total\" }\n\n[[particles]]"));
-  EXPECT_NE(msg.find("servo key 'load': \"total\" adds the pore water's thrust, which only a box wall with "
+  EXPECT_NE(msg.find("servo key 'load': \"total\" adds the pore water's thrust, which only a wall with "
                      "displaces_fluid = true takes"),
             std::string::npos)
       << msg;
@@ -916,12 +916,23 @@ TEST(SceneErrors, WallsThatDisplaceTheFluidAreChecked) {
       "\n[[wall]]\nname = \"block\"\nbox = { min = [0.0006, 0.0], max = [0.0016, 0.004] }\n"
       "material = \"sand\"\ndisplaces_fluid = true\n";
   EXPECT_EQ(load_error(with_wall(box)), "");
-  auto msg = load_error(with_wall(replace(box, "box = { min = [0.0006, 0.0], max = [0.0016, 0.004] }",
-                                          "point = [0.0, 0.004]\nnormal = [0.0, -1.0]")));
-  EXPECT_NE(
-      msg.find("[[wall]] #2 key 'displaces_fluid': only a box wall takes up pore volume; a plane wall is "
-               "a side of the domain"),
-      std::string::npos)
+  // A plane normal to a grid axis (a platen over the column) takes up the
+  // pore volume behind it; a tilted one is refused.
+  const std::string platen = replace(box, "box = { min = [0.0006, 0.0], max = [0.0016, 0.004] }",
+                                     "point = [0.0, 0.004]\nnormal = [0.0, -1.0]");
+  EXPECT_EQ(load_error(with_wall(platen)), "");
+  EXPECT_EQ(built_scene<2>(with_wall(platen)).fluid->solid_walls.size(), 1u);
+  // Its servo may count the water's thrust, and the probe reads it.
+  const std::string loaded = replace(platen, "displaces_fluid = true\n",
+                                     "displaces_fluid = true\nservo = { target_force = 1.0, gain = 1.0, "
+                                     "max_speed = 1.0, load = \"total\" }\n");
+  EXPECT_EQ(load_error(with_wall(loaded) + "\n[[probe]]\nname = \"thrust\"\nquantity = \"wall_fluid_force\"\n"
+                                           "wall = \"block\"\ncomponent = \"y\"\n"),
+            "");
+  auto msg = load_error(with_wall(replace(platen, "normal = [0.0, -1.0]", "normal = [0.1, -1.0]")));
+  EXPECT_NE(msg.find("[[wall]] #2 key 'displaces_fluid': a plane wall takes up the pore volume behind it "
+                     "only with its normal along an axis of the fluid grid"),
+            std::string::npos)
       << msg;
   EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
   msg = load_error(with_wall(replace(box, "max = [0.0016, 0.004]", "max = [0.0006, 0.004]")));
@@ -957,8 +968,7 @@ TEST(SceneErrors, TheWaterThrustProbeNeedsAWallTheWaterCannotPass) {
   EXPECT_NE(msg.find("[[probe]] #1 key 'wall': wall \"floor\" lets the pore water through"),
             std::string::npos)
       << msg;
-  EXPECT_NE(msg.find("needs a box wall with displaces_fluid = true or an impermeable plate"),
-            std::string::npos)
+  EXPECT_NE(msg.find("needs a wall with displaces_fluid = true or an impermeable plate"), std::string::npos)
       << msg;
   EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
   msg = load_error(std::string(kGood) + probe("floor"));

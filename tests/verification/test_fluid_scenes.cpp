@@ -622,8 +622,8 @@ struct ConsolidationRun {
   std::size_t i0 = 0;
   double y0 = 0.0;
 };
-ConsolidationRun run_consolidation(const std::string& path, const std::string& name) {
-  ConsolidationRun run{darcydem::testing::load_scene<2>(path), {}, 0, 0.0};
+ConsolidationRun run_consolidation(Scene<2> scene, const std::string& name) {
+  ConsolidationRun run{std::move(scene), {}, 0, 0.0};
   RunOptions options;
   options.out_dir = temp_dir(name);
   run_scene(run.scene, options);
@@ -633,6 +633,9 @@ ConsolidationRun run_consolidation(const std::string& path, const std::string& n
   while (t[run.i0] < stage_start - 1e-9) ++run.i0;
   run.y0 = run.probes.at("top_y")[run.i0 - 1];
   return run;
+}
+ConsolidationRun run_consolidation(const std::string& path, const std::string& name) {
+  return run_consolidation(darcydem::testing::load_scene<2>(path), name);
 }
 
 /// RMS over 0..1 s after `origin` of the top disc's settlement against
@@ -729,30 +732,9 @@ TEST(FluidScenes, TerzaghiConsolidation) {
   EXPECT_LT(worst_settle, 1e-4);
 }
 
-TEST(FluidScenes, ConsolidationUnderASealedPiston) {
-  // examples/fluid_cases/consolidation_sealed_piston.toml: the same column
-  // drained at the floor and sealed at the top by an impermeable piston (a
-  // box that displaces the water), servo-controlled on its total load,
-  // grains plus water, raised by dF = 0.5 N when the load stage starts.
-  // Expected (independent of the run): the final settlement 50 dF / k_n
-  // (the 50 contacts below the top disc); its course Terzaghi's U(Tv) with
-  // one-way drainage over H, as for the permeable lid (the mirror image);
-  // and the water's thrust on the piston over its width the closed form's
-  // pressure at the sealed end, B dsigma sum 4/(k pi) (-1)^m exp(-k^2 pi^2
-  // Tv / 4), B = m_v / (m_v + n/K_f) (0.83 here). Tolerances: final 0.5 %
-  // (as for the lid); the settlement's RMS over 0..1 s 2 % of S_f (as for
-  // the lid; measured 1.15 %); the thrust's RMS from 0.05 to 1 s 1 % of
-  // B dsigma (measured 0.13 %): it is the pressure in the top cell, whose
-  // centre is 1 mm below the sealed end, where the isochrone is flat
-  // (du/dz = 0), so second order in the cell: 1 mm^2 u''/2, at most about
-  // 0.5 % of B dsigma early on. Before 0.05 s the water takes less than B
-  // (265 Pa of 414 at 0.1 ms, 342 of 346 at 50 ms): the piston's load
-  // first goes into the stiff contact with the top disc and reaches the
-  // water as the damped column's contacts compress. Without the water's
-  // thrust in the servo's load (the grains alone pushed to 0.51 N) the
-  // thrust and the settlement both miss.
-  const auto run =
-      run_consolidation("examples/fluid_cases/consolidation_sealed_piston.toml", "sealed_piston");
+/// The checks of ConsolidationUnderASealedPiston on a run of that scene
+/// (or of its variant with a plane platen); `label` names it in the log.
+void expect_sealed_piston(const ConsolidationRun& run, const char* label) {
   const auto& probes = run.probes;
   const auto& t = probes.at("time");
   const auto& water = probes.at("piston_water");
@@ -780,12 +762,65 @@ TEST(FluidScenes, ConsolidationUnderASealedPiston) {
   }
   const double rms_thrust = std::sqrt(sq_thrust / n_late) / (b * force / width);
   std::printf(
-      "sealed piston: final %.6f mm (closed form %.6f mm), settlement RMS %.3f %% of it; B = %.4f, the "
-      "water's "
+      "%s: final %.6f mm (closed form %.6f mm), settlement RMS %.3f %% of it; B = %.4f, the water's "
       "thrust RMS from 0.05 s %.3f %% of B dsigma\n",
-      settled * 1e3, final_settlement * 1e3, 100.0 * rms_settle, b, 100.0 * rms_thrust);
+      label, settled * 1e3, final_settlement * 1e3, 100.0 * rms_settle, b, 100.0 * rms_thrust);
   EXPECT_LT(rms_settle, 0.02);
   EXPECT_LT(rms_thrust, 0.01);
+}
+
+TEST(FluidScenes, ConsolidationUnderASealedPiston) {
+  // examples/fluid_cases/consolidation_sealed_piston.toml: the same column
+  // drained at the floor and sealed at the top by an impermeable piston (a
+  // box that displaces the water), servo-controlled on its total load,
+  // grains plus water, raised by dF = 0.5 N when the load stage starts.
+  // Expected (independent of the run): the final settlement 50 dF / k_n
+  // (the 50 contacts below the top disc); its course Terzaghi's U(Tv) with
+  // one-way drainage over H, as for the permeable lid (the mirror image);
+  // and the water's thrust on the piston over its width the closed form's
+  // pressure at the sealed end, B dsigma sum 4/(k pi) (-1)^m exp(-k^2 pi^2
+  // Tv / 4), B = m_v / (m_v + n/K_f) (0.83 here). Tolerances: final 0.5 %
+  // (as for the lid); the settlement's RMS over 0..1 s 2 % of S_f (as for
+  // the lid; measured 1.15 %); the thrust's RMS from 0.05 to 1 s 1 % of
+  // B dsigma (measured 0.13 %): it is the pressure in the top cell, whose
+  // centre is 1 mm below the sealed end, where the isochrone is flat
+  // (du/dz = 0), so second order in the cell: 1 mm^2 u''/2, at most about
+  // 0.5 % of B dsigma early on. Before 0.05 s the water takes less than B
+  // (265 Pa of 414 at 0.1 ms, 342 of 346 at 50 ms): the piston's load
+  // first goes into the stiff contact with the top disc and reaches the
+  // water as the damped column's contacts compress. Without the water's
+  // thrust in the servo's load (the grains alone pushed to 0.51 N) the
+  // thrust and the settlement both miss.
+  expect_sealed_piston(
+      run_consolidation("examples/fluid_cases/consolidation_sealed_piston.toml", "sealed_piston"),
+      "sealed piston");
+}
+
+TEST(FluidScenes, ConsolidationUnderASealedPlanePlaten) {
+  // The same scene with the piston a plane wall facing down (normal
+  // [0, -1], the platen of PFC's and YADE's oedometers) that displaces the
+  // fluid: the half-space above it is solid in the grid's cells, and the
+  // water's thrust is the pressure on its face. The same closed forms and
+  // tolerances as for the box: the column cannot tell the two apart (the
+  // box spans the grid's width, and its top lies beyond the grid).
+  const std::string path =
+      std::string(DARCYDEM_SOURCE_DIR) + "/examples/fluid_cases/consolidation_sealed_piston.toml";
+  std::string text = darcydem::testing::file_contents(path);
+  auto swap = [&text](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  swap("box = { min = [-0.0005, 0.05], max = [0.0005, 0.055] }", "point = [0.0, 0.05]\nnormal = [0.0, -1.0]");
+  swap("max_speed = 0.05, direction = [0.0, -1.0] }", "max_speed = 0.05 }");
+  swap("max_speed = 0.05, direction = [0.0, -1.0], load", "max_speed = 0.05, load");
+  const std::string dir = temp_dir("sealed_platen_scene");
+  std::filesystem::create_directories(dir);
+  const std::string platen = dir + "/consolidation_sealed_platen.toml";
+  std::ofstream(platen) << text;
+  const auto run = run_consolidation(darcydem::testing::load_scene_file<2>(platen), "sealed_platen");
+  ASSERT_FALSE(run.scene.simulation.walls.back().is_box);
+  expect_sealed_piston(run, "sealed plane platen");
 }
 
 namespace {

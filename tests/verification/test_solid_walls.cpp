@@ -49,13 +49,14 @@ PoreFluid<D> empty_grid(double h, const std::array<int, D>& cells) {
   return f;
 }
 
-/// Pushes the rod down for `steps` fluid steps of dt, checking each one:
-/// the pore volume falls by the rod's volume swept into the grid,
-/// `entry_rate` dt (its section in the grid's top plane times its speed),
-/// and that volume leaves through the drained top, less what the pore
-/// water's compression stores.
+/// Pushes the rod (or a platen) in for `steps` fluid steps of dt,
+/// checking each one: the pore volume falls by the rod's volume swept into
+/// the grid, `entry_rate` dt (its section in the grid's top plane times
+/// its speed), and that volume leaves through the drained side `drained`
+/// (the top unless given), less what the pore water's compression stores.
 template <int D>
-void push_rod(PoreFluid<D>& f, Wall<D> rod, double entry_rate, double dt, int steps) {
+void push_rod(PoreFluid<D>& f, Wall<D> rod, double entry_rate, double dt, int steps,
+              int drained = 2 * D - 1) {
   ParticleData<D> none;
   std::vector<Wall<D>> walls{rod};
   f.initialize(none, walls);
@@ -79,7 +80,7 @@ void push_rod(PoreFluid<D>& f, Wall<D> rod, double entry_rate, double dt, int st
     // changing over the time the rod takes to cross a cell (10 s), at K_f
     // = 2e9 Pa that is below 1e-4 of the flow. The first step fills the
     // storage from rest; it is left out.
-    const double out = -f.side_inflow(2 * D - 1) * dt;
+    const double out = -f.side_inflow(drained) * dt;
     if (s > 0) {
       ASSERT_NEAR(out, entry_rate * dt, 1e-4 * entry_rate * dt) << "step " << s;
       worst_out = std::max(worst_out, std::abs(out / (entry_rate * dt) - 1.0));
@@ -124,6 +125,51 @@ TEST(SolidWalls, ATiltedRodExpelsItsSectionInTheTopPlaneTimesItsSpeed2D) {
   // 30 steps of 0.5 s it moves 1.5 cm, its lower end below the top line
   // from the start and its upper end above it to the last.
   push_rod<2>(f, rod, w / std::cos(tilt) * v, 0.5, 30);
+}
+
+/// A plane wall through `point` with unit `normal` (into the domain),
+/// moving at v.
+template <int D>
+Wall<D> moving_plane(const Vec<D>& point, const Vec<D>& normal, const Vec<D>& v) {
+  Wall<D> w;
+  w.name = "platen";
+  w.point = point;
+  w.normal = normal;
+  w.motion = WallMotion::velocity;
+  w.velocity = v;
+  return w;
+}
+
+TEST(SolidWalls, APlatenPushedDownExpelsItsAreaTimesItsSpeed3D) {
+  // A plane facing down (normal -z) over the whole 4 x 4 cm grid of 1 cm
+  // cells, from z = 0.075 down at 1 mm/s for 40 steps of 0.5 s, across the
+  // faces at 0.07 and 0.06: the solid above it grows by the grid's section
+  // times v per second. The top, under the platen, is closed; that water
+  // leaves through the bottom, drained.
+  PoreFluid<3> f = empty_grid<3>(0.01, {4, 4, 8});
+  f.sides[5] = {};
+  f.sides[4] = {FluidBoundaryType::drained, TimeSeries::constant(0.0)};
+  const double v = 1e-3;
+  const Wall<3> platen =
+      moving_plane<3>(Vec<3>(0.01, 0.02, 0.075), Vec<3>(0.0, 0.0, -1.0), Vec<3>(0.0, 0.0, -v));
+  push_rod<3>(f, platen, 0.04 * 0.04 * v, 0.5, 40, 4);
+  // Now at z = 0.055: the layer between 0.05 and 0.06 is half solid, the
+  // two above it solid, the rest free.
+  for (int k = 0; k < 8; ++k) {
+    const double expected = k < 5 ? 1.0 : k == 5 ? 0.5 : 0.0;
+    EXPECT_NEAR(f.porosity()[f.grid.index({2, 1, k})], expected, 1e-12) << "layer " << k;
+  }
+}
+
+TEST(SolidWalls, ASidePlatenPushedInExpelsItsHeightTimesItsSpeed2D) {
+  // A plane facing +x (solid behind it, at smaller x) moved from x = 0.013
+  // to 0.028 m at 1 mm/s across the 2D grid's faces at 0.02: the solid
+  // grows by the grid's height, 6 cm, times v per second; out through the
+  // drained top.
+  PoreFluid<2> f = empty_grid<2>(0.01, {6, 6});
+  const double v = 1e-3;
+  const Wall<2> platen = moving_plane<2>(Vec<2>(0.013, 0.0), Vec<2>(1.0, 0.0), Vec<2>(v, 0.0));
+  push_rod<2>(f, platen, 0.06 * v, 0.5, 30);
 }
 
 TEST(SolidWalls, AFixedWallTakesItsShareOfEachCellsPorosity) {
@@ -178,7 +224,7 @@ TEST(WallThrust, ABoxInsideTheGridFeelsMinusItsVolumeTimesTheGradient) {
   const double gradient = -1e-5 * 1e-3 / 1e-10;  // Pa/m
   // The field: linear to the solver's tolerance (1e-13 relative).
   EXPECT_NEAR(f.pressure_at(Vec<3>(0.02, 0.02, 0.005)), -gradient * 0.075, 1e-9);
-  const Vec<3> thrust = f.box_thrust(walls[0]);
+  const Vec<3> thrust = f.wall_thrust(walls[0]);
   const double expected = -3e-6 * gradient;
   // The cells' parts of the box are exact to round-off (1e-12 of the box)
   // and the gradient uniform to the solver's tolerance: 1e-9 of the thrust
@@ -199,7 +245,7 @@ TEST(WallThrust, ABoxThroughASideFeelsThePressureOnItsWettedFaceOnly) {
   std::vector<Wall<3>> walls{
       moving_box<3>(Vec<3>(0.012, 0.007, -0.02), Vec<3>(0.027, 0.022, 0.03), Vec<3>::Zero())};
   const PoreFluid<3> f = steady_column(walls);
-  const Vec<3> down = f.box_thrust(walls[0]);
+  const Vec<3> down = f.wall_thrust(walls[0]);
   EXPECT_NEAR(down.z(), -5.0 * a, 1e-9 * 5.0 * a);
   EXPECT_NEAR(down.x(), 0.0, 1e-9 * 5.0 * a);
   // The same rod through the drained top (u = 0 there), its lower end at
@@ -207,11 +253,40 @@ TEST(WallThrust, ABoxThroughASideFeelsThePressureOnItsWettedFaceOnly) {
   std::vector<Wall<3>> top{
       moving_box<3>(Vec<3>(0.012, 0.007, 0.05), Vec<3>(0.027, 0.022, 0.11), Vec<3>::Zero())};
   const PoreFluid<3> g = steady_column(top);
-  EXPECT_NEAR(g.box_thrust(top[0]).z(), 3.0 * a, 1e-9 * 3.0 * a);
+  EXPECT_NEAR(g.wall_thrust(top[0]).z(), 3.0 * a, 1e-9 * 3.0 * a);
   // Beyond the grid: no water on it.
   Wall<3> away = top[0];
   away.point.z() += 0.1;
-  EXPECT_EQ(g.box_thrust(away), Vec<3>::Zero());
+  EXPECT_EQ(g.wall_thrust(away), Vec<3>::Zero());
+}
+
+TEST(WallThrust, APlatenFeelsThePressureOnItsFaceAlongItsNormal) {
+  // In the steady column, u = 100 (0.08 - z) Pa over the 4 x 4 cm grid
+  // (A = 1.6e-3 m^2): a plane facing down at z = 0.055 (solid above it)
+  // takes u(0.055) = 2.5 Pa on its face, pushing it up: +2.5 A; a floor
+  // facing up at z = 0.02 (solid below) takes u = 6 Pa, pushing it down:
+  // -6 A. Nothing across: the thrust on a plane is along its normal.
+  const double a = 0.04 * 0.04;
+  std::vector<Wall<3>> above{
+      moving_plane<3>(Vec<3>(0.0, 0.0, 0.055), Vec<3>(0.0, 0.0, -1.0), Vec<3>::Zero())};
+  const PoreFluid<3> f = steady_column(above);
+  const Vec<3> up = f.wall_thrust(above[0]);
+  // The pressures to the solver's tolerance, the volumes exact: as for
+  // the boxes above, 1e-9 of the thrust.
+  EXPECT_NEAR(up.z(), 2.5 * a, 1e-9 * 2.5 * a);
+  EXPECT_EQ(up.x(), 0.0);
+  EXPECT_EQ(up.y(), 0.0);
+  std::vector<Wall<3>> floor{
+      moving_plane<3>(Vec<3>(0.03, 0.01, 0.02), Vec<3>(0.0, 0.0, 1.0), Vec<3>::Zero())};
+  const PoreFluid<3> g = steady_column(floor);
+  EXPECT_NEAR(g.wall_thrust(floor[0]).z(), -6.0 * a, 1e-9 * 6.0 * a);
+  // On the grid's bottom side, and below it, the floor takes the side's
+  // pressure, the inlet's 8 Pa, as at a face kept 1e-5 of a cell (1e-7 m)
+  // inside the grid: u = 8 - 1e-5 Pa.
+  for (double z : {0.0, -0.01}) {
+    floor[0].point.z() = z;
+    EXPECT_NEAR(g.wall_thrust(floor[0]).z(), -(8.0 - 1e-5) * a, 1e-9 * 8.0 * a) << "floor at z = " << z;
+  }
 }
 
 TEST(WallThrust, APlateAcrossTheFlowHoldsThePressureDifference2D) {
@@ -242,7 +317,7 @@ TEST(WallThrust, APlateAcrossTheFlowHoldsThePressureDifference2D) {
   const Vec<2> on_plate = f.barrier_thrust(0);
   EXPECT_NEAR(on_plate.y(), 3.0, 1e-9);
   EXPECT_EQ(on_plate.x(), 0.0);
-  const Vec<2> on_box = f.box_thrust(walls[0]);
+  const Vec<2> on_box = f.wall_thrust(walls[0]);
   EXPECT_NEAR(on_box.y(), 1.0, 1e-9);
   EXPECT_NEAR(on_box.x(), 0.0, 1e-9);
 }

@@ -7,6 +7,9 @@
 // triangles or tetrahedra about an inner point.
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
 #include <type_traits>
 
 #include <Eigen/Core>
@@ -31,6 +34,53 @@ struct SolidBox {
   /// Its axes are the grid's, each column one of +-e_k.
   [[nodiscard]] bool grid_aligned() const;
 };
+
+/// The axis a plane wall's normal lies along, or -1 if it lies along none
+/// (its other components not all zero).
+template <int D>
+[[nodiscard]] int grid_axis_of(const Vec<D>& normal) {
+  int axis = -1;
+  for (int k = 0; k < D; ++k) {
+    if (normal[k] == 0.0) continue;
+    if (axis >= 0) return -1;
+    axis = k;
+  }
+  return axis;
+}
+
+/// The solid behind a plane wall normal to a grid axis (its normal points
+/// into the domain, away from the solid), as a box: the half-space behind
+/// the plane over the grid widened by the grid's own length on every side,
+/// so that within the grid only the plane's face bounds it. `inside` (m,
+/// >= 0) moves the face into the grid by that much where the plane is at or
+/// beyond the grid's side it faces (the face then stays in the grid). None
+/// if the half-space misses the widened grid.
+template <int D>
+[[nodiscard]] std::optional<SolidBox<D>> behind_plane(const FluidGrid<D>& grid, const Vec<D>& point,
+                                                      const Vec<D>& normal, double inside = 0.0) {
+  const int a = grid_axis_of<D>(normal);
+  if (a < 0) throw std::logic_error("behind_plane: the plane's normal is not along a grid axis");
+  SolidBox<D> box;
+  for (int k = 0; k < D; ++k) {
+    const double lo = grid.face_at(k, 0);
+    const double hi = grid.face_at(k, grid.cells[k]);
+    const double margin = hi - lo;
+    double from = lo - margin;
+    double to = hi + margin;
+    if (k == a) {
+      // normal +e_a: solid below the plane; -e_a: above it.
+      if (normal[a] > 0.0) {
+        to = std::max(point[a], lo + inside);
+      } else {
+        from = std::min(point[a], hi - inside);
+      }
+      if (!(to > from)) return std::nullopt;
+    }
+    box.centre[k] = 0.5 * (from + to);
+    box.half[k] = 0.5 * (to - from);
+  }
+  return box;
+}
 
 /// Volume (2D: area x 1 m) of the box inside the cell [lo, hi], m^3.
 template <int D>

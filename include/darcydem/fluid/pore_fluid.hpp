@@ -84,9 +84,10 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Impermeable walls inside the grid. Set before initialize(), which
   /// finds their faces.
   std::vector<FluidBarrier<D>> barriers;
-  /// Box walls that take up pore volume, as indices into the walls given
-  /// to initialize() and update(): in each cell the box's exact volume
-  /// there (box_cell_overlap.hpp) is solid, like the grains' (porosity,
+  /// Walls that take up pore volume, as indices into the walls given to
+  /// initialize() and update(): boxes, and planes normal to a grid axis
+  /// (the half-space behind one, behind_plane). In each cell the wall's
+  /// exact volume there (box_cell_overlap.hpp) is solid, like the grains' (porosity,
   /// storage, permeability); a moving one changes it, which the Biot term
   /// turns into pressure and flow, so it pushes the pore water ahead of it.
   std::vector<std::size_t> solid_walls;
@@ -185,16 +186,19 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] std::size_t grains_outside(const ParticleData<D>& particles) const;
   /// Of those, the grains below water_level: in free water.
   [[nodiscard]] std::size_t grains_in_free_water(const ParticleData<D>& particles) const;
-  /// The excess pore pressure's thrust on a box wall that displaces the
-  /// fluid (one of solid_walls), -(integral of u n dA) over the part of
-  /// its surface in the grid, N (2D: per metre): by the divergence theorem,
-  /// -(sum over cells of the box's volume there times the cell's gradient,
-  /// the mean of its two faces') plus, where the box crosses a side of the
-  /// grid, its section there times the side's pressure along the side's
-  /// outward normal, and where it crosses a barrier, its section times the
-  /// jump. Exact for a pressure linear in space. The hydrostatic part
-  /// (buoyancy) is not in it: u is the excess pressure.
-  [[nodiscard]] Vec<D> box_thrust(const Wall<D>& box) const;
+  /// The excess pore pressure's thrust on a wall that displaces the fluid
+  /// (one of solid_walls), -(integral of u n dA) over the part of its
+  /// surface in the grid, N (2D: per metre). A box: by the divergence
+  /// theorem, -(sum over cells of the box's volume there times the cell's
+  /// gradient, the mean of its two faces') plus, where the box crosses a
+  /// side of the grid, its section there times the side's pressure along
+  /// the side's outward normal, and where it crosses a barrier, its section
+  /// times the jump. A plane normal to a grid axis: the same for the
+  /// half-space behind it (behind_plane), along its normal; on or beyond
+  /// the grid's side it faces, it takes that side's pressure. Exact for a
+  /// pressure linear in space. The hydrostatic part (buoyancy) is not in
+  /// it: u is the excess pressure.
+  [[nodiscard]] Vec<D> wall_thrust(const Wall<D>& wall) const;
   /// The excess pore pressure's thrust on barrier b (an impermeable
   /// plate's), N (2D: per metre): over the faces it closes, the pressure
   /// of the cell below minus that of the cell above times the face's
@@ -244,6 +248,8 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Whether a grain's centre at x is in the grid (as the forces count it).
   [[nodiscard]] bool in_grid(const Vec<D>& x) const;
   void compute_solid(const ParticleData<D>& particles);
+  /// wall_thrust of a solid box (a box wall's, or the part behind a plane).
+  [[nodiscard]] Vec<D> box_thrust(const SolidBox<D>& box) const;
   /// wall_solid_ from the solid_walls among `walls`.
   void compute_wall_solid(const std::vector<Wall<D>>& walls);
   void compute_cell_properties();

@@ -21,7 +21,7 @@ enum class ProbeQuantity {
   particle_velocity,
   wall_position,
   wall_force,
-  wall_fluid_force,  ///< the excess pore water's thrust on a wall, N (PoreFluid::box_thrust, barrier_thrust)
+  wall_fluid_force,  ///< the excess pore water's thrust on a wall, N (PoreFluid::wall_thrust, barrier_thrust)
   kinetic_energy,
   contact_count,
   coordination,
@@ -44,7 +44,7 @@ struct ProbeSpec {
   int component = 0;           ///< 0..D-1, or -1 for the norm
   std::size_t wall = 0;
   /// wall_fluid_force: the wall's barrier in PoreFluid::barriers (an
-  /// impermeable plate), or -1 (a box that displaces the fluid)
+  /// impermeable plate), or -1 (a wall that displaces the fluid)
   std::int64_t barrier = -1;
   std::vector<double> position;  ///< pore_pressure: the point, m
   int side = 0;                  ///< fluid_inflow: x_min, x_max, y_min, ...

@@ -10,8 +10,8 @@
 // prescribed velocity, or is servo-controlled so that the load on it
 // approaches a target force: a plane along its normal, a box along its
 // servo_axis; the load is what the particles put on it, and with
-// `with_pore_water` also the pore water's thrust (a box that displaces the
-// fluid: an impermeable piston).
+// `with_pore_water` also the pore water's thrust (a wall that displaces the
+// fluid: an impermeable piston or platen).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -49,8 +49,8 @@ struct Wall {
   Vec<D> servo_axis = Vec<D>::Zero();
   Vec<D> force = Vec<D>::Zero();  ///< N, force the particles exert on the wall
   /// N, the pore water's thrust on the wall as of the last fluid step: set
-  /// on every box that displaces the fluid by whoever steps the fluid
-  /// (fluid_step, PoreFluid::box_thrust), zero on other walls; a servo
+  /// on every wall that displaces the fluid by whoever steps the fluid
+  /// (fluid_step, PoreFluid::wall_thrust), zero on other walls; a servo
   /// counts it with servo.with_pore_water.
   Vec<D> water_force = Vec<D>::Zero();
   Vec<D> point_at_build = Vec<D>::Zero();
