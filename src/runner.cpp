@@ -338,7 +338,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
           sides);
       *options.log << describe_grid(fluid->grid);
       *options.log << describe_permeability(*fluid, sim.particles);
-      *options.log << describe_patches_and_barriers(*fluid);
+      *options.log << describe_patches_and_barriers(*fluid, sim.walls);
     }
   }
   if (options.resume && options.log != nullptr) {
@@ -550,7 +550,7 @@ std::string describe_grid(const FluidGrid<D>& grid) {
 }
 
 template <int D>
-std::string describe_patches_and_barriers(const PoreFluid<D>& fluid) {
+std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::vector<Wall<D>>& walls) {
   std::string out;
   for (std::size_t k = 0; k < fluid.patches.size(); ++k) {
     const auto& patch = fluid.patches[k];
@@ -562,6 +562,17 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid) {
     const auto& b = fluid.barriers[k];
     out += fmt::format("barrier {}: {} faces normal to {} at {} = {:.6g} m\n", b.name, fluid.barrier_faces(k),
                        "xyz"[b.axis], "xyz"[b.axis], b.at);
+  }
+  for (std::size_t w : fluid.solid_walls) {
+    const Wall<D>& wall = walls.at(w);
+    if (wall.is_box) {
+      out += fmt::format("wall {} displaces the fluid: a box\n", wall.name);
+      continue;
+    }
+    const int a = grid_axis_of<D>(wall.normal);
+    const bool up = wall.normal[a] > 0.0;
+    out += fmt::format("wall {} displaces the fluid: a plane, solid where {} {} {:.6g} m\n", wall.name,
+                       "xyz"[a], up ? "<" : ">", wall.point[a]);
   }
   return out;
 }
@@ -594,8 +605,8 @@ std::string describe_permeability(const PoreFluid<D>& fluid, const ParticleData<
 
 template std::string describe_permeability<2>(const PoreFluid<2>&, const ParticleData<2>&);
 template std::string describe_permeability<3>(const PoreFluid<3>&, const ParticleData<3>&);
-template std::string describe_patches_and_barriers<2>(const PoreFluid<2>&);
-template std::string describe_patches_and_barriers<3>(const PoreFluid<3>&);
+template std::string describe_patches_and_barriers<2>(const PoreFluid<2>&, const std::vector<Wall<2>>&);
+template std::string describe_patches_and_barriers<3>(const PoreFluid<3>&, const std::vector<Wall<3>>&);
 template std::string describe_grid<2>(const FluidGrid<2>&);
 template std::string describe_grid<3>(const FluidGrid<3>&);
 template <int D>

@@ -25,6 +25,8 @@ scene="$src/examples/column_settling/column.toml"
 
 "$exe" check "$src/examples/fluid_cases/bed_with_inlet.toml" | grep -q "^  patch inlet on z_min: 9 faces, 3.6e-05 m^2, no_flow$" \
   && ok "check prints a boundary patch's faces and area" || bad "check: patch"
+"$exe" check "$src/examples/fluid_cases/consolidation_sealed_piston.toml" | grep -q "^  wall piston displaces the fluid: a box$" \
+  && ok "check names the walls that displace the fluid" || bad "check: walls that displace the fluid"
 "$exe" check "$src/examples/fluid_cases/graded_upward_seepage.toml" \
   | grep -q "^  fluid grid: x 3 cells in \[0, 0.006\] m (0.002 m); .* z 4 cells in \[0, 0.008\] m (graded, 0.001368 to 0.002736 m)$" \
   && ok "check describes a graded fluid grid" || bad "check: graded grid"

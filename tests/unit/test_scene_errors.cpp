@@ -13,6 +13,7 @@
 
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
+#include "darcydem/simulation/runner.hpp"
 
 namespace darcydem {
 namespace {
@@ -921,7 +922,11 @@ TEST(SceneErrors, WallsThatDisplaceTheFluidAreChecked) {
   const std::string platen = replace(box, "box = { min = [0.0006, 0.0], max = [0.0016, 0.004] }",
                                      "point = [0.0, 0.004]\nnormal = [0.0, -1.0]");
   EXPECT_EQ(load_error(with_wall(platen)), "");
-  EXPECT_EQ(built_scene<2>(with_wall(platen)).fluid->solid_walls.size(), 1u);
+  const auto with_platen = built_scene<2>(with_wall(platen));
+  EXPECT_EQ(with_platen.fluid->solid_walls.size(), 1u);
+  EXPECT_NE(describe_patches_and_barriers(*with_platen.fluid, with_platen.simulation.walls)
+                .find("wall block displaces the fluid: a plane, solid where y > 0.004 m\n"),
+            std::string::npos);
   // Its servo may count the water's thrust, and the probe reads it.
   const std::string loaded = replace(platen, "displaces_fluid = true\n",
                                      "displaces_fluid = true\nservo = { target_force = 1.0, gain = 1.0, "

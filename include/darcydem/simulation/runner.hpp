@@ -75,10 +75,11 @@ template <int D>
 RunSummary run_scene(Scene<D>& scene, const RunOptions& options);
 
 /// One line per boundary patch of the pore fluid (its name, side, faces,
-/// area and condition) and per barrier (its name, plane and faces); the
-/// run log and `darcydem check` print them.
+/// area and condition), per barrier (its name, plane and faces) and per
+/// wall among `walls` that displaces the fluid (a box, or a plane and the
+/// side of it that is solid); the run log and `darcydem check` print them.
 template <int D>
-std::string describe_patches_and_barriers(const PoreFluid<D>& fluid);
+std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::vector<Wall<D>>& walls);
 /// The fluid grid's cells along each axis, its extent and the cells' width
 /// (the first and last along a graded axis), one line for the run log.
 template <int D>
