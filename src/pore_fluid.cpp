@@ -223,12 +223,12 @@ void PoreFluid<D>::compute_wall_solid(const std::vector<Wall<D>>& walls) {
       throw std::logic_error("PoreFluid: a solid wall that is not among the walls given");
     const Wall<D>& wall = walls[w];
     // A box, or the half-space behind a plane.
-    const std::optional<SolidBox<D>> box = wall.is_box ? SolidBox<D>{wall.point, wall.half, wall.axes}
-                                                       : behind_plane(grid, wall.point, wall.normal);
+    const std::optional<SolidBox<D>> box = displaced_box(wall);
     if (!box) continue;
     for_each_box_cell(grid, *box,
                       [&](const std::array<int, D>& c, double v) { wall_solid_[grid.index(c)] += v; });
   }
+  compute_open_faces(walls);
 }
 
 template <int D>
@@ -322,6 +322,13 @@ void PoreFluid<D>::compute_cell_properties() {
         lambda[a] = 2.0 * ka * kb / (ka + kb) * inv_mu;
       }
     });
+    // Impermeable walls close the part of each face they cover.
+    if (!face_open_[k].empty()) {
+      const double* open = face_open_[k].data();
+      for_each_face_piece(grid, k, [&](std::size_t a0, std::size_t len, std::size_t f0) {
+        for (std::size_t j = 0; j < len; ++j) lambda[a0 + j] *= open[f0 + j];
+      });
+    }
   }
   close_barrier_faces(face_lambda_);
   for (std::size_t w = 0; w < wrap_faces_.size(); ++w) {
@@ -532,6 +539,9 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
         const double v_mix = vs > 0.0 ? (solid_flux_[a][k] + solid_flux_[a + s][k]) / vs : 0.0;
         carried[a] = dt * (v_mix * area - section_flux[j]);
       }
+      if (!face_open_[k].empty()) {
+        for (std::size_t j = 0; j < len; ++j) carried[a0 + j] *= face_open_[k][f0 + j];
+      }
     });
   }
   if (carry_with_solid) close_barrier_faces(carried_);
@@ -608,12 +618,13 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     const FluidBoundary& side = condition_of(bf);
     const int axis = bf.side / 2;
     const double area = bf.area;
+    const double open = open_of(bf);  // what impermeable walls leave of the face
     if (side.type == FluidBoundaryType::drained) {
-      const double t = dt * side_lambda(axis, bf.cell) * area / bf.half;
+      const double t = dt * side_lambda(axis, bf.cell) * open * area / bf.half;
       diagonal[bf.cell] += t;
       rhs_[bf.cell] += t * side.value.at(time);
     } else if (side.type == FluidBoundaryType::flux) {
-      rhs_[bf.cell] += dt * side.value.at(time) * area;
+      rhs_[bf.cell] += dt * side.value.at(time) * open * area;
     }
   }
 
@@ -705,6 +716,13 @@ void PoreFluid<D>::compute_face_fields(double time) {
     });
   }
   close_barrier_fields();
+  // A face an impermeable wall covers whole: no water passes, as at a
+  // barrier (the cell beyond is cut off).
+  for (int k = 0; k < D; ++k) {
+    for (std::size_t f = 0; f < face_open_[k].size(); ++f) {
+      if (face_open_[k][f] == 0.0) face_gq_[k][f] = {0.0, 0.0};
+    }
+  }
   for (std::size_t w = 0; w < wrap_faces_.size(); ++w) {
     const WrapFace& f = wrap_faces_[w];
     const double g = (pressure_[f.high] - pressure_[f.low]) * inv_spacing_[f.axis];
@@ -717,16 +735,20 @@ void PoreFluid<D>::compute_face_fields(double time) {
     const FluidBoundary& side = condition_of(bf);
     const int axis = bf.side / 2;
     const bool upper = (bf.side & 1) != 0;
-    const double lambda = side_lambda(axis, bf.cell);
+    // The face's conductance, over its open part (impermeable walls).
+    const double open = open_of(bf);
+    const double lambda = side_lambda(axis, bf.cell) * open;
     double g = 0.0;
-    double inflow = 0.0;  // into the grid, m/s
-    if (side.type == FluidBoundaryType::drained) {
+    double inflow = 0.0;  // into the grid over the whole face, m/s
+    if (open == 0.0) {
+      // Closed by a wall standing on it: no flow, as at no_flow.
+    } else if (side.type == FluidBoundaryType::drained) {
       const double ub = side.value.at(time);
       g = upper ? (ub - pressure_[bf.cell]) / bf.half : (pressure_[bf.cell] - ub) / bf.half;
       const double q = -lambda * g;  // along +axis
       inflow = upper ? -q : q;
     } else if (side.type == FluidBoundaryType::flux) {
-      inflow = side.value.at(time);
+      inflow = side.value.at(time) * open;
       const double q = upper ? -inflow : inflow;
       g = -q / lambda;
     }

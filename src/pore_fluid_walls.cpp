@@ -2,7 +2,9 @@
 // the fluid, and on the barrier of an impermeable plate (pore_fluid.hpp).
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "darcydem/fluid/box_cell_overlap.hpp"
 #include "darcydem/fluid/pore_fluid.hpp"
@@ -35,23 +37,145 @@ double box_section(const SolidBox<D>& box, const FluidGrid<D>& grid, int axis, d
   return box_cell_volume(box, lo, hi) / (2.0 * eps);
 }
 
+/// f(c, area, fraction) for each cell c with c[k] in [from, to] whose
+/// extent across k meets the axis-aligned box [lo, hi]: `area` is the
+/// box's section over that extent, m^(D-1) (2D: m; possibly 0 where they
+/// only touch), and `fraction` its part of the extent (exactly 1 where the
+/// box spans it).
+template <int D, class F>
+void for_each_section(const FluidGrid<D>& grid, const Vec<D>& lo, const Vec<D>& hi, int k, int from, int to,
+                      F&& f) {
+  std::array<int, D> first{};
+  std::array<int, D> last{};
+  for (int j = 0; j < D; ++j) {
+    first[j] = j == k ? from : std::max(grid.cell_along(j, lo[j]), 0);
+    last[j] = j == k ? to : std::min(grid.cell_along(j, hi[j]), grid.cells[j] - 1);
+    if (last[j] < first[j]) return;
+  }
+  std::array<int, D> c = first;
+  while (true) {
+    double area = 1.0;
+    double fraction = 1.0;
+    for (int j = 0; j < D; ++j) {
+      if (j == k) continue;
+      const double a = grid.face_at(j, c[j]);
+      const double b = grid.face_at(j, c[j] + 1);
+      const double overlap = std::max(0.0, std::min(b, hi[j]) - std::max(a, lo[j]));
+      area *= overlap;
+      fraction *= overlap / (b - a);
+    }
+    f(c, area, fraction);
+    int j = 0;
+    while (j < D && ++c[j] > last[j]) {
+      c[j] = first[j];
+      ++j;
+    }
+    if (j == D) return;
+  }
+}
+
 }  // namespace
 
 template <int D>
-Vec<D> PoreFluid<D>::wall_thrust(const Wall<D>& wall) const {
-  if (!initialized_) throw std::logic_error("PoreFluid::wall_thrust before initialize");
-  if (wall.is_box) return box_thrust(SolidBox<D>{wall.point, wall.half, wall.axes});
+std::optional<SolidBox<D>> PoreFluid<D>::displaced_box(const Wall<D>& wall) const {
+  if (wall.is_box) return SolidBox<D>{wall.point, wall.half, wall.axes};
   // A plane: the half-space behind it, its face kept a hundred-thousandth
   // of a cell inside the grid (ten times box_section's slab), so that a
-  // plane on or beyond the side it faces takes that side's pressure; the
-  // thrust is along its normal (the box's sides beyond the grid are dry).
+  // plane on or beyond the side it faces stands on that side: it takes the
+  // side's pressure and, impermeable, closes it. The sliver this adds to
+  // the cells there is constant while it lasts: no Biot source.
   const int axis = grid_axis_of<D>(wall.normal);
-  if (axis < 0) throw std::logic_error("PoreFluid::wall_thrust of a plane not normal to a grid axis");
+  if (axis < 0)
+    throw std::logic_error("PoreFluid: a plane that displaces the fluid must be normal to a grid axis");
   const int layer = wall.normal[axis] > 0.0 ? 0 : grid.cells[axis] - 1;
-  const double inside = 1e-5 * grid.width(axis, layer);
-  const auto box = behind_plane(grid, wall.point, wall.normal, inside);
+  return behind_plane(grid, wall.point, wall.normal, 1e-5 * grid.width(axis, layer));
+}
+
+template <int D>
+Vec<D> PoreFluid<D>::wall_thrust(const std::vector<Wall<D>>& walls, std::size_t w) const {
+  if (!initialized_) throw std::logic_error("PoreFluid::wall_thrust before initialize");
+  const Wall<D>& wall = walls.at(w);
+  const bool sealed =
+      std::find(impermeable_walls.begin(), impermeable_walls.end(), w) != impermeable_walls.end();
+  const auto box = displaced_box(wall);
   if (!box) return Vec<D>::Zero();
-  return box_thrust(*box).dot(wall.normal) * wall.normal;
+  const Vec<D> thrust = sealed ? sealed_box_thrust(*box) : box_thrust(*box);
+  // On a plane, along its normal (the box's sides beyond the grid are dry).
+  return wall.is_box ? thrust : Vec<D>(thrust.dot(wall.normal) * wall.normal);
+}
+
+template <int D>
+void PoreFluid<D>::compute_open_faces(const std::vector<Wall<D>>& walls) {
+  // First the part of each face the walls cover now, in face_open_.
+  for (int k = 0; k < D; ++k) {
+    if (impermeable_walls.empty()) {
+      face_open_[k].clear();
+      face_covered_[k].clear();
+    } else {
+      face_open_[k].assign(grid.face_count(k), 0.0);
+    }
+  }
+  for (std::size_t w : impermeable_walls) {
+    const auto box = displaced_box(walls.at(w));
+    if (!box) continue;
+    if (!box->grid_aligned() || box->axes != Eigen::Matrix<double, D, D>::Identity())
+      throw std::logic_error("PoreFluid: an impermeable wall must lie along the grid's axes");
+    const Vec<D> lo = box->centre - box->half;
+    const Vec<D> hi = box->centre + box->half;
+    for (int k = 0; k < D; ++k) {
+      // The faces normal to k on or between the box's two faces, over the
+      // cells whose sides the box reaches: covered by the box's section.
+      int from = 0;
+      while (from <= grid.cells[k] && grid.face_at(k, from) < lo[k]) ++from;
+      int to = from - 1;
+      while (to + 1 <= grid.cells[k] && grid.face_at(k, to + 1) <= hi[k]) ++to;
+      for_each_section<D>(grid, lo, hi, k, from, to,
+                          [&](const std::array<int, D>& c, double, double fraction) {
+                            double& now = face_open_[k][grid.face_index(k, c)];
+                            now = std::min(1.0, now + fraction);
+                          });
+    }
+  }
+  // A face is closed where a wall covered it at the last fluid step and
+  // still does: a wall passing a face in this step moved the water between
+  // them through it (or drew it in), which would otherwise be trapped.
+  for (int k = 0; k < D; ++k) {
+    if (face_open_[k].empty()) continue;
+    if (face_covered_[k].size() != face_open_[k].size()) face_covered_[k] = face_open_[k];
+    for (std::size_t f = 0; f < face_open_[k].size(); ++f) {
+      const double now = face_open_[k][f];
+      face_open_[k][f] = 1.0 - std::min(now, face_covered_[k][f]);
+      face_covered_[k][f] = now;
+    }
+  }
+}
+
+template <int D>
+Vec<D> PoreFluid<D>::sealed_box_thrust(const SolidBox<D>& box) const {
+  const Vec<D> lo = box.centre - box.half;
+  const Vec<D> hi = box.centre + box.half;
+  Vec<D> thrust = Vec<D>::Zero();
+  for (int k = 0; k < D; ++k) {
+    for (const bool upper : {false, true}) {
+      // The box's face normal to k on this side, wet on its outside.
+      const double x = upper ? hi[k] : lo[k];
+      const double g_lo = grid.face_at(k, 0);
+      const double g_hi = grid.face_at(k, grid.cells[k]);
+      if (upper ? !(x >= g_lo && x < g_hi) : !(x > g_lo && x <= g_hi)) continue;  // no water beyond
+      // The layer of cells on the wet side.
+      int layer = std::clamp(grid.cell_along(k, x), 0, grid.cells[k] - 1);
+      if (!upper && layer > 0 && x <= grid.face_at(k, layer)) --layer;
+      if (upper && layer + 1 < grid.cells[k] && x >= grid.face_at(k, layer + 1)) ++layer;
+      // The wet cell's pressure: no water crosses the face, so the pressure
+      // is flat towards it (du/dn = 0), and the cell's is the face's to
+      // second order in the cell's width.
+      for_each_section<D>(grid, lo, hi, k, layer, layer,
+                          [&](const std::array<int, D>& c, double area, double) {
+                            thrust[k] += (upper ? -1.0 : 1.0) * area * pressure_[grid.index(c)];
+                          });
+    }
+  }
+  return thrust;
 }
 
 template <int D>
@@ -105,8 +229,10 @@ Vec<D> PoreFluid<D>::barrier_thrust(std::size_t barrier) const {
   return thrust;
 }
 
-template Vec<2> PoreFluid<2>::wall_thrust(const Wall<2>&) const;
-template Vec<3> PoreFluid<3>::wall_thrust(const Wall<3>&) const;
+template Vec<2> PoreFluid<2>::wall_thrust(const std::vector<Wall<2>>&, std::size_t) const;
+template Vec<3> PoreFluid<3>::wall_thrust(const std::vector<Wall<3>>&, std::size_t) const;
+template void PoreFluid<2>::compute_open_faces(const std::vector<Wall<2>>&);
+template void PoreFluid<3>::compute_open_faces(const std::vector<Wall<3>>&);
 template Vec<2> PoreFluid<2>::barrier_thrust(std::size_t) const;
 template Vec<3> PoreFluid<3>::barrier_thrust(std::size_t) const;
 

@@ -110,7 +110,7 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
     case ProbeQuantity::wall_fluid_force:
       if (fluid == nullptr) return 0.0;
       return pick(probe.barrier >= 0 ? fluid->barrier_thrust(static_cast<std::size_t>(probe.barrier))
-                                     : fluid->wall_thrust(sim.walls[probe.wall]));
+                                     : fluid->wall_thrust(sim.walls, probe.wall));
     case ProbeQuantity::kinetic_energy:
       return sim.kinetic_energy();
     case ProbeQuantity::contact_count:

@@ -565,14 +565,17 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::
   }
   for (std::size_t w : fluid.solid_walls) {
     const Wall<D>& wall = walls.at(w);
+    const bool sealed = std::find(fluid.impermeable_walls.begin(), fluid.impermeable_walls.end(), w) !=
+                        fluid.impermeable_walls.end();
+    const char* closed = sealed ? ", impermeable (closes the faces it covers)" : "";
     if (wall.is_box) {
-      out += fmt::format("wall {} displaces the fluid: a box\n", wall.name);
+      out += fmt::format("wall {} displaces the fluid: a box{}\n", wall.name, closed);
       continue;
     }
     const int a = grid_axis_of<D>(wall.normal);
     const bool up = wall.normal[a] > 0.0;
-    out += fmt::format("wall {} displaces the fluid: a plane, solid where {} {} {:.6g} m\n", wall.name,
-                       "xyz"[a], up ? "<" : ">", wall.point[a]);
+    out += fmt::format("wall {} displaces the fluid: a plane, solid where {} {} {:.6g} m{}\n", wall.name,
+                       "xyz"[a], up ? "<" : ">", wall.point[a], closed);
   }
   return out;
 }
@@ -612,7 +615,7 @@ template std::string describe_grid<3>(const FluidGrid<3>&);
 template <int D>
 void fluid_step(Simulation<D>& sim, PoreFluid<D>& fluid, std::uint64_t steps) {
   fluid.update(sim.particles, static_cast<double>(steps) * sim.time_step, sim.time, sim.walls);
-  for (std::size_t w : fluid.solid_walls) sim.walls[w].water_force = fluid.wall_thrust(sim.walls[w]);
+  for (std::size_t w : fluid.solid_walls) sim.walls[w].water_force = fluid.wall_thrust(sim.walls, w);
 }
 
 template void fluid_step<2>(Simulation<2>&, PoreFluid<2>&, std::uint64_t);

@@ -177,11 +177,6 @@ std::int64_t fluid_thrust_barrier(TableReader& r, const PoreFluid<D>& fluid,
 template <int D>
 WallBarrier<D> plate_barrier(TableReader& r, const Wall<D>& w, const Vec<D>& box_lo, const Vec<D>& box_hi) {
   // A plate that the pore fluid cannot cross either: a barrier on its plane.
-  if (!w.is_box) {
-    r.fail("impermeable",
-           "only a box wall flat along one axis (a plate) can be impermeable; a plane wall on a side of "
-           "the fluid grid leaves the side's condition as [fluid.boundary] gives it");
-  }
   int flat = -1;
   int flats = 0;
   for (int k = 0; k < D; ++k) {
@@ -525,8 +520,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   std::vector<std::string> wall_names;
   std::vector<WallBarrier<D>> wall_barriers;
   std::vector<bool> wall_is_barrier;
-  std::vector<std::size_t> solid_walls;  // walls that take up pore volume
-  std::string solid_wall_prefix;         // where the first was asked for
+  std::vector<std::size_t> solid_walls;        // walls that take up pore volume
+  std::vector<std::size_t> impermeable_walls;  // of them, those that close the faces they cover
+  std::string solid_wall_prefix;               // where the first was asked for
   for_each_table(top, "wall", "wall", [&](TableReader& r, int) {
     Wall<D> w;
     w.name = r.string("name");
@@ -569,14 +565,34 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       w.normal = read_direction<D>(r, "normal", std::nullopt);
     }
     w.material = materials.lookup(r, "material", r.string("material"));
-    const bool displaces_fluid = r.boolean_or("displaces_fluid", false);
-    read_wall_motion<D>(r, w.is_box, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis);
+    // An impermeable plate is a barrier; an impermeable box with a
+    // thickness, or plane, displaces the fluid and closes the faces it
+    // covers.
     const bool impermeable = r.boolean_or("impermeable", false);
-    if (impermeable) {
+    const bool plate = w.is_box && w.half.minCoeff() == 0.0;
+    const bool sealed = impermeable && !plate;
+    const bool displaces_fluid = r.boolean_or("displaces_fluid", false) || sealed;
+    read_wall_motion<D>(r, w.is_box, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis);
+    if (impermeable && plate) {
       wall_barriers.push_back(plate_barrier<D>(r, w, box_lo, box_hi));
     }
-    wall_is_barrier.push_back(impermeable);
+    wall_is_barrier.push_back(impermeable && plate);
+    if (sealed) {
+      if (w.is_box && w.axes != Eigen::Matrix<double, D, D>::Identity()) {
+        r.fail(
+            "impermeable",
+            "an impermeable box closes the fluid grid's faces it covers, so it lies along the grid's axes: "
+            "it cannot be rotated");
+      }
+      if (!w.is_box && grid_axis_of<D>(w.normal) < 0) {
+        r.fail("impermeable",
+               "an impermeable plane needs its normal along an axis of the fluid grid (e.g. [0, -1] for a "
+               "platen over a 2D sample)");
+      }
+      impermeable_walls.push_back(sim.walls.size());
+    }
     if (displaces_fluid) {
+      const std::string key = r.has("displaces_fluid") ? "displaces_fluid" : "impermeable";
       if (!w.is_box && grid_axis_of<D>(w.normal) < 0) {
         r.fail("displaces_fluid",
                "a plane wall takes up the pore volume behind it only with its normal along an axis of the "
@@ -588,8 +604,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                "a plate (min = max along an axis) has no volume to take up; give it a thickness");
       }
       if (solid_walls.empty()) {
-        solid_wall_prefix = fmt::format("{}: error: {} key 'displaces_fluid': ",
-                                        r.location(r.raw("displaces_fluid")->source()), r.where());
+        solid_wall_prefix =
+            fmt::format("{}: error: {} key '{}': ", r.location(r.raw(key)->source()), r.where(), key);
       }
       solid_walls.push_back(sim.walls.size());
     }
@@ -704,7 +720,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
 
   // [fluid]
   if (const toml::table* t = top.optional_table("fluid")) {
-    scene.fluid = read_fluid<D>(*t, file, sim.particles, wall_barriers, sim.periodic, sim.walls, solid_walls);
+    scene.fluid = read_fluid<D>(*t, file, sim.particles, wall_barriers, sim.periodic, sim.walls, solid_walls,
+                                impermeable_walls);
     sim.force_field = scene.fluid.get();
   } else if (top.has("fluid")) {
     top.fail("fluid", "must be a table ([fluid])");

@@ -427,7 +427,8 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
                                          const ParticleData<D>& particles,
                                          const std::vector<WallBarrier<D>>& wall_barriers,
                                          const PeriodicCell<D>& periodic, const std::vector<Wall<D>>& walls,
-                                         const std::vector<std::size_t>& solid_walls) {
+                                         const std::vector<std::size_t>& solid_walls,
+                                         const std::vector<std::size_t>& impermeable_walls) {
   TableReader r(table, "[fluid]", file);
   const std::string solver = r.optional_choice("solver", {"cholesky", "cg"}).value_or("cg");
   const double tolerance =
@@ -578,6 +579,7 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   }
   r.finish();
   fluid->solid_walls = solid_walls;
+  fluid->impermeable_walls = impermeable_walls;
   fluid->initialize(particles, walls);
   return fluid;
 }
@@ -592,11 +594,13 @@ template std::unique_ptr<PoreFluid<2>> read_fluid<2>(const toml::table&, const s
                                                      const ParticleData<2>&,
                                                      const std::vector<WallBarrier<2>>&,
                                                      const PeriodicCell<2>&, const std::vector<Wall<2>>&,
+                                                     const std::vector<std::size_t>&,
                                                      const std::vector<std::size_t>&);
 template std::unique_ptr<PoreFluid<3>> read_fluid<3>(const toml::table&, const std::string&,
                                                      const ParticleData<3>&,
                                                      const std::vector<WallBarrier<3>>&,
                                                      const PeriodicCell<3>&, const std::vector<Wall<3>>&,
+                                                     const std::vector<std::size_t>&,
                                                      const std::vector<std::size_t>&);
 
 }  // namespace darcydem

@@ -589,15 +589,35 @@ TEST(SceneErrors, ImpermeableWallsAreChecked) {
       "\n[[wall]]\nname = \"pile\"\nbox = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }\n"
       "material = \"sand\"\nimpermeable = true\n";
   EXPECT_EQ(load_error(with_wall(plate)), "");
-  auto msg = load_error(with_wall(replace(plate, "min = [-0.0005, 0.002]", "min = [-0.0005, 0.0015]")));
+  // A box with a thickness, or a plane, that is impermeable displaces the
+  // fluid and closes the faces it covers: along the grid's axes only.
+  const std::string block =
+      "\n[[wall]]\nname = \"block\"\nbox = { min = [0.0006, 0.0], max = [0.0016, 0.004] }\n"
+      "material = \"sand\"\nimpermeable = true\n";
+  const auto with_block = built_scene<2>(with_wall(block));
+  EXPECT_EQ(with_block.fluid->solid_walls, std::vector<std::size_t>{1});
+  EXPECT_EQ(with_block.fluid->impermeable_walls, std::vector<std::size_t>{1});
+  EXPECT_NE(describe_patches_and_barriers(*with_block.fluid, with_block.simulation.walls)
+                .find("wall block displaces the fluid: a box, impermeable (closes the faces it covers)\n"),
+            std::string::npos);
+  auto msg = load_error(
+      with_wall(replace(block, "max = [0.0016, 0.004] }", "max = [0.0016, 0.004], rotation = 10.0 }")));
   EXPECT_NE(
-      msg.find("[[wall]] #2 key 'impermeable': needs a plate: a box with min = max along exactly one axis"),
+      msg.find("[[wall]] #2 key 'impermeable': an impermeable box closes the fluid grid's faces it covers, "
+               "so it lies along the grid's axes: it cannot be rotated"),
       std::string::npos)
       << msg;
   EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
-  msg = load_error(with_wall(replace(plate, "box = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }",
-                                     "point = [0.0, 0.002]\nnormal = [0.0, -1.0]")));
-  EXPECT_NE(msg.find("key 'impermeable': only a box wall flat along one axis (a plate) can be impermeable"),
+  const std::string platen = replace(plate, "box = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }",
+                                     "point = [0.0, 0.004]\nnormal = [0.0, -1.0]");
+  EXPECT_EQ(load_error(with_wall(platen + "velocity = [0.0, -0.01]\n")), "");
+  msg = load_error(with_wall(replace(platen, "normal = [0.0, -1.0]", "normal = [0.1, -1.0]")));
+  EXPECT_NE(
+      msg.find("key 'impermeable': an impermeable plane needs its normal along an axis of the fluid grid"),
+      std::string::npos)
+      << msg;
+  msg = load_error(with_wall(block, false));
+  EXPECT_NE(msg.find("key 'impermeable': needs a pore fluid to take up: the scene has no [fluid] table"),
             std::string::npos)
       << msg;
   msg = load_error(with_wall(plate + "velocity = [0.0, 0.01]\n"));

@@ -2,7 +2,10 @@
 // Loads scene files from the source tree, as a user would run them.
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
@@ -29,6 +32,20 @@ inline std::string file_contents(const std::string& path) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+/// The text of a scene file of the source tree (path relative to it) with
+/// each of `swaps` (a text, its replacement) made at its first place;
+/// throws std::logic_error naming a text the file lacks.
+inline std::string scene_variant(const std::string& relative,
+                                 const std::vector<std::pair<std::string, std::string>>& swaps) {
+  std::string text = file_contents(std::string(DARCYDEM_SOURCE_DIR) + "/" + relative);
+  for (const auto& [from, to] : swaps) {
+    const auto at = text.find(from);
+    if (at == std::string::npos) throw std::logic_error(relative + " has no \"" + from + "\"");
+    text.replace(at, from.size(), to);
+  }
+  return text;
 }
 
 /// Runs every stage without writing output (stop conditions honoured).

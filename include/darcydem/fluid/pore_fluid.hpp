@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -91,6 +92,16 @@ class PoreFluid final : public ParticleForceField<D> {
   /// storage, permeability); a moving one changes it, which the Biot term
   /// turns into pressure and flow, so it pushes the pore water ahead of it.
   std::vector<std::size_t> solid_walls;
+  /// Of solid_walls, those the pore water cannot cross either (a wall's
+  /// `impermeable`): boxes along the grid's axes and planes. Every face
+  /// they cover (where the wall lies on either side of it, on the face
+  /// itself included), at this fluid step and the last, is closed to flow
+  /// in proportion to the area covered:
+  /// its conductance, the fluid the skeleton carries through it and, on a
+  /// side of the grid, the side's inflow are scaled by the open part. The
+  /// cells a wall fills are cut off. Their thrust (wall_thrust) is the
+  /// pressure on their faces in the water.
+  std::vector<std::size_t> impermeable_walls;
   /// Count the pore fluid carried across faces by the moving skeleton, so
   /// that Darcy's flux is relative to the grains (false: the paper's scheme).
   bool carry_with_solid = true;
@@ -145,8 +156,8 @@ class PoreFluid final : public ParticleForceField<D> {
     ar(steps_per_update, hold_forces, sides, permeability_frozen, pressure_, pressure_old_, pressure_older_,
        porosity_, solid_, solid_old_, wall_solid_, wall_solid_old_, porosity_used_, solid_flux_,
        solid_velocity_, kappa_, cell_drag_, blend_atan_, n_power_, face_lambda_, carried_, face_gq_,
-       solid_face_flux_, side_inflow_, last_solve_, last_, total_, updates_, time_, initialized_,
-       wrap_lambda_, wrap_carried_);
+       solid_face_flux_, face_open_, face_covered_, side_inflow_, last_solve_, last_, total_, updates_, time_,
+       initialized_, wrap_lambda_, wrap_carried_);
     std::size_t patch_count = patches.size();
     ar(patch_count);
     if constexpr (Archive::loading) {
@@ -196,9 +207,11 @@ class PoreFluid final : public ParticleForceField<D> {
   /// times the jump. A plane normal to a grid axis: the same for the
   /// half-space behind it (behind_plane), along its normal; on or beyond
   /// the grid's side it faces, it takes that side's pressure. Exact for a
-  /// pressure linear in space. The hydrostatic part (buoyancy) is not in
-  /// it: u is the excess pressure.
-  [[nodiscard]] Vec<D> wall_thrust(const Wall<D>& wall) const;
+  /// pressure linear in space. An impermeable wall (impermeable_walls)
+  /// instead takes the pressure on each of its faces from the cells on the
+  /// wet side (sealed_box_thrust). The hydrostatic part (buoyancy) is not
+  /// in it: u is the excess pressure.
+  [[nodiscard]] Vec<D> wall_thrust(const std::vector<Wall<D>>& walls, std::size_t w) const;
   /// The excess pore pressure's thrust on barrier b (an impermeable
   /// plate's), N (2D: per metre): over the faces it closes, the pressure
   /// of the cell below minus that of the cell above times the face's
@@ -250,6 +263,17 @@ class PoreFluid final : public ParticleForceField<D> {
   void compute_solid(const ParticleData<D>& particles);
   /// wall_thrust of a solid box (a box wall's, or the part behind a plane).
   [[nodiscard]] Vec<D> box_thrust(const SolidBox<D>& box) const;
+  /// wall_thrust of an impermeable box along the grid's axes: over each of
+  /// its faces in the grid, the area in each cell on its wet side times
+  /// that cell's pressure (no water crosses the face, so the pressure is
+  /// flat towards it: the face's to second order in the cell's width).
+  [[nodiscard]] Vec<D> sealed_box_thrust(const SolidBox<D>& box) const;
+  /// The solid of a wall that displaces the fluid, as a box: its own, or
+  /// for a plane behind_plane, its face kept 1e-5 of a cell inside the
+  /// grid. None if it misses the grid.
+  [[nodiscard]] std::optional<SolidBox<D>> displaced_box(const Wall<D>& wall) const;
+  /// face_open_ from the impermeable_walls among `walls` (empty if none).
+  void compute_open_faces(const std::vector<Wall<D>>& walls);
   /// wall_solid_ from the solid_walls among `walls`.
   void compute_wall_solid(const std::vector<Wall<D>>& walls);
   void compute_cell_properties();
@@ -458,6 +482,10 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] const FluidBoundary& condition_of(const BoundaryFace& bf) const {
     return bf.patch >= 0 ? patches[static_cast<std::size_t>(bf.patch)].condition : sides[bf.side];
   }
+  /// The open part of a boundary face (1 without impermeable walls).
+  [[nodiscard]] double open_of(const BoundaryFace& bf) const {
+    return face_open_[bf.side / 2].empty() ? 1.0 : face_open_[bf.side / 2][bf.index];
+  }
 
   /// Sums over one block of grains (compute_solid): per cell, the solid
   /// volume and the solid volume flux side by side (one vector add per
@@ -509,6 +537,12 @@ class PoreFluid final : public ParticleForceField<D> {
   /// and 1/(distance to the next centre) (build_geometry, stencil_graded).
   std::array<std::vector<double>, D> layer_centre_, layer_inv_width_, layer_inv_gap_;
   std::array<std::vector<double>, D> solid_face_flux_;  ///< m^3/s of solid through each face
+  /// Per face (FluidGrid::face_index), the part of its area open to flow,
+  /// in [0, 1]: 1 - the part impermeable walls covered at both the last
+  /// fluid step and this one (face_covered_); empty without impermeable
+  /// walls.
+  std::array<std::vector<double>, D> face_open_;
+  std::array<std::vector<double>, D> face_covered_;  ///< per face, the part covered now
   std::vector<Face> faces_;
   /// A face across a periodic end of the grid: between the cell `low` on
   /// the last layer along `axis` and `high` on the first (flow from low to

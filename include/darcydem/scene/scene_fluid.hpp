@@ -47,9 +47,10 @@ struct WallBarrier {
   std::string error_prefix;
 };
 
-/// The pore fluid of a [fluid] table with the impermeable walls' barriers,
-/// initialised on the particles and the box walls `solid_walls` (indices
-/// into `walls`) that take up pore volume; along the periodic axes of
+/// The pore fluid of a [fluid] table with the impermeable plates' barriers,
+/// initialised on the particles and the walls `solid_walls` (indices into
+/// `walls`) that take up pore volume, of which `impermeable_walls` also
+/// close the faces they cover; along the periodic axes of
 /// `periodic` the grid must span the period, and its ends meet.
 template <int D>
 std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::string& file,
@@ -57,6 +58,7 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
                                          const std::vector<WallBarrier<D>>& wall_barriers = {},
                                          const PeriodicCell<D>& periodic = {},
                                          const std::vector<Wall<D>>& walls = {},
-                                         const std::vector<std::size_t>& solid_walls = {});
+                                         const std::vector<std::size_t>& solid_walls = {},
+                                         const std::vector<std::size_t>& impermeable_walls = {});
 
 }  // namespace darcydem
