@@ -336,6 +336,7 @@ void PoreFluid<D>::compute_cell_properties() {
     const double ka = kappa_[f.low][f.axis];
     const double kb = kappa_[f.high][f.axis];
     wrap_lambda_[w] = 2.0 * ka * kb / (ka + kb) / fluid.viscosity;
+    if (!face_open_[f.axis].empty()) wrap_lambda_[w] *= wrap_open(f);
   }
 }
 
@@ -558,6 +559,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     const double v_mix = vs > 0.0 ? (solid_flux_[f.low][k] + solid_flux_[f.high][k]) / vs : 0.0;
     const double section_flux = solid_face_flux_[k][f.face_first] + solid_face_flux_[k][f.face_last];
     wrap_carried_[w] = dt * (v_mix * area - section_flux);
+    if (!face_open_[k].empty()) wrap_carried_[w] *= wrap_open(f);
   }
   // Per cell, into the grid's stencil (GridOperator): the storage and the
   // conductances of its faces on the diagonal; the stored pressure, the
@@ -726,7 +728,9 @@ void PoreFluid<D>::compute_face_fields(double time) {
   for (std::size_t w = 0; w < wrap_faces_.size(); ++w) {
     const WrapFace& f = wrap_faces_[w];
     const double g = (pressure_[f.high] - pressure_[f.low]) * inv_spacing_[f.axis];
-    face_gq_[f.axis][f.face_first] = {g, -wrap_lambda_[w] * g};
+    // Closed whole by an impermeable wall: nothing, as at a barrier.
+    face_gq_[f.axis][f.face_first] = wrap_open(f) == 0.0 ? std::array<double, 2>{0.0, 0.0}
+                                                         : std::array<double, 2>{g, -wrap_lambda_[w] * g};
     face_gq_[f.axis][f.face_last] = face_gq_[f.axis][f.face_first];
   }
   side_inflow_.fill(0.0);

@@ -417,6 +417,27 @@ TEST(ImpermeableWalls, ALidOverAChannelPassesFlowBelowItOnlyAndFeelsThePressureA
   EXPECT_EQ(thrust.x(), 0.0);  // its ends lie on the grid's sides: no water beyond them
 }
 
+TEST(ImpermeableWalls, ALidOverAGridPeriodicAcrossItSealsItAsOverAClosedOne2D) {
+  // drained_square periodic along x, under an impermeable plane facing
+  // down at y = 0.035 (its solid spans the period and beyond): no water
+  // flows, 50 Pa below it, and it takes 50 Pa over the period's 6 cm,
+  // 3 N/m, as over the grid closed at its ends.
+  for (const bool periodic : {true, false}) {
+    PoreFluid<2> f = empty_grid<2>(0.01, {6, 6});
+    f.grid.periodic = {periodic, false};
+    f.sides[2] = {FluidBoundaryType::drained, TimeSeries::constant(50.0)};
+    f.impermeable_walls = {0};
+    std::vector<Wall<2>> walls{moving_plane<2>(Vec<2>(0.0, 0.035), Vec<2>(0.0, -1.0), Vec<2>::Zero())};
+    walls[0].motion = WallMotion::fixed;
+    ParticleData<2> none;
+    f.initialize(none, walls);
+    for (int s = 1; s <= 3; ++s) f.update(none, 1.0, s, walls);
+    EXPECT_NEAR(f.wall_thrust(walls, 0).y(), 3.0, 1e-9) << periodic;
+    EXPECT_EQ(f.side_inflow(3), 0.0) << periodic;
+    for (int i = 0; i < 6; ++i) EXPECT_NEAR(f.pressure()[f.grid.index({i, 3})], 50.0, 1e-9) << periodic;
+  }
+}
+
 TEST(ImpermeableWalls, ABlockOnTheFacesIsFourBarriersAroundItsCells2D) {
   // An impermeable box filling the cells x in [0.01, 0.03], y in [0.02,
   // 0.04] of drained_square: the flow goes round it. Its faces lie on the

@@ -557,6 +557,12 @@ class PoreFluid final : public ParticleForceField<D> {
     double area = 0.0;                   ///< m^2
   };
   std::vector<WrapFace> wrap_faces_;
+  /// The open part of a wrap face: the smaller of its two ends' (a wall
+  /// may lie against either end of the period).
+  [[nodiscard]] double wrap_open(const WrapFace& f) const {
+    if (face_open_[f.axis].empty()) return 1.0;
+    return std::min(face_open_[f.axis][f.face_first], face_open_[f.axis][f.face_last]);
+  }
   std::vector<double> wrap_lambda_;   ///< kappa/mu of each wrap face, m^2/(Pa s)
   std::vector<double> wrap_carried_;  ///< fluid carried across each, from low to high, m^3
   std::vector<BoundaryFace> boundary_faces_;
