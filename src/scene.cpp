@@ -571,6 +571,12 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     const bool impermeable = r.boolean_or("impermeable", false);
     const bool plate = w.is_box && w.half.minCoeff() == 0.0;
     const bool sealed = impermeable && !plate;
+    if (sealed && r.has("displaces_fluid") && !r.boolean_or("displaces_fluid", true)) {
+      r.fail(
+          "displaces_fluid",
+          "an impermeable box with a thickness, or plane, displaces the fluid: leave this out, or make the "
+          "wall permeable");
+    }
     const bool displaces_fluid = r.boolean_or("displaces_fluid", false) || sealed;
     read_wall_motion<D>(r, w.is_box, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis);
     if (impermeable && plate) {

@@ -616,6 +616,12 @@ TEST(SceneErrors, ImpermeableWallsAreChecked) {
       msg.find("key 'impermeable': an impermeable plane needs its normal along an axis of the fluid grid"),
       std::string::npos)
       << msg;
+  msg = load_error(with_wall(block + "displaces_fluid = false\n"));
+  EXPECT_NE(
+      msg.find("key 'displaces_fluid': an impermeable box with a thickness, or plane, displaces the fluid"),
+      std::string::npos)
+      << msg;
+  EXPECT_EQ(load_error(with_wall(block + "displaces_fluid = true\n")), "");
   msg = load_error(with_wall(block, false));
   EXPECT_NE(msg.find("key 'impermeable': needs a pore fluid to take up: the scene has no [fluid] table"),
             std::string::npos)
