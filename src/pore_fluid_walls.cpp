@@ -95,11 +95,9 @@ template <int D>
 Vec<D> PoreFluid<D>::wall_thrust(const std::vector<Wall<D>>& walls, std::size_t w) const {
   if (!initialized_) throw std::logic_error("PoreFluid::wall_thrust before initialize");
   const Wall<D>& wall = walls.at(w);
-  const bool sealed =
-      std::find(impermeable_walls.begin(), impermeable_walls.end(), w) != impermeable_walls.end();
   const auto box = displaced_box(wall);
   if (!box) return Vec<D>::Zero();
-  const Vec<D> thrust = sealed ? sealed_box_thrust(*box) : box_thrust(*box);
+  const Vec<D> thrust = is_impermeable(w) ? sealed_box_thrust(*box) : box_thrust(*box);
   // On a plane, along its normal (the box's sides beyond the grid are dry).
   return wall.is_box ? thrust : Vec<D>(thrust.dot(wall.normal) * wall.normal);
 }
@@ -118,7 +116,7 @@ void PoreFluid<D>::compute_open_faces(const std::vector<Wall<D>>& walls) {
   for (std::size_t w : impermeable_walls) {
     const auto box = displaced_box(walls.at(w));
     if (!box) continue;
-    if (!box->grid_aligned() || box->axes != Eigen::Matrix<double, D, D>::Identity())
+    if (box->axes != Eigen::Matrix<double, D, D>::Identity())
       throw std::logic_error("PoreFluid: an impermeable wall must lie along the grid's axes");
     const Vec<D> lo = box->centre - box->half;
     const Vec<D> hi = box->centre + box->half;

@@ -565,9 +565,7 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::
   }
   for (std::size_t w : fluid.solid_walls) {
     const Wall<D>& wall = walls.at(w);
-    const bool sealed = std::find(fluid.impermeable_walls.begin(), fluid.impermeable_walls.end(), w) !=
-                        fluid.impermeable_walls.end();
-    const char* closed = sealed ? ", impermeable (closes the faces it covers)" : "";
+    const char* closed = fluid.is_impermeable(w) ? ", impermeable (closes the faces it covers)" : "";
     if (wall.is_box) {
       out += fmt::format("wall {} displaces the fluid: a box{}\n", wall.name, closed);
       continue;

@@ -333,7 +333,6 @@ PoreFluid<2> drained_square(std::vector<Wall<2>>& walls, bool impermeable = true
   f.sides[2] = {FluidBoundaryType::drained, TimeSeries::constant(50.0)};
   for (auto& w : walls) w.motion = WallMotion::fixed;
   if (!walls.empty() && impermeable) f.impermeable_walls = {0};
-  if (walls.empty()) f.solid_walls.clear();
   ParticleData<2> none;
   f.initialize(none, walls);
   for (int s = 1; s <= 3; ++s) f.update(none, 1.0, s, walls);

@@ -102,6 +102,10 @@ class PoreFluid final : public ParticleForceField<D> {
   /// cells a wall fills are cut off. Their thrust (wall_thrust) is the
   /// pressure on their faces in the water.
   std::vector<std::size_t> impermeable_walls;
+  /// Whether wall w (an index as in solid_walls) is one of impermeable_walls.
+  [[nodiscard]] bool is_impermeable(std::size_t w) const {
+    return std::find(impermeable_walls.begin(), impermeable_walls.end(), w) != impermeable_walls.end();
+  }
   /// Count the pore fluid carried across faces by the moving skeleton, so
   /// that Darcy's flux is relative to the grains (false: the paper's scheme).
   bool carry_with_solid = true;
