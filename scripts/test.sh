@@ -22,8 +22,10 @@ if [ "${1:-}" = "--sanitize" ]; then
   # rolling-resistance and Hertz tests, and the same check of the batched
   # path (.../0) runs here too. So is the graded upward seepage (the
   # upward-seepage bed again, about 3 minutes here; the graded grid's code
-  # runs here in the GradedGrid tests).
-  OMP_NUM_THREADS=1 ctest --output-on-failure -j "$(nproc)" -E "SeepageColumn(3D)?Kf1e7|HeaveStarts|SheetPileHeave|PilePenetration|GradedUpwardSeepage|Reproducibility.*/0\.1"
+  # runs here in the GradedGrid tests). So is the 3D oedometer (two runs of
+  # about 90 000 steps of 850 spheres; its coupled code runs here in the
+  # hydrostatic and upward-seepage beds).
+  OMP_NUM_THREADS=1 ctest --output-on-failure -j "$(nproc)" -E "SeepageColumn(3D)?Kf1e7|HeaveStarts|Oedometer|SheetPileHeave|PilePenetration|GradedUpwardSeepage|Reproducibility.*/0\.1"
 else
   "$root/scripts/build.sh" "$root/build" -DDARCYDEM_WERROR=ON
   cd "$root/build"

@@ -2,7 +2,6 @@
 // output in a temporary directory): the paper's seepage column for the three
 // K_f, in 2D and in 3D, and the hydrostatic bed.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -20,27 +19,18 @@
 #include "darcydem/simulation/runner.hpp"
 #include "dem_setup.hpp"
 #include "fluid_sums.hpp"
+#include "run_output.hpp"
 #include "scene_loading.hpp"
 #include "sheet_pile.hpp"
 
 using namespace darcydem;
 
 using darcydem::testing::floor_thrust;
+using darcydem::testing::read_probes;
+using darcydem::testing::temp_dir;
+using darcydem::testing::temp_path;
 
 namespace {
-
-/// Where temp_dir(name) puts its folder.
-std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("darcydem_test_" + name + "_" + std::to_string(getpid())))
-      .string();
-}
-
-/// A fresh folder for a test's output.
-std::string temp_dir(const std::string& name) {
-  const auto dir = temp_path(name);
-  std::filesystem::remove_all(dir);
-  return dir;
-}
 
 /// The paper's seepage column (examples/seepage_column/, discs) or its 3D
 /// counterpart (examples/seepage_column_3d/, spheres in a square tube),
@@ -371,28 +361,6 @@ TEST(FluidScenes, UpwardSeepageThroughABed) {
       carried, at_rest, 1.0 - thrust / submerged, expected, 100.0 * (carried - expected) / expected);
   EXPECT_NEAR(carried, expected, 0.02 * expected);
 }
-
-namespace {
-/// Columns of a probes.csv by name.
-std::map<std::string, std::vector<double>> read_probes(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::stringstream header(line);
-  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
-  std::map<std::string, std::vector<double>> columns;
-  while (std::getline(in, line)) {
-    std::stringstream row(line);
-    std::string cell;
-    for (const auto& name : names) {
-      std::getline(row, cell, ',');
-      columns[name].push_back(std::stod(cell));
-    }
-  }
-  return columns;
-}
-}  // namespace
 
 TEST(FluidScenes, SeepageFromAnInletUnderABed) {
   // Flow from an inlet patch in the middle of the floor (3 x 3 of its
