@@ -1,0 +1,165 @@
+#!/usr/bin/python3
+"""The 3D oedometer against Terzaghi, as tests/verification/test_oedometer.cpp
+checks it, with plots. Runs oedometer.toml and its drained twin (the same
+scene with a permeability 1000 times larger, so that the water leaves at
+once and the settlement is the skeleton's alone), takes m_v from the twin,
+and compares the coupled run with Terzaghi's closed form (storage m_v +
+n/K_f, B = m_v / (m_v + n/K_f)).
+
+    /usr/bin/python3 examples/fluid_cases/run_oedometer.py build/darcydem out/oedometer
+
+Writes OUT/coupled/ and OUT/drained/ (the runs), OUT/oedometer.png
+(settlement and floor pressure against time; pressure isochrones) and
+prints the errors. About half a minute on 2 cores (the runs' logs:
+OUT/coupled.log, OUT/drained.log).
+"""
+import csv
+import math
+import os
+import subprocess
+import sys
+import tomllib
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENE = os.path.join(HERE, "oedometer.toml")
+GAMMA_W_G = 9.80665  # standard gravity, m/s^2
+
+
+def probes(out):
+    with open(os.path.join(out, "probes.csv")) as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0]}
+
+
+def series(tv, term, count=400):
+    """sum over m of term(M) exp(-M^2 Tv), M = (2m + 1) pi / 2."""
+    total = 0.0
+    for m in range(count):
+        big_m = (2 * m + 1) * math.pi / 2
+        total += term(big_m, m) * math.exp(-big_m * big_m * tv)
+    return total
+
+
+def degree(tv, b):
+    """Settlement over its final value: (1 - B) at once, then B U(Tv)."""
+    if tv <= 0:
+        return 0.0
+    return 1.0 - b * series(tv, lambda big_m, m: 2.0 / (big_m * big_m))
+
+
+def pressure(tv, depth_ratio, u0):
+    """Excess pressure at depth z / H below the drained top."""
+    if tv <= 0:
+        return u0
+    return u0 * series(tv, lambda big_m, m: 2.0 / big_m * math.sin(big_m * depth_ratio))
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    darcydem, out = sys.argv[1], sys.argv[2]
+    if not (os.path.isfile(darcydem) and os.access(darcydem, os.X_OK)):
+        sys.exit(f"{darcydem}: not an executable darcydem (build it with scripts/build.sh)")
+    with open(SCENE, "rb") as f:
+        scene = tomllib.load(f)
+    text = open(SCENE).read()
+    k_given = "hydraulic_conductivity = [2e-4, 2e-4, 2e-4]"
+    if k_given not in text:
+        sys.exit(f"{SCENE}: no '{k_given}' to make the drained twin from")
+    os.makedirs(out, exist_ok=True)
+    twin = os.path.join(out, "oedometer_drained.toml")
+    with open(twin, "w") as f:
+        bed = os.path.join(HERE, "oedometer_bed.csv")
+        f.write(text.replace(k_given, "hydraulic_conductivity = [0.2, 0.2, 0.2]").replace(
+            'file = "oedometer_bed.csv"', f'file = "{bed}"'))
+    # The two runs side by side, a thread each (850 grains gain little from two).
+    print("running the coupled scene and its drained twin ...", flush=True)
+    runs = []
+    for name, path in (("coupled", SCENE), ("drained", twin)):
+        log = open(os.path.join(out, f"{name}.log"), "w")
+        runs.append((name, log, subprocess.Popen(
+            [darcydem, "run", path, "-o", os.path.join(out, name), "--force", "-j", "1"], stdout=log,
+            stderr=subprocess.STDOUT)))
+    for name, log, run in runs:
+        if run.wait() != 0:
+            sys.exit(f"the {name} run failed: see {log.name}")
+        log.close()
+
+    fluid = scene["fluid"]
+    grid = fluid["grid"]
+    height = grid["cells"][2] * grid["size"][2]
+    k = fluid["permeability"]["hydraulic_conductivity"][2]
+    k_f = fluid["bulk_modulus"]
+    gamma_w = fluid["density"] * GAMMA_W_G
+    walls = {w["name"]: w for w in scene["wall"]}
+    area = walls["x_high"]["point"][0] * walls["y_high"]["point"][1]
+    rest, load = scene["stage"][0], scene["stage"][1]
+    dsigma = (load["walls"]["platen"]["servo"]["target_force"] -
+              rest["walls"]["platen"]["servo"]["target_force"]) / area
+    t0_target = rest["duration"]
+
+    c, d = probes(os.path.join(out, "coupled")), probes(os.path.join(out, "drained"))
+    i0 = next(i for i, t in enumerate(c["time"]) if t >= t0_target - 1e-9)
+    t0, z0 = c["time"][i0 - 1], c["platen_z"][i0 - 1]
+    s_drained = d["platen_z"][i0 - 1] - d["platen_z"][-1]
+    porosity = c["porosity"][i0 - 1]
+    m_v = s_drained / (z0 * dsigma)
+    storage = porosity / k_f
+    b = m_v / (m_v + storage)
+    c_v = k / (gamma_w * (m_v + storage))
+    print(f"drained settlement {s_drained * 1e6:.3f} um: m_v {m_v:.4e} 1/Pa; n {porosity:.4f}, "
+          f"B {b:.4f}, c_v {c_v:.4e} m^2/s, t_c = H^2/c_v {height * height / c_v:.4f} s")
+
+    times = [t - t0 for t in c["time"][i0:]]
+    settled = [(z0 - z) * 1e6 for z in c["platen_z"][i0:]]
+    floor = c["floor_pressure"][i0:]
+    tv = [c_v * t / (height * height) for t in times]
+    floor_depth = (height - 0.5 * grid["size"][2]) / height
+    closed_s = [s_drained * degree(x, b) * 1e6 for x in tv]
+    closed_u = [pressure(x, floor_depth, b * dsigma) for x in tv]
+    rms_s = math.sqrt(sum((a - e) ** 2 for a, e in zip(settled, closed_s)) / len(settled)) / (s_drained * 1e6)
+    late = [(a, e) for t, a, e in zip(times, floor, closed_u) if t >= 0.005]
+    rms_u = math.sqrt(sum((a - e) ** 2 for a, e in late) / len(late)) / (b * dsigma)
+    print(f"RMS settlement error {100 * rms_s:.2f} % of S_d; floor pressure (from 5 ms) {100 * rms_u:.2f} % "
+          f"of B dsigma")
+
+    fig, ax = plt.subplots(1, 3, figsize=(15, 4.5))
+    ax[0].plot(times, settled, label="darcydem")
+    ax[0].plot(times, closed_s, "k--", label="Terzaghi, m_v of the drained twin")
+    ax[0].set_xlabel("time since the load step (s)")
+    ax[0].set_ylabel("settlement of the platen (um)")
+    ax[0].legend()
+    ax[1].plot(times, floor, label="darcydem")
+    ax[1].plot(times, closed_u, "k--", label="Terzaghi")
+    ax[1].set_xlabel("time since the load step (s)")
+    ax[1].set_ylabel("excess pressure at the floor's cells (Pa)")
+    ax[1].legend()
+    layers = grid["cells"][2]
+    for j, t_plot in enumerate((0.005, 0.01, 0.02, 0.05, 0.1)):
+        row = min(range(len(times)), key=lambda i: abs(times[i] - t_plot))
+        z = [(layers - 1 - n + 0.5) * grid["size"][2] for n in range(layers)]  # depth of u_n below the top
+        u = [c[f"u_{n}"][i0 + row] for n in range(layers)]
+        colour = f"C{j}"
+        ax[2].plot(u, [x * 1e3 for x in z], "o", color=colour, label=f"t = {t_plot} s")
+        fine = [height * i / 100 for i in range(101)]
+        x_tv = c_v * times[row] / (height * height)
+        ax[2].plot([pressure(x_tv, x / height, b * dsigma) for x in fine], [x * 1e3 for x in fine], "-",
+                   color=colour)
+    ax[2].invert_yaxis()
+    ax[2].set_xlabel("excess pore pressure (Pa)")
+    ax[2].set_ylabel("depth below the drained top (mm)")
+    ax[2].set_title("points: darcydem; lines: Terzaghi")
+    ax[2].legend(fontsize=8)
+    fig.suptitle(f"3D oedometer, 850 spheres: load step {dsigma:.0f} Pa, B = {b:.3f}")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "oedometer.png"), dpi=110)
+    print(f"plot: {os.path.join(out, 'oedometer.png')}")
+
+
+if __name__ == "__main__":
+    main()
