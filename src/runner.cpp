@@ -572,8 +572,21 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::
     }
     const int a = grid_axis_of<D>(wall.normal);
     const bool up = wall.normal[a] > 0.0;
-    out += fmt::format("wall {} displaces the fluid: a plane, solid where {} {} {:.6g} m{}\n", wall.name,
-                       "xyz"[a], up ? "<" : ">", wall.point[a], closed);
+    // Beyond the side it faces, the plane takes no room in the grid: the
+    // water ends at that side, which stays where it is until the plane
+    // moves into the grid (a platen meant to push the water must start
+    // inside the grid, or the grid reach past it).
+    const int side = 2 * a + (up ? 0 : 1);
+    const double edge = up ? fluid.grid.origin[a] : fluid.grid.upper()[a];
+    const bool beyond = up ? wall.point[a] < edge : wall.point[a] > edge;
+    const std::string outside =
+        beyond ? fmt::format(
+                     "; now beyond the grid's {} side ({:.6g} m): it displaces no water until it moves into "
+                     "the grid",
+                     side_names[side], edge)
+               : std::string();
+    out += fmt::format("wall {} displaces the fluid: a plane, solid where {} {} {:.6g} m{}{}\n", wall.name,
+                       "xyz"[a], up ? "<" : ">", wall.point[a], closed, outside);
   }
   return out;
 }

@@ -953,6 +953,15 @@ TEST(SceneErrors, WallsThatDisplaceTheFluidAreChecked) {
   EXPECT_NE(describe_patches_and_barriers(*with_platen.fluid, with_platen.simulation.walls)
                 .find("wall block displaces the fluid: a plane, solid where y > 0.004 m\n"),
             std::string::npos);
+  // Beyond the grid's top (0.004 m) it displaces no water until it moves
+  // in: the run log and `check` say so.
+  const auto above =
+      built_scene<2>(with_wall(replace(platen, "point = [0.0, 0.004]", "point = [0.0, 0.005]")));
+  EXPECT_NE(
+      describe_patches_and_barriers(*above.fluid, above.simulation.walls)
+          .find("wall block displaces the fluid: a plane, solid where y > 0.005 m; now beyond the grid's "
+                "y_max side (0.004 m): it displaces no water until it moves into the grid\n"),
+      std::string::npos);
   // Its servo may count the water's thrust, and the probe reads it.
   const std::string loaded = replace(platen, "displaces_fluid = true\n",
                                      "displaces_fluid = true\nservo = { target_force = 1.0, gain = 1.0, "
