@@ -104,10 +104,14 @@ def main():
     t0_target = rest["duration"]
 
     c, d = probes(os.path.join(out, "coupled")), probes(os.path.join(out, "drained"))
-    i0 = next(i for i, t in enumerate(c["time"]) if t >= t0_target - 1e-9)
-    t0, z0 = c["time"][i0 - 1], c["platen_z"][i0 - 1]
-    s_drained = d["platen_z"][i0 - 1] - d["platen_z"][-1]
-    porosity = c["porosity"][i0 - 1]
+    # The row of the step: the one nearest the load stage's start (the stage
+    # ends on a whole time step, within one of it; a row is written there).
+    def step_row(p):
+        return min(range(len(p["time"])), key=lambda i: abs(p["time"][i] - t0_target))
+    i0, i0_drained = step_row(c), step_row(d)
+    t0, z0 = c["time"][i0], c["platen_z"][i0]
+    s_drained = d["platen_z"][i0_drained] - d["platen_z"][-1]
+    porosity = c["porosity"][i0]
     m_v = s_drained / (z0 * dsigma)
     storage = porosity / k_f
     b = m_v / (m_v + storage)
@@ -115,9 +119,10 @@ def main():
     print(f"drained settlement {s_drained * 1e6:.3f} um: m_v {m_v:.4e} 1/Pa; n {porosity:.4f}, "
           f"B {b:.4f}, c_v {c_v:.4e} m^2/s, t_c = H^2/c_v {height * height / c_v:.4f} s")
 
-    times = [t - t0 for t in c["time"][i0:]]
-    settled = [(z0 - z) * 1e6 for z in c["platen_z"][i0:]]
-    floor = c["floor_pressure"][i0:]
+    rows = [i for i in range(i0 + 1, len(c["time"])) if c["time"][i] > t0]  # the step's row is written twice
+    times = [c["time"][i] - t0 for i in rows]
+    settled = [(z0 - c["platen_z"][i]) * 1e6 for i in rows]
+    floor = [c["floor_pressure"][i] for i in rows]
     tv = [c_v * t / (height * height) for t in times]
     floor_depth = (height - 0.5 * grid["size"][2]) / height
     closed_s = [s_drained * degree(x, b) * 1e6 for x in tv]
@@ -143,7 +148,7 @@ def main():
     for j, t_plot in enumerate((0.005, 0.01, 0.02, 0.05, 0.1)):
         row = min(range(len(times)), key=lambda i: abs(times[i] - t_plot))
         z = [(layers - 1 - n + 0.5) * grid["size"][2] for n in range(layers)]  # depth of u_n below the top
-        u = [c[f"u_{n}"][i0 + row] for n in range(layers)]
+        u = [c[f"u_{n}"][rows[row]] for n in range(layers)]
         colour = f"C{j}"
         ax[2].plot(u, [x * 1e3 for x in z], "o", color=colour, label=f"t = {t_plot} s")
         fine = [height * i / 100 for i in range(101)]
