@@ -7,6 +7,8 @@
 //   model.step(1000)                            # DEM steps, with the fluid's steps among them
 //   model.positions, model.velocities           # numpy arrays (N, D), particles in creation order
 //   model.fluid.pressure                        # numpy array over the cells, indexed [i, j(, k)]
+//   darcydem.consolidation_degree(t, height=H, conductivity=k, compressibility=m_v, fluid_storage=n/K_f)
+//                                               # Terzaghi's closed forms (analysis/seepage_analytic.hpp)
 //
 // A bad scene raises darcydem.SceneError (a ValueError) with the file, line,
 // key and what is allowed. Ctrl-C stops a step() or run() between steps,
@@ -27,6 +29,7 @@
 
 #include <fmt/format.h>
 
+#include "darcydem/analysis/seepage_analytic.hpp"
 #include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
@@ -391,4 +394,41 @@ PYBIND11_MODULE(darcydem, m) {
       py::arg("checkpoint_every") = 0.0, py::arg("threads") = 0, py::arg("log") = false,
       "runs a scene as `darcydem run` does, writing its output directory; returns a summary; with "
       "log=True the program's run log and progress lines go to stderr");
+  // Terzaghi's 1D consolidation (top drained, bottom sealed, drainage path
+  // `height`), as the verification tests take it, for scripts that compare
+  // a run with it (examples/fluid_cases/run_oedometer.py).
+  auto terzaghi = [](double height, double conductivity, double compressibility, double fluid_storage,
+                     double unit_weight) {
+    darcydem::SeepageColumnParameters p;
+    p.height = height;
+    p.conductivity = conductivity;
+    p.compressibility = compressibility;
+    p.fluid_storage = fluid_storage;
+    p.unit_weight = unit_weight;
+    return p;
+  };
+  m.def(
+      "consolidation_degree",
+      [terzaghi](double time, double height, double conductivity, double compressibility,
+                 double fluid_storage, double unit_weight) {
+        return darcydem::consolidation_degree(
+            terzaghi(height, conductivity, compressibility, fluid_storage, unit_weight), time);
+      },
+      py::arg("time"), py::kw_only(), py::arg("height"), py::arg("conductivity"), py::arg("compressibility"),
+      py::arg("fluid_storage") = 0.0, py::arg("unit_weight") = 9806.65,
+      "Terzaghi's settlement at `time` (s) after a load step over its final value, the immediate part 1 - B "
+      "included, B = m_v / (m_v + n/K_f); SI units (m, m/s, 1/Pa, N/m^3)");
+  m.def(
+      "consolidation_pressure",
+      [terzaghi](double time, double distance, double stress, double height, double conductivity,
+                 double compressibility, double fluid_storage, double unit_weight) {
+        return darcydem::consolidation_pressure(
+            terzaghi(height, conductivity, compressibility, fluid_storage, unit_weight), stress, distance,
+            time);
+      },
+      py::arg("time"), py::arg("distance"), py::arg("stress"), py::kw_only(), py::arg("height"),
+      py::arg("conductivity"), py::arg("compressibility"), py::arg("fluid_storage") = 0.0,
+      py::arg("unit_weight") = 9806.65,
+      "Terzaghi's excess pore pressure (Pa) at `distance` (m) from the drained end, `time` (s) after a load "
+      "step `stress` (Pa)");
 }

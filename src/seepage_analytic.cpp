@@ -40,13 +40,13 @@ double seepage_uplift(const SeepageColumnParameters& p, double time) {
 
 double consolidation_degree(const SeepageColumnParameters& p, double time) {
   if (time <= 0.0) return 0.0;
-  const double b = p.compressibility / (p.compressibility + p.fluid_storage);
+  const double b = p.undrained_share();
   return 1.0 - b * series(
                        p, time, [](double k) { return 8.0 / (pi * pi * k * k); }, false);
 }
 
 double consolidation_pressure(const SeepageColumnParameters& p, double stress, double distance, double time) {
-  const double b = p.compressibility / (p.compressibility + p.fluid_storage);
+  const double b = p.undrained_share();
   if (time <= 0.0) return distance > 0.0 ? b * stress : 0.0;
   const double h = p.height;
   return b * stress *

@@ -4,7 +4,8 @@ checks it, with plots. Runs oedometer.toml and its drained twin (the same
 scene with a permeability 1000 times larger, so that the water leaves at
 once and the settlement is the skeleton's alone), takes m_v from the twin,
 and compares the coupled run with Terzaghi's closed form (storage m_v +
-n/K_f, B = m_v / (m_v + n/K_f)).
+n/K_f, B = m_v / (m_v + n/K_f)), taken from the darcydem Python module built
+next to the program (the tests' closed forms, analysis/seepage_analytic.hpp).
 
     /usr/bin/python3 examples/fluid_cases/run_oedometer.py build/darcydem out/oedometer
 
@@ -36,27 +37,16 @@ def probes(out):
     return {k: [float(r[k]) for r in rows] for k in rows[0]}
 
 
-def series(tv, term, count=400):
-    """sum over m of term(M) exp(-M^2 Tv), M = (2m + 1) pi / 2."""
-    total = 0.0
-    for m in range(count):
-        big_m = (2 * m + 1) * math.pi / 2
-        total += term(big_m, m) * math.exp(-big_m * big_m * tv)
-    return total
-
-
-def degree(tv, b):
-    """Settlement over its final value: (1 - B) at once, then B U(Tv)."""
-    if tv <= 0:
-        return 0.0
-    return 1.0 - b * series(tv, lambda big_m, m: 2.0 / (big_m * big_m))
-
-
-def pressure(tv, depth_ratio, u0):
-    """Excess pressure at depth z / H below the drained top."""
-    if tv <= 0:
-        return u0
-    return u0 * series(tv, lambda big_m, m: 2.0 / big_m * math.sin(big_m * depth_ratio))
+def load_module(darcydem_exe):
+    """The darcydem Python module built next to the program (build/python):
+    its closed forms are the ones the tests check against."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(darcydem_exe)), "python"))
+    try:
+        import darcydem
+    except ImportError as e:
+        sys.exit(f"the darcydem Python module is not next to {darcydem_exe} ({e}); build it with "
+                 "scripts/build.sh (DARCYDEM_BUILD_PYTHON=ON, the default)")
+    return darcydem
 
 
 def main():
@@ -65,6 +55,7 @@ def main():
     darcydem, out = sys.argv[1], sys.argv[2]
     if not (os.path.isfile(darcydem) and os.access(darcydem, os.X_OK)):
         sys.exit(f"{darcydem}: not an executable darcydem (build it with scripts/build.sh)")
+    module = load_module(darcydem)
     with open(SCENE, "rb") as f:
         scene = tomllib.load(f)
     text = open(SCENE).read()
@@ -123,10 +114,11 @@ def main():
     times = [c["time"][i] - t0 for i in rows]
     settled = [(z0 - c["platen_z"][i]) * 1e6 for i in rows]
     floor = [c["floor_pressure"][i] for i in rows]
-    tv = [c_v * t / (height * height) for t in times]
-    floor_depth = (height - 0.5 * grid["size"][2]) / height
-    closed_s = [s_drained * degree(x, b) * 1e6 for x in tv]
-    closed_u = [pressure(x, floor_depth, b * dsigma) for x in tv]
+    terzaghi = {"height": height, "conductivity": k, "compressibility": m_v, "fluid_storage": storage,
+                "unit_weight": gamma_w}
+    floor_distance = height - 0.5 * grid["size"][2]  # from the drained top
+    closed_s = [s_drained * module.consolidation_degree(t, **terzaghi) * 1e6 for t in times]
+    closed_u = [module.consolidation_pressure(t, floor_distance, dsigma, **terzaghi) for t in times]
     rms_s = math.sqrt(sum((a - e) ** 2 for a, e in zip(settled, closed_s)) / len(settled)) / (s_drained * 1e6)
     late = [(a, e) for t, a, e in zip(times, floor, closed_u) if t >= 0.005]
     rms_u = math.sqrt(sum((a - e) ** 2 for a, e in late) / len(late)) / (b * dsigma)
@@ -152,9 +144,8 @@ def main():
         colour = f"C{j}"
         ax[2].plot(u, [x * 1e3 for x in z], "o", color=colour, label=f"t = {t_plot} s")
         fine = [height * i / 100 for i in range(101)]
-        x_tv = c_v * times[row] / (height * height)
-        ax[2].plot([pressure(x_tv, x / height, b * dsigma) for x in fine], [x * 1e3 for x in fine], "-",
-                   color=colour)
+        ax[2].plot([module.consolidation_pressure(times[row], x, dsigma, **terzaghi) for x in fine],
+                   [x * 1e3 for x in fine], "-", color=colour)
     ax[2].invert_yaxis()
     ax[2].set_xlabel("excess pore pressure (Pa)")
     ax[2].set_ylabel("depth below the drained top (mm)")

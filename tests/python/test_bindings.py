@@ -114,6 +114,32 @@ class FreeFall(unittest.TestCase):
         self.assertIn("'fall', 'float'", str(caught.exception))
 
 
+class TerzaghiClosedForms(unittest.TestCase):
+    """The closed forms scripts compare runs with (run_oedometer.py), on a
+    layer with c_v = k / (gamma_w m_v) = 1 m^2/s and H = 1 m, so Tv = t."""
+    LAYER = {"height": 1.0, "conductivity": 9806.65, "compressibility": 1.0}
+
+    def test_the_degree_of_consolidation_is_the_textbook_one(self):
+        # Tabulated U(Tv): 0.5 at 0.197, 0.9 at 0.848, 0.9313 at 1 (four
+        # figures, hence 1e-3).
+        for tv, u in ((0.197, 0.5), (0.848, 0.9), (1.0, 0.9313)):
+            self.assertAlmostEqual(darcydem.consolidation_degree(tv, **self.LAYER), u, delta=1e-3)
+        # A compressible fluid (storage equal to m_v: B = 1/2) adds the
+        # immediate half: 1 - B (1 - U).
+        half = dict(self.LAYER, compressibility=0.5, fluid_storage=0.5)
+        self.assertAlmostEqual(darcydem.consolidation_degree(0.197, **half), 1 - 0.5 * (1 - 0.5), delta=1e-3)
+
+    def test_the_pressure_starts_at_b_times_the_step_and_drains(self):
+        half = dict(self.LAYER, compressibility=0.5, fluid_storage=0.5)
+        self.assertEqual(darcydem.consolidation_pressure(0.0, 0.5, 1000.0, **half), 500.0)
+        # Zero at the drained end; at the sealed end the first mode alone
+        # once Tv = 1: B dsigma 4/pi exp(-pi^2/4) (the next, 1e-9 of it).
+        self.assertAlmostEqual(darcydem.consolidation_pressure(1.0, 0.0, 1000.0, **half), 0.0, delta=1e-12)
+        first_mode = 500.0 * 4 / math.pi * math.exp(-math.pi ** 2 / 4)
+        self.assertAlmostEqual(darcydem.consolidation_pressure(1.0, 1.0, 1000.0, **half), first_mode,
+                               delta=1e-6 * first_mode)
+
+
 class BadInput(unittest.TestCase):
     def test_a_bad_scene_raises_scene_error_with_file_line_and_key(self):
         folder = tempfile.mkdtemp()

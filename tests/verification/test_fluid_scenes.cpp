@@ -718,7 +718,7 @@ void expect_sealed_piston(const ConsolidationRun& run, const char* label, double
   const double settled = run.y0 - probes.at("top_y").back();
   EXPECT_NEAR(settled, final_settlement, 0.005 * final_settlement);
   const SeepageColumnParameters p = terzaghi_parameters(*run.scene.fluid, final_settlement, force / width);
-  const double b = p.compressibility / (p.compressibility + p.fluid_storage);
+  const double b = p.undrained_share();
   const double rms_settle = settlement_rms(run, p, t0, final_settlement);
   double sq_thrust = 0.0;
   int n_late = 0;

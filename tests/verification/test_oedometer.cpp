@@ -81,7 +81,7 @@ std::pair<double, double> rms_errors(const OedometerRun& run, const SeepageColum
   const auto& t = run.probes.at("time");
   const auto& z = run.probes.at("platen_z");
   const double t0 = t[run.step];
-  const double b = p.compressibility / (p.compressibility + p.fluid_storage);
+  const double b = p.undrained_share();
   double settle = 0.0;
   double press = 0.0;
   int n_settle = 0;
@@ -143,7 +143,7 @@ TEST(FluidScenes, OedometerFollowsTerzaghi) {
   //
   // Expected, independent of the coupled run: the drained twin (k x 1000,
   // the water leaves at once) gives the skeleton's settlement S_d under the
-  // step, so m_v = S_d / (H_bed dsigma) with H_bed the platen's height; then
+  // step, so m_v = S_d / (H_bed load_step) with H_bed the platen's height; then
   // Terzaghi with the storage m_v + n/K_f (n: the bed's porosity at the
   // step): the settlement S_d U(Tv), U including the immediate (1 - B) part
   // (consolidation_degree), and the floor's pressure (the probe at the
@@ -162,8 +162,6 @@ TEST(FluidScenes, OedometerFollowsTerzaghi) {
   // of S_d. Ignoring the water's compressibility (B = 1) misses both by
   // more than that (5.9 % and 7.1 %), checked below so that this test
   // resolves the storage term. Fluid volume balance: to round-off.
-  const double area = platen_area;
-  const double dsigma = load_step;
   const double s_drained = drained_settlement();
   const auto run = run_oedometer({}, "oedometer");
 
@@ -171,16 +169,17 @@ TEST(FluidScenes, OedometerFollowsTerzaghi) {
   const auto& t = pr.at("time");
   const double t0 = t[run.step];
   const double z0 = pr.at("platen_z")[run.step];
-  const SeepageColumnParameters p = terzaghi_for(run, s_drained, dsigma);
-  const double b = p.compressibility / (p.compressibility + p.fluid_storage);
+  const SeepageColumnParameters p = terzaghi_for(run, s_drained, load_step);
+  const double b = p.undrained_share();
   // The floor's pressure: the probe at the bottom cells' centres, 0.525 mm
   // up, p.height - 0.525 mm from the drained top.
   const auto& floor = pr.at("floor_pressure");
-  const auto [rms_settle, rms_pressure] = rms_errors(run, p, s_drained, dsigma, floor, p.height - 0.000525);
+  const auto [rms_settle, rms_pressure] =
+      rms_errors(run, p, s_drained, load_step, floor, p.height - 0.000525);
   SeepageColumnParameters rigid = p;
   rigid.fluid_storage = 0.0;
   const auto [rms_settle_rigid, rms_pressure_rigid] =
-      rms_errors(run, rigid, s_drained, dsigma, floor, p.height - 0.000525);
+      rms_errors(run, rigid, s_drained, load_step, floor, p.height - 0.000525);
   const double s_final = z0 - pr.at("platen_z").back();
   const double s_expected = s_drained * consolidation_degree(p, t.back() - t0);
   std::printf(
@@ -196,7 +195,7 @@ TEST(FluidScenes, OedometerFollowsTerzaghi) {
   EXPECT_GT(std::max(rms_settle_rigid, rms_pressure_rigid), 0.05);
   // The water squeezed out of the bed, A S_d = 1.6e-9 m^3, is accounted
   // for to round-off (measured 1e-22 m^3).
-  EXPECT_LT(std::abs(pr.at("fluid_balance").back()), 1e-9 * area * s_drained);
+  EXPECT_LT(std::abs(pr.at("fluid_balance").back()), 1e-9 * platen_area * s_drained);
 }
 
 TEST(FluidScenes, OedometerSealedByAnImpermeablePlaten) {
@@ -211,7 +210,7 @@ TEST(FluidScenes, OedometerSealedByAnImpermeablePlaten) {
   // n/K_f B dsigma H makes room for it. Taken as the change from the step
   // to the stage's end (0.15 s, two t_c: the pressure is uniform by then;
   // the bed's buoyant unloading at rest already left 66 Pa in the sealed
-  // water). Bounds: the pressure at every cell 3 % of B dsigma, the
+  // water). Bounds: the pressure at every cell 3 % of B load_step, the
   // settlement 2 % of S_d (measured +1.0 % and +0.7 %; the twin's own
   // path dependence is 1.3 % of S_d, above).
   const double s_drained = drained_settlement();
@@ -219,7 +218,7 @@ TEST(FluidScenes, OedometerSealedByAnImpermeablePlaten) {
   {
     const auto& pr = undrained.probes;
     const SeepageColumnParameters p = terzaghi_for(undrained, s_drained, load_step);
-    const double b = p.compressibility / (p.compressibility + p.fluid_storage);
+    const double b = p.undrained_share();
     const std::size_t end = pr.at("time").size() - 1;
     double worst = 0.0;
     for (int c = 0; c < 16; ++c) {
@@ -255,18 +254,16 @@ TEST(FluidScenes, OedometerSealedByAnImpermeablePlaten) {
   swaps.emplace_back("[fluid.boundary]\n",
                      "[fluid.boundary]\nz_min = { type = \"drained\", pressure = 0.0 }\n");
   const auto sealed = run_oedometer(swaps, "oedometer_sealed");
-  const double area = platen_area;
-  const double dsigma = load_step;
-  const SeepageColumnParameters ps = terzaghi_for(sealed, s_drained, dsigma);
+  const SeepageColumnParameters ps = terzaghi_for(sealed, s_drained, load_step);
   std::vector<double> thrust = sealed.probes.at("platen_water");
-  for (double& v : thrust) v /= area;
-  const auto [rms_settle_sealed, rms_thrust] = rms_errors(sealed, ps, s_drained, dsigma, thrust, ps.height);
+  for (double& v : thrust) v /= platen_area;
+  const auto [rms_settle_sealed, rms_thrust] =
+      rms_errors(sealed, ps, s_drained, load_step, thrust, ps.height);
   std::printf(
       "oedometer drained at the floor under an impermeable platen: H %.4f mm, B %.4f; RMS settlement "
       "%.2f %% of S_d, the platen's water thrust %.2f %% of B dsigma\n",
-      ps.height * 1e3, ps.compressibility / (ps.compressibility + ps.fluid_storage),
-      100.0 * rms_settle_sealed, 100.0 * rms_thrust);
+      ps.height * 1e3, ps.undrained_share(), 100.0 * rms_settle_sealed, 100.0 * rms_thrust);
   EXPECT_LT(rms_settle_sealed, 0.05);
   EXPECT_LT(rms_thrust, 0.05);
-  EXPECT_LT(std::abs(sealed.probes.at("fluid_balance").back()), 1e-9 * area * s_drained);
+  EXPECT_LT(std::abs(sealed.probes.at("fluid_balance").back()), 1e-9 * platen_area * s_drained);
 }

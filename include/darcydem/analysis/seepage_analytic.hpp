@@ -20,6 +20,9 @@ struct SeepageColumnParameters {
   [[nodiscard]] double consolidation_coefficient() const {
     return conductivity / (unit_weight * (compressibility + fluid_storage));
   }
+  /// B = m_v / (m_v + n/K_f): the share of a load step the pore fluid takes
+  /// at once (1 for an incompressible fluid).
+  [[nodiscard]] double undrained_share() const { return compressibility / (compressibility + fluid_storage); }
   /// Steady excess pressure at the bottom, H gamma_w q / k, Pa.
   [[nodiscard]] double steady_bottom_pressure() const { return height * unit_weight * inflow / conductivity; }
   /// Final uplift q H^2 m_v gamma_w / (2 k), m.
