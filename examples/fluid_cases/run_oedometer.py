@@ -12,7 +12,8 @@ next to the program (the tests' closed forms, analysis/seepage_analytic.hpp).
 Writes OUT/coupled/ and OUT/drained/ (the runs), OUT/oedometer.png
 (settlement and floor pressure against time; pressure isochrones) and
 prints the errors. About half a minute on 2 cores (the runs' logs:
-OUT/coupled.log, OUT/drained.log).
+OUT/coupled.log, OUT/drained.log). Why it departs from Terzaghi by the
+1-3 % it does: oedometer_boundaries.py.
 """
 import csv
 import math
@@ -49,6 +50,21 @@ def load_module(darcydem_exe):
     return darcydem
 
 
+def write_drained_twin(folder):
+    """oedometer.toml with k 1000 times larger (the water leaves at once),
+    written to FOLDER/oedometer_drained.toml; its path."""
+    text = open(SCENE).read()
+    k_given = "hydraulic_conductivity = [2e-4, 2e-4, 2e-4]"
+    if k_given not in text:
+        sys.exit(f"{SCENE}: no '{k_given}' to make the drained twin from")
+    twin = os.path.join(folder, "oedometer_drained.toml")
+    with open(twin, "w") as f:
+        bed = os.path.join(HERE, "oedometer_bed.csv")
+        f.write(text.replace(k_given, "hydraulic_conductivity = [0.2, 0.2, 0.2]").replace(
+            'file = "oedometer_bed.csv"', f'file = "{bed}"'))
+    return twin
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -58,16 +74,8 @@ def main():
     module = load_module(darcydem)
     with open(SCENE, "rb") as f:
         scene = tomllib.load(f)
-    text = open(SCENE).read()
-    k_given = "hydraulic_conductivity = [2e-4, 2e-4, 2e-4]"
-    if k_given not in text:
-        sys.exit(f"{SCENE}: no '{k_given}' to make the drained twin from")
     os.makedirs(out, exist_ok=True)
-    twin = os.path.join(out, "oedometer_drained.toml")
-    with open(twin, "w") as f:
-        bed = os.path.join(HERE, "oedometer_bed.csv")
-        f.write(text.replace(k_given, "hydraulic_conductivity = [0.2, 0.2, 0.2]").replace(
-            'file = "oedometer_bed.csv"', f'file = "{bed}"'))
+    twin = write_drained_twin(out)
     # The two runs side by side, a thread each (850 grains gain little from two).
     print("running the coupled scene and its drained twin ...", flush=True)
     runs = []
@@ -119,10 +127,12 @@ def main():
     floor_distance = height - 0.5 * grid["size"][2]  # from the drained top
     closed_s = [s_drained * module.consolidation_degree(t, **terzaghi) * 1e6 for t in times]
     closed_u = [module.consolidation_pressure(t, floor_distance, dsigma, **terzaghi) for t in times]
-    rms_s = math.sqrt(sum((a - e) ** 2 for a, e in zip(settled, closed_s)) / len(settled)) / (s_drained * 1e6)
-    late = [(a, e) for t, a, e in zip(times, floor, closed_u) if t >= 0.005]
-    rms_u = math.sqrt(sum((a - e) ** 2 for a, e in late) / len(late)) / (b * dsigma)
-    print(f"RMS settlement error {100 * rms_s:.2f} % of S_d; floor pressure (from 5 ms) {100 * rms_u:.2f} % "
+    # From 5 ms on, as the test: before, the servo brings the load up and
+    # the compression wave crosses the bed, which Terzaghi leaves out.
+    late = [i for i, t in enumerate(times) if t >= 0.005]
+    rms_s = math.sqrt(sum((settled[i] - closed_s[i]) ** 2 for i in late) / len(late)) / (s_drained * 1e6)
+    rms_u = math.sqrt(sum((floor[i] - closed_u[i]) ** 2 for i in late) / len(late)) / (b * dsigma)
+    print(f"from 5 ms on: RMS settlement error {100 * rms_s:.2f} % of S_d; floor pressure {100 * rms_u:.2f} % "
           f"of B dsigma")
 
     fig, ax = plt.subplots(1, 3, figsize=(15, 4.5))

@@ -68,13 +68,18 @@ SeepageColumnParameters terzaghi_for(const OedometerRun& run, double s_drained, 
   return p;
 }
 
-/// RMS errors over the load stage, against Terzaghi with the parameters
-/// `p`: of the platen's settlement against S_d U(Tv) (U with the immediate
-/// part 1 - B), as a fraction of S_d; and of `pressure` (Pa, a row per
-/// probe row) against the closed form's at `distance` from the drained
-/// end, from 5 ms on (the servo first brings the load up: 95 % of the step
-/// at 5 ms, while the closed form takes it at once), as a fraction of
-/// B dsigma.
+/// RMS errors over the load stage from 5 ms on, against Terzaghi with the
+/// parameters `p`: of the platen's settlement against S_d U(Tv) (U with the
+/// immediate part 1 - B), as a fraction of S_d; and of `pressure` (Pa, a
+/// row per probe row) against the closed form's at `distance` from the
+/// drained end, as a fraction of B dsigma. Terzaghi takes the step at once
+/// and without inertia; here the servo brings the load up over about 2 ms
+/// (95 % of the step at 5 ms) and the undrained compression wave takes
+/// 0.8 ms to cross the bed (constrained modulus 1/m_v + K_f/n = 8.2e5 Pa,
+/// density 1890 kg/m^3: 21 m/s), so the first 5 ms (3 % of the stage)
+/// measure the servo and the wave, not the consolidation: they alone
+/// made 2.6 % and 3.1 % of the settlement's RMS over the whole stage in
+/// the two drainage cases (session 26).
 std::pair<double, double> rms_errors(const OedometerRun& run, const SeepageColumnParameters& p,
                                      double s_drained, double dsigma, const std::vector<double>& pressure,
                                      double distance) {
@@ -84,20 +89,18 @@ std::pair<double, double> rms_errors(const OedometerRun& run, const SeepageColum
   const double b = p.undrained_share();
   double settle = 0.0;
   double press = 0.0;
-  int n_settle = 0;
-  int n_press = 0;
+  int n = 0;
   for (std::size_t j = run.step + 1; j < t.size(); ++j) {
     const double time = t[j] - t0;
-    if (time <= 0.0) continue;  // the step's row, written twice (the end of one stage, the start of the next)
+    // (This also skips the step's row, written twice: the end of one stage, the start of the next.)
+    if (time < 0.005) continue;
     const double e = (z[run.step] - z[j]) - s_drained * consolidation_degree(p, time);
     settle += e * e;
-    ++n_settle;
-    if (time < 0.005) continue;
     const double u = pressure[j] - consolidation_pressure(p, dsigma, distance, time);
     press += u * u;
-    ++n_press;
+    ++n;
   }
-  return {std::sqrt(settle / n_settle) / s_drained, std::sqrt(press / n_press) / (b * dsigma)};
+  return {std::sqrt(settle / n) / s_drained, std::sqrt(press / n) / (b * dsigma)};
 }
 
 /// The load step: the servo's targets (N) over the platen's 6 x 6 mm.
@@ -150,17 +153,29 @@ TEST(FluidScenes, OedometerFollowsTerzaghi) {
   // bottom cells' centre, 0.525 mm up) consolidation_pressure, B = m_v /
   // (m_v + n/K_f).
   //
-  // Tolerances. Terzaghi's skeleton is linear elastic; the packing is not
-  // quite: contacts open and close and spheres roll (friction 10 only
-  // keeps them from sliding), so its stiffness depends on the path. The
-  // drained twin loaded slowly (the servo at 2 mm/s) settles 1.3 % less
-  // (44.06 against 44.62 um, session 25), and the coupled run, whose
-  // effective stress grows from the top down, fits c_v 10 % above the twin's
-  // best (floor pressure RMS 1.5 % instead of 3.3 %). So: RMS of the
-  // settlement and of the floor's pressure over the load stage, 5 % of S_d
-  // and of B dsigma (measured 3.0 % and 3.3 %); the final settlement 1.5 %
-  // of S_d. Ignoring the water's compressibility (B = 1) misses both by
-  // more than that (5.9 % and 7.1 %), checked below so that this test
+  // Tolerances, from 5 ms on (rms_errors: before, the servo and the
+  // compression wave). Terzaghi's skeleton is linear elastic and lies
+  // between rigid ends; this one is not quite and does not:
+  // - The grains' contacts with the platen and the floor are as soft as
+  //   their contacts with each other: of the drained twin's S_d the
+  //   packing takes 43.25 um and the platen's contacts 1.25 um (2.8 %;
+  //   the floor's 0.13 um), and 0.1 mm of the bed lies above the grid's
+  //   drained top. That part settles at once at the drained top (and last
+  //   at a sealed one, in the mirror below). A 1D finite-difference model
+  //   with it (examples/fluid_cases/oedometer_boundaries.py, not a test)
+  //   puts the settlement 2.5 % ahead of the closed form at 5 ms, 1.7 % at
+  //   20 ms (measured 2.1 % and 2.8 %), the floor's pressure 2.3-2.5 %
+  //   below it at 5-20 ms (measured 4.0-6.6 %).
+  // - The packing's stiffness depends on the path: contacts open and
+  //   close and spheres roll (friction 10 only keeps them from sliding).
+  //   The drained twin loaded slowly (the servo at 2 mm/s) settles 1.3 %
+  //   less (44.06 against 44.62 um, session 25), and the coupled run,
+  //   whose effective stress grows from the top down, is fitted best by a
+  //   c_v 10 % above the twin's (floor pressure RMS 1.5 % instead of 3.3 %).
+  // So: the settlement's RMS 2.5 % of S_d (measured 1.40 %), the floor
+  // pressure's 5 % of B dsigma (3.25 %); the final settlement 1.5 % of S_d
+  // (-0.4 %). Ignoring the water's compressibility (B = 1) misses each by
+  // more than that (4.40 % and 7.11 %), checked below so that the test
   // resolves the storage term. Fluid volume balance: to round-off.
   const double s_drained = drained_settlement();
   const auto run = run_oedometer({}, "oedometer");
@@ -189,10 +204,11 @@ TEST(FluidScenes, OedometerFollowsTerzaghi) {
       s_drained * 1e6, p.compressibility, pr.at("porosity")[run.step], b, p.consolidation_coefficient(),
       s_final * 1e6, s_expected * 1e6, 100.0 * rms_settle, 100.0 * rms_pressure, 100.0 * rms_settle_rigid,
       100.0 * rms_pressure_rigid);
-  EXPECT_LT(rms_settle, 0.05);
+  EXPECT_LT(rms_settle, 0.025);
   EXPECT_LT(rms_pressure, 0.05);
   EXPECT_NEAR(s_final, s_expected, 0.015 * s_drained);
-  EXPECT_GT(std::max(rms_settle_rigid, rms_pressure_rigid), 0.05);
+  EXPECT_GT(rms_settle_rigid, 0.025);
+  EXPECT_GT(rms_pressure_rigid, 0.05);
   // The water squeezed out of the bed, A S_d = 1.6e-9 m^3, is accounted
   // for to round-off (measured 1e-22 m^3).
   EXPECT_LT(std::abs(pr.at("fluid_balance").back()), 1e-9 * platen_area * s_drained);
@@ -240,16 +256,19 @@ TEST(FluidScenes, OedometerSealedByAnImpermeablePlaten) {
   // at the sealed end (H from the drained floor: the top wet cells'
   // pressure, flat towards the sealed face, so second order in the cell).
   // The same drained twin, as the skeleton and the step are the same, and
-  // the same tolerances, 5 % (measured: settlement 3.3 %, thrust 2.4 %).
-  // Here the packing consolidates a little slower than the closed form,
-  // where drained at the top it was faster. With gravity off the two
-  // cases measure the same (settlement 3.27 % and 2.92 %), and with the
-  // drag from every overlapped cell (`drag_cells = "overlaps"`, exact force
-  // balance) too (3.31 % and 2.90 %): the packing's, not its weight's nor
-  // the drag's (session 25, not tests). With the platen left above the
-  // grid (the grid to 16.8 mm), the water under the grid's fixed sealed
-  // side went into suction as the bed settled: settlement RMS 17 %, thrust
-  // 57 %.
+  // the same tolerances, 2.5 % and 5 % (measured: settlement 1.18 %, thrust
+  // 2.37 %). Here the packing consolidates a little slower than the closed
+  // form, where drained at the top it was faster: the platen's contacts now
+  // settle with the sealed end, last; the 1D model with them puts the
+  // settlement 1.0 % behind at 5-10 ms (measured 3.6 % and 2.9 %) and the
+  // thrust 1.3-2.5 % above at 5-20 ms (measured 3.3-4.8 %). With gravity off
+  // the two cases measure the same (settlement RMS over the whole stage
+  // 3.27 % and 2.92 %), and with the drag from every overlapped cell
+  // (`drag_cells = "overlaps"`, exact force balance) too (3.31 % and
+  // 2.90 %): the packing's and its ends', not its weight's nor the drag's
+  // (session 25, not tests). With the platen left above the grid (the grid
+  // to 16.8 mm), the water under the grid's fixed sealed side went into
+  // suction as the bed settled: settlement RMS 17 %, thrust 57 %.
   auto swaps = sealed_by_the_platen();
   swaps.emplace_back("[fluid.boundary]\n",
                      "[fluid.boundary]\nz_min = { type = \"drained\", pressure = 0.0 }\n");
@@ -263,7 +282,7 @@ TEST(FluidScenes, OedometerSealedByAnImpermeablePlaten) {
       "oedometer drained at the floor under an impermeable platen: H %.4f mm, B %.4f; RMS settlement "
       "%.2f %% of S_d, the platen's water thrust %.2f %% of B dsigma\n",
       ps.height * 1e3, ps.undrained_share(), 100.0 * rms_settle_sealed, 100.0 * rms_thrust);
-  EXPECT_LT(rms_settle_sealed, 0.05);
+  EXPECT_LT(rms_settle_sealed, 0.025);
   EXPECT_LT(rms_thrust, 0.05);
   EXPECT_LT(std::abs(sealed.probes.at("fluid_balance").back()), 1e-9 * platen_area * s_drained);
 }
