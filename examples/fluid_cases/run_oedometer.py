@@ -140,11 +140,13 @@ def main():
     ax[0].plot(times, closed_s, "k--", label="Terzaghi, m_v of the drained twin")
     ax[0].set_xlabel("time since the load step (s)")
     ax[0].set_ylabel("settlement of the platen (um)")
-    ax[0].legend()
     ax[1].plot(times, floor, label="darcydem")
     ax[1].plot(times, closed_u, "k--", label="Terzaghi")
     ax[1].set_xlabel("time since the load step (s)")
     ax[1].set_ylabel("excess pressure at the floor's cells (Pa)")
+    for a in ax[:2]:
+        a.axvline(0.005, color="0.6", linewidth=0.8, linestyle=":", label="errors measured from here")
+    ax[0].legend()
     ax[1].legend()
     layers = grid["cells"][2]
     for j, t_plot in enumerate((0.005, 0.01, 0.02, 0.05, 0.1)):
