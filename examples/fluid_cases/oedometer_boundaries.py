@@ -36,10 +36,12 @@ import tomllib
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from run_oedometer import GAMMA_W_G, SCENE, load_module, write_drained_twin  # noqa: E402
+from run_oedometer import SCENE, load_module, scene_constants, write_drained_twin  # noqa: E402
 
 LAYERS = 160      # the 1D model's layers: its own discretisation error is below 0.01 %
 TIME_STEP = 2e-5  # s, the 1D model's
+FLOOR_PROBE = 0.000525  # m, oedometer.toml's floor_pressure probe: the bottom cells' centres
+SEALED_GRID_TOP = 0.017  # m, the test's mirror: 16 layers of 1.0625 mm, past the platen
 REPORT_TIMES = (0.005, 0.01, 0.02, 0.03, 0.05, 0.08)  # s after the step
 
 
@@ -88,7 +90,7 @@ def one_d_model(top_drained, grid_top, twin, dsigma, k, k_f, gamma_w):
     a[sealed, sealed] -= c
     step = np.linalg.inv(a) * (storage / TIME_STEP)
     u = compliance / storage * dsigma  # the undrained response
-    probe = 0.000525 if top_drained else column  # the floor probe; the platen's face
+    probe = FLOOR_PROBE if top_drained else column  # the floor probe; the platen's face
     rows = []
     for n in range(1, int(round(0.15 / TIME_STEP)) + 1):
         u = step @ u
@@ -103,15 +105,8 @@ def main():
     module = load_module(sys.argv[1])
     with open(SCENE, "rb") as f:
         scene = tomllib.load(f)
-    fluid = scene["fluid"]
-    grid = fluid["grid"]
-    k = fluid["permeability"]["hydraulic_conductivity"][2]
-    k_f = fluid["bulk_modulus"]
-    gamma_w = fluid["density"] * GAMMA_W_G
-    walls = {w["name"]: w for w in scene["wall"]}
-    area = walls["x_high"]["point"][0] * walls["y_high"]["point"][1]
-    servo = [stage["walls"]["platen"]["servo"]["target_force"] for stage in scene["stage"][:2]]
-    dsigma = (servo[1] - servo[0]) / area
+    grid = scene["fluid"]["grid"]
+    k, k_f, gamma_w, dsigma = scene_constants(scene)
 
     print("stepping the drained twin ...", flush=True)
     twin = measure_twin(module, scene)
@@ -124,10 +119,10 @@ def main():
           f"{strain[0]:.3f} and {strain[1]:.3f} of its mean; bed {bed_height * 1e3:.3f} mm, n {porosity:.4f}")
     m_v = s_drained / (bed_height * dsigma)
     b = m_v / (m_v + porosity / k_f)
-    for top_drained, grid_top in ((True, grid["cells"][2] * grid["size"][2]), (False, 0.017)):
+    for top_drained, grid_top in ((True, grid["cells"][2] * grid["size"][2]), (False, SEALED_GRID_TOP)):
         terzaghi = {"height": grid_top, "conductivity": k, "compressibility": m_v,
                     "fluid_storage": porosity / k_f, "unit_weight": gamma_w}
-        distance = grid_top - 0.000525 if top_drained else grid_top
+        distance = grid_top - FLOOR_PROBE if top_drained else grid_top
         errors = []
         for t, settled, pressure in one_d_model(top_drained, grid_top, twin, dsigma, k, k_f, gamma_w):
             closed_s = s_drained * module.consolidation_degree(t, **terzaghi)

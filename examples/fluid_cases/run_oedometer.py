@@ -50,6 +50,20 @@ def load_module(darcydem_exe):
     return darcydem
 
 
+def scene_constants(scene):
+    """From oedometer.toml: k (m/s, vertical), K_f (Pa), gamma_w (N/m^3) and
+    the load step dsigma (Pa), the servo's rise from the rest stage to the
+    load stage over the box's floor."""
+    fluid = scene["fluid"]
+    walls = {w["name"]: w for w in scene["wall"]}
+    area = walls["x_high"]["point"][0] * walls["y_high"]["point"][1]
+    rest, load = scene["stage"][0], scene["stage"][1]
+    dsigma = (load["walls"]["platen"]["servo"]["target_force"] -
+              rest["walls"]["platen"]["servo"]["target_force"]) / area
+    return (fluid["permeability"]["hydraulic_conductivity"][2], fluid["bulk_modulus"],
+            fluid["density"] * GAMMA_W_G, dsigma)
+
+
 def write_drained_twin(folder):
     """oedometer.toml with k 1000 times larger (the water leaves at once),
     written to FOLDER/oedometer_drained.toml; its path."""
@@ -89,18 +103,10 @@ def main():
             sys.exit(f"the {name} run failed: see {log.name}")
         log.close()
 
-    fluid = scene["fluid"]
-    grid = fluid["grid"]
+    grid = scene["fluid"]["grid"]
     height = grid["cells"][2] * grid["size"][2]
-    k = fluid["permeability"]["hydraulic_conductivity"][2]
-    k_f = fluid["bulk_modulus"]
-    gamma_w = fluid["density"] * GAMMA_W_G
-    walls = {w["name"]: w for w in scene["wall"]}
-    area = walls["x_high"]["point"][0] * walls["y_high"]["point"][1]
-    rest, load = scene["stage"][0], scene["stage"][1]
-    dsigma = (load["walls"]["platen"]["servo"]["target_force"] -
-              rest["walls"]["platen"]["servo"]["target_force"]) / area
-    t0_target = rest["duration"]
+    k, k_f, gamma_w, dsigma = scene_constants(scene)
+    t0_target = scene["stage"][0]["duration"]
 
     c, d = probes(os.path.join(out, "coupled")), probes(os.path.join(out, "drained"))
     # The row of the step: the one nearest the load stage's start (the stage
