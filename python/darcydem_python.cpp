@@ -278,9 +278,13 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
             d["stored"] = b.stored;
             d["pore_change"] = b.pore_change;
             d["imbalance"] = b.imbalance();
+            d["gross"] = b.gross;
             return d;
           },
-          "volumes since the start, m^3 (2D: per metre): inflow = stored + pore change + imbalance");
+          "volumes since the start, m^3 (2D: per metre): inflow = stored + pore change + imbalance; gross: "
+          "the "
+          "sum of every term's magnitude, step by step (each side's flow on its own), which the imbalance's "
+          "round-off scales with");
 
   py::class_<M>(m, model_name, "A scene built from its file, stepped from Python.")
       .def_property_readonly("dimension", [](const M&) { return D; })

@@ -333,10 +333,15 @@ class PilePenetration(unittest.TestCase):
         cell = 0.002**3
         expected = 1.0 - (f.solid_volume + f.wall_volume) / cell
         self.assertLess(float(np.max(np.abs(f.porosity - expected))), 1e-12)
-        # Balance since the start, to round-off of the volumes moved (the
-        # grains' settling moves most: 1e-12 of their volume, as above).
-        grains = float(np.sum(4.0 / 3.0 * np.pi * model.radii**3))
-        self.assertLess(abs(f.balance["imbalance"]), 1e-12 * grains)
+        # Balance since the start: each step's imbalance is the pressure
+        # solve's residual summed over the cells, and the scene's CG stops
+        # at a residual of 1e-10 of the right-hand side, so 1e-10 of the
+        # gross flow (every term's magnitude, step by step). Measured
+        # 1.75e-11 of it (1.5e-19 m^3, 1.05e-12 of the grains' volume: the
+        # bound before session 27 was 1e-12 of that volume, which the water
+        # the grains carry across the drained top now exceeds).
+        gross = f.balance["gross"]
+        self.assertLess(abs(f.balance["imbalance"]), 1e-10 * gross)
 
 class SealedPiston(unittest.TestCase):
     """examples/fluid_cases/consolidation_sealed_piston.toml: its two stages

@@ -668,8 +668,11 @@ TEST(FluidScenes, TerzaghiConsolidation) {
   // column rings), 2 % of F L: the midpoint rule misses part of the drained
   // boundary layer at the top while it is sharp (measured 1.2 % at the
   // first such row, falling with u to 4e-6 at the end); in the settling
-  // stage from 0.4 s on, 1e-4 of sum y_k W'_k (measured 5.8e-6; from 0.3 s
-  // the column's waves still give 7.6e-5, from 0.5 s 5e-7).
+  // stage from 0.5 s on, 1e-4 of sum y_k W'_k (measured 3.5e-5; from 0.4 s
+  // the column's waves still give 1.0e-4, from 0.6 s 1.4e-5). The column
+  // rings longer since the water it carries across the drained top passes
+  // freely (session 27): pumping that water through the half cell by
+  // Darcy's law had damped it (then 5.8e-6 from 0.4 s, 5e-7 from 0.5 s).
   const double w_disc = (2650.0 - 1000.0) * std::numbers::pi * 0.0005 * 0.0005 * 9.80665;
   const double box = width * 0.05;  // the stress probe's box, m^2 (x 1 m)
   const double h = f.grid.spacing.y();
@@ -687,12 +690,12 @@ TEST(FluidScenes, TerzaghiConsolidation) {
     const double total_less_pore = lid * length + weight_moment - width * u_integral;
     if (j >= loaded) {
       worst_load = std::max(worst_load, std::abs(carried - total_less_pore) / (force * length));
-    } else if (j < i0 && t[j] >= 0.4) {
+    } else if (j < i0 && t[j] >= 0.5) {
       worst_settle = std::max(worst_settle, std::abs(carried - total_less_pore) / weight_moment);
     }
   }
   std::printf(
-      "Terzaghi's principle: loaded (from %.4f s), within %.2g of F L; settling from 0.4 s, within %.2g\n",
+      "Terzaghi's principle: loaded (from %.4f s), within %.2g of F L; settling from 0.5 s, within %.2g\n",
       t[loaded], worst_load, worst_settle);
   // Loaded soon after contact, so that the check covers the consolidation.
   ASSERT_LT(t[loaded], stage_start + 0.1);
@@ -822,6 +825,7 @@ struct HeaveRun {
   double floor = 0.0;
   double submerged = 0.0;
   double late_rise = 0.0;
+  double critical = 0.0;  ///< q_c, m/s
 };
 
 HeaveRun heave_column(double fraction) {
@@ -852,6 +856,7 @@ HeaveRun heave_column(double fraction) {
   run.floor = -scene.simulation.walls[0].force.z();
   run.submerged = submerged;
   run.late_rise = top.back() - top[half];
+  run.critical = critical;
   std::printf("heave, q = %.2f q_c: floor %.4e N (W' %.4e N), top rose %.3e m in the last 0.5 s\n", fraction,
               run.floor, submerged, run.late_rise);
   return run;
@@ -863,15 +868,26 @@ TEST(FluidScenes, HeaveStartsAtTheCriticalGradient) {
   // carries what the seepage force leaves of W': W' (1 - q/q_c) at steady
   // state, within 1 % of W' (the force balance holds to 0.75 %, see
   // ForceBalance*; the column is 0.2 % shorter than the grid). Above it the
-  // column lifts off and keeps rising. The top's late rise separates the
-  // two by more than ten times: measured 3e-6 m (still settling towards
-  // its steady uplift) against 1.2e-4 m.
+  // column lifts off and rises at a steady speed v, expected from
+  // continuity and the force balance alone: the water enters at q and
+  // fills the gap under the column as it rises, so the flux relative to
+  // the grains is q - v; the column floats when that flux's seepage force
+  // is W', at q_c; so v = q - q_c = 0.1 q_c, 44.7 um in the last 0.5 s.
+  // Within 3 % (measured +0.8 %; the column is 0.2 % shorter than the
+  // grid, whose series k gives q_c). Below it the top barely moves
+  // (measured 3e-6 m, still settling towards its steady uplift). Before
+  // the drained top passed the water the rising grains carry across it
+  // (session 27), that water had to be pushed through the half cell and
+  // the column rose 2.7 times too fast (1.2e-4 m).
   const HeaveRun below = heave_column(0.9);
   EXPECT_NEAR(below.floor, 0.1 * below.submerged, 0.01 * below.submerged);
   EXPECT_LT(below.late_rise, 1e-5);
   const HeaveRun above = heave_column(1.1);
   EXPECT_EQ(above.floor, 0.0);
-  EXPECT_GT(above.late_rise, 5e-5);
+  const double rise = 0.1 * above.critical * 0.5;
+  std::printf("heave above q_c: the top rose %.4e m in the last 0.5 s against (q - q_c) 0.5 s = %.4e m\n",
+              above.late_rise, rise);
+  EXPECT_NEAR(above.late_rise, rise, 0.03 * rise);
 }
 
 TEST(FluidScenes, PilePenetration) {

@@ -23,21 +23,24 @@ using namespace darcydem;
 
 namespace {
 
-/// oedometer.toml with each of `swaps` made (its bed file by its full
-/// path, as the variant is written elsewhere), run; its probes, and the
-/// row of the load step.
+/// `scene` (oedometer.toml unless given) with each of `swaps` made (the
+/// oedometer's bed file by its full path, as the variant is written
+/// elsewhere), run; its probes, and the row of the load step.
 struct OedometerRun {
   Scene<3> scene;
   std::map<std::string, std::vector<double>> probes;
   std::size_t step = 0;
 };
-OedometerRun run_oedometer(std::vector<std::pair<std::string, std::string>> swaps, const std::string& name) {
-  swaps.emplace_back("file = \"oedometer_bed.csv\"", "file = \"" + std::string(DARCYDEM_SOURCE_DIR) +
-                                                         "/examples/fluid_cases/oedometer_bed.csv\"");
+OedometerRun run_oedometer(std::vector<std::pair<std::string, std::string>> swaps, const std::string& name,
+                           const std::string& scene = "examples/fluid_cases/oedometer.toml") {
+  if (scene.ends_with("/oedometer.toml")) {
+    swaps.emplace_back("file = \"oedometer_bed.csv\"", "file = \"" + std::string(DARCYDEM_SOURCE_DIR) +
+                                                           "/examples/fluid_cases/oedometer_bed.csv\"");
+  }
   const std::string dir = darcydem::testing::temp_dir(name + "_scene");
   std::filesystem::create_directories(dir);
   const std::string path = dir + "/oedometer.toml";
-  std::ofstream(path) << darcydem::testing::scene_variant("examples/fluid_cases/oedometer.toml", swaps);
+  std::ofstream(path) << darcydem::testing::scene_variant(scene, swaps);
   OedometerRun run{darcydem::testing::load_scene_file<3>(path), {}, 0};
   RunOptions options;
   options.out_dir = darcydem::testing::temp_dir(name);
@@ -154,29 +157,36 @@ TEST(FluidScenes, OedometerFollowsTerzaghi) {
   // (m_v + n/K_f).
   //
   // Tolerances, from 5 ms on (rms_errors: before, the servo and the
-  // compression wave). Terzaghi's skeleton is linear elastic and lies
-  // between rigid ends; this one is not quite and does not:
+  // compression wave). Terzaghi's skeleton is linear elastic, lies between
+  // rigid ends and takes the step at once; this one does none of these:
   // - The grains' contacts with the platen and the floor are as soft as
   //   their contacts with each other: of the drained twin's S_d the
-  //   packing takes 43.25 um and the platen's contacts 1.25 um (2.8 %;
+  //   packing takes 43.26 um and the platen's contacts 1.24 um (2.8 %;
   //   the floor's 0.13 um), and 0.1 mm of the bed lies above the grid's
-  //   drained top. That part settles at once at the drained top (and last
-  //   at a sealed one, in the mirror below). A 1D finite-difference model
-  //   with it (examples/fluid_cases/oedometer_boundaries.py, not a test)
-  //   puts the settlement 2.5 % ahead of the closed form at 5 ms, 1.7 % at
-  //   20 ms (measured 2.1 % and 2.8 %), the floor's pressure 2.3-2.5 %
-  //   below it at 5-20 ms (measured 4.0-6.6 %).
-  // - The packing's stiffness depends on the path: contacts open and
-  //   close and spheres roll (friction 10 only keeps them from sliding).
-  //   The drained twin loaded slowly (the servo at 2 mm/s) settles 1.3 %
-  //   less (44.06 against 44.62 um, session 25), and the coupled run,
-  //   whose effective stress grows from the top down, is fitted best by a
-  //   c_v 10 % above the twin's (floor pressure RMS 1.5 % instead of 3.3 %).
-  // So: the settlement's RMS 2.5 % of S_d (measured 1.40 %), the floor
-  // pressure's 5 % of B dsigma (3.25 %); the final settlement 1.5 % of S_d
-  // (-0.4 %). Ignoring the water's compressibility (B = 1) misses each by
-  // more than that (4.40 % and 7.11 %), checked below so that the test
-  // resolves the storage term. Fluid volume balance: to round-off.
+  //   drained top. That part settles with the load at the drained top (and
+  //   last at a sealed one, in the mirror below).
+  // - The servo moves the platen at gain x the load's shortfall, so while
+  //   the bed settles the load trails its target: by 2.4 % at 5 ms, 1.5 %
+  //   at 10 ms, 0.9 % at 20 ms (measured 2.3, 1.8 and 0.9 %).
+  //   A 1D finite-difference model with both (examples/fluid_cases/
+  //   oedometer_boundaries.py, not a test) departs from the closed form by
+  //   0.17 % (settlement) and 0.74 % (floor pressure) RMS: +0.3 % and -1.9 %
+  //   at 10 ms, +0.4 % and -1.0 % at 20 ms (measured +1.2 % and -4.0 %,
+  //   +2.0 % and -4.2 %).
+  // - The rest is the packing's path: contacts open and close and spheres
+  //   roll (friction 10 only keeps them from sliding). The drained twin
+  //   loaded slowly (the servo at 2 mm/s) settles 1.3 % less (44.06
+  //   against 44.62 um, session 25), and with a quarter of the load step
+  //   the departures at 10-20 ms fall to +0.8-1.1 % and -2.3-2.6 %
+  //   (session 27, not a test).
+  // So: the settlement's RMS 2.5 % of S_d (measured 1.01 %), the floor
+  // pressure's 3.5 % of B dsigma (2.16 %); the final settlement 1.5 % of
+  // S_d (-0.5 %). Until session 27 the water the grains carry across the
+  // drained top was drawn through the half cell there, which drained the
+  // bed faster (1.40 % and 3.25 %, then against 5 %). Ignoring the water's
+  // compressibility (B = 1) misses each bound (4.16 % and 7.01 %), checked
+  // below so that the test resolves the storage term. Fluid volume
+  // balance: to round-off.
   const double s_drained = drained_settlement();
   const auto run = run_oedometer({}, "oedometer");
 
@@ -205,10 +215,10 @@ TEST(FluidScenes, OedometerFollowsTerzaghi) {
       s_final * 1e6, s_expected * 1e6, 100.0 * rms_settle, 100.0 * rms_pressure, 100.0 * rms_settle_rigid,
       100.0 * rms_pressure_rigid);
   EXPECT_LT(rms_settle, 0.025);
-  EXPECT_LT(rms_pressure, 0.05);
+  EXPECT_LT(rms_pressure, 0.035);
   EXPECT_NEAR(s_final, s_expected, 0.015 * s_drained);
   EXPECT_GT(rms_settle_rigid, 0.025);
-  EXPECT_GT(rms_pressure_rigid, 0.05);
+  EXPECT_GT(rms_pressure_rigid, 0.035);
   // The water squeezed out of the bed, A S_d = 1.6e-9 m^3, is accounted
   // for to round-off (measured 1e-22 m^3).
   EXPECT_LT(std::abs(pr.at("fluid_balance").back()), 1e-9 * platen_area * s_drained);
@@ -256,12 +266,15 @@ TEST(FluidScenes, OedometerSealedByAnImpermeablePlaten) {
   // at the sealed end (H from the drained floor: the top wet cells'
   // pressure, flat towards the sealed face, so second order in the cell).
   // The same drained twin, as the skeleton and the step are the same, and
-  // the same tolerances, 2.5 % and 5 % (measured: settlement 1.18 %, thrust
-  // 2.37 %). Here the packing consolidates a little slower than the closed
-  // form, where drained at the top it was faster: the platen's contacts now
-  // settle with the sealed end, last; the 1D model with them puts the
-  // settlement 1.0 % behind at 5-10 ms (measured 3.6 % and 2.9 %) and the
-  // thrust 1.3-2.5 % above at 5-20 ms (measured 3.3-4.8 %). With gravity off
+  // the same tolerances, 2.5 % and 3.5 % (measured: settlement 1.16 %,
+  // thrust 2.28 %; 1.18 % and 2.37 % before session 27: the drained floor
+  // is not crossed by the grains). Here the packing consolidates a little
+  // slower than the closed form, where drained at the top it was faster:
+  // the platen's contacts now settle with the sealed end, last, and the
+  // servo's lag (on the total load here) delays the settlement further;
+  // the 1D model with both puts the settlement 3.4 % and 2.9 % behind at 5
+  // and 10 ms (measured 3.6 % and 2.9 %, session 26) and the thrust 1.1-
+  // 2.4 % above at 5-20 ms (measured 3.3-4.8 %). With gravity off
   // the two cases measure the same (settlement RMS over the whole stage
   // 3.27 % and 2.92 %), and with the drag from every overlapped cell
   // (`drag_cells = "overlaps"`, exact force balance) too (3.31 % and
@@ -283,6 +296,57 @@ TEST(FluidScenes, OedometerSealedByAnImpermeablePlaten) {
       "%.2f %% of S_d, the platen's water thrust %.2f %% of B dsigma\n",
       ps.height * 1e3, ps.undrained_share(), 100.0 * rms_settle_sealed, 100.0 * rms_thrust);
   EXPECT_LT(rms_settle_sealed, 0.025);
-  EXPECT_LT(rms_thrust, 0.05);
+  EXPECT_LT(rms_thrust, 0.035);
   EXPECT_LT(std::abs(sealed.probes.at("fluid_balance").back()), 1e-9 * platen_area * s_drained);
+}
+
+TEST(FluidScenes, OedometerOfACubicLatticeFollowsTerzaghi) {
+  // examples/fluid_cases/oedometer_cubic_lattice.toml: 6 x 6 columns of 16
+  // spheres of 1 mm on a cubic lattice, grid 3 x 3 x 8 cells of 2 mm
+  // drained at the top (H = 16 mm), the same step as the oedometer's. The
+  // skeleton is linear elastic: each column is a chain of 17 linear
+  // contacts (15 between spheres, the floor's, the platen's), so the
+  // drained settlement is S_d = 17 (0.036 N / 36) / k_n = 17 um, by hand;
+  // then Terzaghi as in OedometerFollowsTerzaghi (m_v = S_d / (H_bed
+  // dsigma), storage n/K_f, B = 0.31), the floor's pressure at the bottom
+  // cells' centre, 1 mm up.
+  //
+  // Tolerances, from 5 ms on (rms_errors). The 1D model of
+  // examples/fluid_cases/oedometer_boundaries.py with this skeleton's ends
+  // (the platen's contact settles at once, the floor's last) and the
+  // servo's lag (it moves the platen at gain x the load's shortfall, so
+  // the load trails the target by 2.4 % at 5 ms, 0.9 % at 20 ms) departs
+  // from the closed form by at most 0.2 % in settlement and 0.25 % in
+  // pressure; the grid takes the skeleton's speed at the top cell's
+  // centre (15 mm), not at the face (16 mm), for the water it carries out
+  // through the drained top, which leaves about 1/16 of that water's
+  // effect (about 0.15 %). Measured: settlement 0.14 %, pressure 0.57 %.
+  // Bounds: 0.5 % of S_d and 1 % of B dsigma. Without the water the
+  // skeleton carries across the drained top (before session 27) the
+  // pressure missed by 2.26 % and the settlement by 0.52 %: that water had
+  // to be drawn through the half cell, which drained the bed faster (as if
+  // 1 mm shorter). With B = 1 (the water's compressibility ignored) both
+  // miss by far more. The balance: to round-off.
+  const auto run =
+      run_oedometer({}, "oedometer_cubic_lattice", "examples/fluid_cases/oedometer_cubic_lattice.toml");
+  const double s_drained = 17.0 * (0.036 / 36.0) / 1e3;
+  const auto& pr = run.probes;
+  const SeepageColumnParameters p = terzaghi_for(run, s_drained, load_step);
+  const auto& floor = pr.at("floor_pressure");
+  const auto [rms_settle, rms_pressure] = rms_errors(run, p, s_drained, load_step, floor, p.height - 0.001);
+  SeepageColumnParameters rigid = p;
+  rigid.fluid_storage = 0.0;
+  const auto [rms_settle_rigid, rms_pressure_rigid] =
+      rms_errors(run, rigid, s_drained, load_step, floor, p.height - 0.001);
+  const double settled = pr.at("platen_z")[run.step] - pr.at("platen_z").back();
+  std::printf(
+      "cubic lattice oedometer: S_d %.3f um (settled %.3f um by the end), m_v %.4e 1/Pa, n %.4f, B %.4f; RMS "
+      "settlement %.2f %% of S_d, floor pressure %.2f %% of B dsigma (B = 1: %.2f %%, %.2f %%)\n",
+      s_drained * 1e6, settled * 1e6, p.compressibility, pr.at("porosity")[run.step], p.undrained_share(),
+      100.0 * rms_settle, 100.0 * rms_pressure, 100.0 * rms_settle_rigid, 100.0 * rms_pressure_rigid);
+  EXPECT_LT(rms_settle, 0.005);
+  EXPECT_LT(rms_pressure, 0.01);
+  EXPECT_GT(rms_settle_rigid, 0.005);
+  EXPECT_GT(rms_pressure_rigid, 0.01);
+  EXPECT_LT(std::abs(pr.at("fluid_balance").back()), 1e-9 * platen_area * s_drained);
 }

@@ -161,7 +161,7 @@ class PoreFluid final : public ParticleForceField<D> {
        porosity_, solid_, solid_old_, wall_solid_, wall_solid_old_, porosity_used_, solid_flux_,
        solid_velocity_, kappa_, cell_drag_, blend_atan_, n_power_, face_lambda_, carried_, face_gq_,
        solid_face_flux_, face_open_, face_covered_, side_inflow_, last_solve_, last_, total_, updates_, time_,
-       initialized_, wrap_lambda_, wrap_carried_);
+       initialized_, wrap_lambda_, wrap_carried_, boundary_carried_);
     std::size_t patch_count = patches.size();
     ar(patch_count);
     if constexpr (Archive::loading) {
@@ -570,6 +570,10 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<double> wrap_lambda_;   ///< kappa/mu of each wrap face, m^2/(Pa s)
   std::vector<double> wrap_carried_;  ///< fluid carried across each, from low to high, m^3
   std::vector<BoundaryFace> boundary_faces_;
+  /// Per boundary face, the pore fluid the skeleton carried in across it at
+  /// the last fluid step (a drained side's; 0 elsewhere), as an inflow over
+  /// the whole face, m/s.
+  std::vector<double> boundary_carried_;
   std::vector<std::size_t> diag_pos_;
   std::array<std::array<std::size_t, D>, D> face_stride_{};  ///< [axis][j]: index step along j
   std::array<std::array<std::size_t, D>, D> corner_step_{};  ///< [component][j]: between stencil corners
