@@ -273,8 +273,8 @@ TEST(FluidScenes, OedometerSealedByAnImpermeablePlaten) {
   // the platen's contacts now settle with the sealed end, last, and the
   // servo's lag (on the total load here) delays the settlement further;
   // the 1D model with both puts the settlement 3.4 % and 2.9 % behind at 5
-  // and 10 ms (measured 3.6 % and 2.9 %, session 26) and the thrust 1.1-
-  // 2.4 % above at 5-20 ms (measured 3.3-4.8 %). With gravity off
+  // and 10 ms (measured 3.5 % and 2.8 %) and the thrust 1.1-
+  // 2.4 % above at 5-20 ms (measured 3.3-4.6 %). With gravity off
   // the two cases measure the same (settlement RMS over the whole stage
   // 3.27 % and 2.92 %), and with the drag from every overlapped cell
   // (`drag_cells = "overlaps"`, exact force balance) too (3.31 % and
