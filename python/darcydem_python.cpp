@@ -281,10 +281,9 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
             d["gross"] = b.gross;
             return d;
           },
-          "volumes since the start, m^3 (2D: per metre): inflow = stored + pore change + imbalance; gross: "
-          "the "
-          "sum of every term's magnitude, step by step (each side's flow on its own), which the imbalance's "
-          "round-off scales with");
+          "volumes since the start, m^3 (2D: per metre): inflow = stored + pore change + imbalance; "
+          "gross: every term's magnitude summed step by step (each side's flow on its own), against which "
+          "the imbalance (the pressure solve's residual and round-off) is measured");
 
   py::class_<M>(m, model_name, "A scene built from its file, stepped from Python.")
       .def_property_readonly("dimension", [](const M&) { return D; })
