@@ -173,9 +173,9 @@ TEST(FluidScenes, OedometerFollowsTerzaghi) {
   //   0.17 % (settlement) and 0.74 % (floor pressure) RMS: +0.3 % and -1.9 %
   //   at 10 ms, +0.4 % and -1.0 % at 20 ms (measured +1.2 % and -4.0 %,
   //   +2.0 % and -4.2 %).
-  // - The rest is the packing's path: contacts open and close and spheres
-  //   roll (friction 10 only keeps them from sliding). The drained twin
-  //   loaded slowly (the servo at 2 mm/s) settles 1.3 % less (44.06
+  // - The rest points to the packing's path: contacts open and close and
+  //   spheres roll (friction 10 only keeps them from sliding). The drained
+  //   twin loaded slowly (the servo at 2 mm/s) settles 1.3 % less (44.06
   //   against 44.62 um, session 25), and with a quarter of the load step
   //   the departures at 10-20 ms fall to +0.8-1.1 % and -2.3-2.6 %
   //   (session 27, not a test).
