@@ -42,7 +42,7 @@ import tomllib
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from run_oedometer import SCENE, load_module, scene_constants, write_drained_twin  # noqa: E402
+from run_oedometer import SCENE, load_module, platen_area, scene_constants, write_drained_twin  # noqa: E402
 
 LAYERS = 160      # the 1D model's layers: its own discretisation error is below 0.01 %
 TIME_STEP = 2e-5  # s, the 1D model's
@@ -77,8 +77,8 @@ def measure_twin(module, scene):
 
 def one_d_model(top_drained, grid_top, twin, dsigma, k, k_f, gamma_w, servo):
     """Terzaghi's equation on the water column with the measured ends and
-    the servo's lag: times and (settlement, pressure at the sealed end's
-    probe) after the step. `servo` is the servo's gain times the platen's
+    the servo's lag: per time after the step, (time, settlement, pressure
+    at the sealed end's probe, load). `servo` is the servo's gain times the platen's
     area (m/s per Pa): the platen moves at that times the load's shortfall,
     so the load trails its target by the settlement's rate / servo."""
     s_drained, w, floor, platen, bed_height, porosity = twin
@@ -140,9 +140,7 @@ def main():
           f"{strain[0]:.3f} and {strain[1]:.3f} of its mean; bed {bed_height * 1e3:.3f} mm, n {porosity:.4f}")
     m_v = s_drained / (bed_height * dsigma)
     b = m_v / (m_v + porosity / k_f)
-    walls = {w["name"]: w for w in scene["wall"]}
-    area = walls["x_high"]["point"][0] * walls["y_high"]["point"][1]
-    servo = scene["stage"][1]["walls"]["platen"]["servo"]["gain"] * area  # m/s per Pa
+    servo = scene["stage"][1]["walls"]["platen"]["servo"]["gain"] * platen_area(scene)  # m/s per Pa
     for top_drained, grid_top in ((True, grid["cells"][2] * grid["size"][2]), (False, SEALED_GRID_TOP)):
         terzaghi = {"height": grid_top, "conductivity": k, "compressibility": m_v,
                     "fluid_storage": porosity / k_f, "unit_weight": gamma_w}

@@ -50,13 +50,18 @@ def load_module(darcydem_exe):
     return darcydem
 
 
+def platen_area(scene):
+    """The platen's area, m^2: the box's floor between its side walls."""
+    walls = {w["name"]: w for w in scene["wall"]}
+    return walls["x_high"]["point"][0] * walls["y_high"]["point"][1]
+
+
 def scene_constants(scene):
     """From oedometer.toml: k (m/s, vertical), K_f (Pa), gamma_w (N/m^3) and
     the load step dsigma (Pa), the servo's rise from the rest stage to the
     load stage over the box's floor."""
     fluid = scene["fluid"]
-    walls = {w["name"]: w for w in scene["wall"]}
-    area = walls["x_high"]["point"][0] * walls["y_high"]["point"][1]
+    area = platen_area(scene)
     rest, load = scene["stage"][0], scene["stage"][1]
     dsigma = (load["walls"]["platen"]["servo"]["target_force"] -
               rest["walls"]["platen"]["servo"]["target_force"]) / area

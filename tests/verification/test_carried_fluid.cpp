@@ -88,8 +88,7 @@ TEST(CarriedFluid, APackingMovingAsARigidBodyAcrossDrainedSidesDrivesNoFlow) {
   const double scale = w * 9806.65 * 0.001 / k;  // w gamma_w (h / 2) / k, Pa
   const Translation t = translate(pk, Vec<3>(0.0, 0.0, w), 1e-4, 750, k);
   std::printf(
-      "rigid translation at %g m/s: largest |u| %.3g Pa (scale of a miss %.3g Pa); outflow %.6e m^3/s "
-      "against "
+      "rigid translation at %g m/s: largest |u| %.3g Pa (scale of a miss %.3g Pa); outflow %.6e m^3/s, "
       "w x open part %.6e; worst imbalance %.2g of the gross flow\n",
       w, t.max_pressure, scale, t.outflow, w * t.open_top, t.imbalance);
   EXPECT_LT(t.max_pressure, 1e-6 * scale);

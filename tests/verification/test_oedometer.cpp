@@ -330,7 +330,10 @@ TEST(FluidScenes, OedometerOfACubicLatticeFollowsTerzaghi) {
   // miss by far more. The balance: to round-off.
   const auto run =
       run_oedometer({}, "oedometer_cubic_lattice", "examples/fluid_cases/oedometer_cubic_lattice.toml");
-  const double s_drained = 17.0 * (0.036 / 36.0) / 1e3;
+  const double contacts = 17.0;  // per column: 15 between spheres, the floor's, the platen's
+  const double column_load = (0.072 - 0.036) / 36.0;  // N, the step over 6 x 6 columns
+  const double k_n = 1e3;                             // N/m, the scene's linear contacts
+  const double s_drained = contacts * column_load / k_n;
   const auto& pr = run.probes;
   const SeepageColumnParameters p = terzaghi_for(run, s_drained, load_step);
   const auto& floor = pr.at("floor_pressure");
