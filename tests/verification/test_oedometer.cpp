@@ -5,6 +5,7 @@
 // permeability 1000 times larger).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -318,11 +319,9 @@ TEST(FluidScenes, OedometerOfACubicLatticeFollowsTerzaghi) {
   // the load trails the target by 2.4 % at 5 ms, 0.9 % at 20 ms) departs
   // from the closed form by at most 0.2 % in settlement and 0.25 % in
   // pressure. Measured: settlement 0.14 %, pressure 0.57 % (the floor's
-  // pressure 1.7 % above the closed form at 10 ms, 1.1 % at 20 ms, which
-  // that model leaves unexplained; it is not the grid taking the grains'
-  // speed at the top cell's centre for the water they carry out of it:
-  // extrapolated to the face, that speed made it 2.2 % at 10 ms, session
-  // 27). Bounds: 0.5 % of S_d and 1 % of B dsigma. Without the water the
+  // pressure 1.7 % above the closed form at 10 ms, 1.1 % at 20 ms: the
+  // grains' inertia, which that model leaves out; see the light lattice
+  // below). Bounds: 0.5 % of S_d and 1 % of B dsigma. Without the water the
   // skeleton carries across the drained top (before session 27) the
   // pressure missed by 2.26 % and the settlement by 0.52 %: that water had
   // to be drawn through the half cell, which drained the bed faster (as if
@@ -352,5 +351,78 @@ TEST(FluidScenes, OedometerOfACubicLatticeFollowsTerzaghi) {
   EXPECT_LT(rms_pressure, 0.01);
   EXPECT_GT(rms_settle_rigid, 0.005);
   EXPECT_GT(rms_pressure_rigid, 0.01);
+  EXPECT_LT(std::abs(pr.at("fluid_balance").back()), 1e-9 * platen_area * s_drained);
+}
+
+TEST(FluidScenes, OedometerOfALightCubicLatticeFollowsTerzaghiClosely) {
+  // The cubic lattice above with grains 100 times lighter, loaded from
+  // rest: no gravity, the platen touching the top spheres, then the servo
+  // to 1 kPa (the same 0.036 N step; the chains are linear from touch, so
+  // S_d = 17 um again). Terzaghi's column has no inertia. The lattice's
+  // grains do: at their real density the step reaches the floor as a
+  // compression wave (0.5 ms across the bed) that rings for a few ms, which
+  // starts the consolidation about 0.4 ms late; the floor's pressure stays
+  // 1.5 % of B dsigma above a quasi-static column at 10 ms and 0.8 % at
+  // 20 ms (a mode-1 excess decaying at Terzaghi's first rate; session 28).
+  // With grains 100 times lighter the wave is 10 times faster and that
+  // part goes: the run then agrees with a quasi-static 1D model of the
+  // lattice as the grid sees it (its 8 cells, its 17 contacts, the
+  // servo's measured load) within 0.11 % from 3 ms on
+  // (examples/fluid_cases/lattice_oedometer_model.py, not a test).
+  //
+  // Against the closed form the rest is the ends and the servo: the
+  // floor's and the platen's contacts are 2 of the 17 (the floor's
+  // settles last, the platen's at once; -1.07 % at 10 ms) and the servo
+  // brings the load up over about 0.3 ms and then trails it by the
+  // settlement's rate (0.4 % at 10 ms), a later load: +1.2 %. That model puts
+  // them at most 0.3 % of B dsigma apart from 5 ms on; measured: the
+  // pressure at every cell centre within 0.29 % (0.26 % at the floor) and
+  // the settlement within 0.12 % of S_d. Bounds: 0.5 % and 0.3 %, which
+  // the heavy lattice above misses (2.1 % at the floor at 10 ms). Every
+  // probe row from 5 ms to 25 ms (T_v 0.12 to 0.58) counts.
+  const std::string rest_stage =
+      "duration = 0.25\ngravity = [0.0, 0.0, -9.80665]\nlocal_damping = 0.7\n[stage.walls.platen]\n"
+      "servo = { target_force = 0.036, gain = 1.0, max_speed = 0.05 }";
+  const auto run =
+      run_oedometer({{"density = 2650.0", "density = 26.5"},
+                     {rest_stage, "duration = 1e-5"},
+                     {"target_force = 0.072", "target_force = 0.036"},
+                     {"name = \"load\"\nduration = 0.15", "name = \"load\"\nduration = 0.025"},
+                     {"probe_interval = 0.0005", "probe_interval = 0.00025"}},
+                    "oedometer_light_lattice", "examples/fluid_cases/oedometer_cubic_lattice.toml");
+  const double s_drained = 17.0 * (0.036 / 36.0) / 1e3;  // 17 contacts per column, k_n 1e3 N/m
+  const auto& pr = run.probes;
+  const SeepageColumnParameters p = terzaghi_for(run, s_drained, load_step);
+  const double b = p.undrained_share();
+  const auto& t = pr.at("time");
+  const auto& z = pr.at("platen_z");
+  double worst_settlement = 0.0;
+  double worst_pressure = 0.0;
+  double worst_floor = 0.0;
+  int rows = 0;
+  for (std::size_t j = run.step + 1; j < t.size(); ++j) {
+    const double time = t[j] - t[run.step];
+    if (time < 0.005) continue;
+    ++rows;
+    const double settled = z[run.step] - z[j];
+    worst_settlement =
+        std::max(worst_settlement, std::abs(settled - s_drained * consolidation_degree(p, time)));
+    for (int c = 0; c < 8; ++c) {
+      const double distance = p.height - (c + 0.5) * 0.002;  // the cell centres, 2 mm apart
+      const double e =
+          std::abs(pr.at("u_" + std::to_string(c))[j] - consolidation_pressure(p, load_step, distance, time));
+      worst_pressure = std::max(worst_pressure, e);
+      if (c == 0) worst_floor = std::max(worst_floor, e);
+    }
+  }
+  std::printf(
+      "light cubic lattice oedometer, loaded from rest: B %.4f, %d rows from 5 ms; worst settlement %.3f %% "
+      "of "
+      "S_d, pore pressure %.3f %% of B dsigma (the floor's cells %.3f %%)\n",
+      b, rows, 100.0 * worst_settlement / s_drained, 100.0 * worst_pressure / (b * load_step),
+      100.0 * worst_floor / (b * load_step));
+  EXPECT_GE(rows, 70);  // 20 ms of rows every 0.25 ms
+  EXPECT_LT(worst_settlement, 0.003 * s_drained);
+  EXPECT_LT(worst_pressure, 0.005 * b * load_step);
   EXPECT_LT(std::abs(pr.at("fluid_balance").back()), 1e-9 * platen_area * s_drained);
 }
