@@ -111,6 +111,15 @@ std::pair<double, double> rms_errors(const OedometerRun& run, const SeepageColum
 constexpr double platen_area = 0.006 * 0.006;
 constexpr double load_step = (0.072 - 0.036) / platen_area;  // Pa
 
+/// The cubic lattice's drained settlement under the load step, by hand
+/// (oedometer_cubic_lattice.toml): each of its 6 x 6 columns is a chain of
+/// 17 linear contacts (15 between spheres, the floor's, the platen's) of
+/// k_n = 1e3 N/m, each taking the column's share of the 0.036 N step.
+constexpr double lattice_contacts = 17.0;
+constexpr double lattice_column_load = (0.072 - 0.036) / 36.0;                                       // N
+constexpr double lattice_k_n = 1e3;                                                                  // N/m
+constexpr double lattice_drained_settlement = lattice_contacts * lattice_column_load / lattice_k_n;  // m
+
 /// The drained twin: the scene with k 1000 times larger, so that the water
 /// leaves at once; the platen's settlement under the step, S_d (the load
 /// stage cut to 0.05 s: it is done within 0.03 s).
@@ -335,10 +344,7 @@ TEST(FluidScenes, OedometerOfACubicLatticeFollowsTerzaghi) {
   // miss by far more. The balance: to round-off.
   const auto run =
       run_oedometer({}, "oedometer_cubic_lattice", "examples/fluid_cases/oedometer_cubic_lattice.toml");
-  const double contacts = 17.0;  // per column: 15 between spheres, the floor's, the platen's
-  const double column_load = (0.072 - 0.036) / 36.0;  // N, the step over 6 x 6 columns
-  const double k_n = 1e3;                             // N/m, the scene's linear contacts
-  const double s_drained = contacts * column_load / k_n;
+  const double s_drained = lattice_drained_settlement;
   const auto& pr = run.probes;
   const SeepageColumnParameters p = terzaghi_for(run, s_drained, load_step);
   const auto& floor = pr.at("floor_pressure");
@@ -384,7 +390,7 @@ TEST(FluidScenes, OedometerOfALightCubicLatticeFollowsTerzaghiClosely) {
   // them at most 0.3 % of B dsigma apart from 5 ms on; measured: the
   // pressure at every cell centre within 0.29 % (0.26 % at the floor) and
   // the settlement within 0.12 % of S_d. Bounds: 0.5 % and 0.3 %, which
-  // the heavy lattice above misses (2.1 % at the floor at 10 ms). Every
+  // the heavy lattice above misses (2.1 % at the floor's probe). Every
   // probe row from 5 ms to 25 ms (T_v 0.12 to 0.58) counts.
   const std::string rest_stage =
       "duration = 0.25\ngravity = [0.0, 0.0, -9.80665]\nlocal_damping = 0.7\n[stage.walls.platen]\n"
@@ -396,7 +402,7 @@ TEST(FluidScenes, OedometerOfALightCubicLatticeFollowsTerzaghiClosely) {
                      {"name = \"load\"\nduration = 0.15", "name = \"load\"\nduration = 0.025"},
                      {"probe_interval = 0.0005", "probe_interval = 0.00025"}},
                     "oedometer_light_lattice", "examples/fluid_cases/oedometer_cubic_lattice.toml");
-  const double s_drained = 17.0 * (0.036 / 36.0) / 1e3;  // 17 contacts per column, k_n 1e3 N/m
+  const double s_drained = lattice_drained_settlement;  // the same step from zero: the chains are linear
   const auto& pr = run.probes;
   const SeepageColumnParameters p = terzaghi_for(run, s_drained, load_step);
   const double b = p.undrained_share();
