@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -10,6 +11,54 @@
 #include <fmt/format.h>
 
 namespace darcydem {
+
+RadiusDistribution RadiusDistribution::grading(std::vector<double> diameters, std::vector<double> passing,
+                                               int weight_exponent) {
+  const std::size_t m = diameters.size();
+  if (m < 2 || passing.size() != m) {
+    throw std::invalid_argument("a grading needs at least two sieves, with a passing fraction for each");
+  }
+  if (weight_exponent < 0) throw std::invalid_argument("a grading's weight exponent must be >= 0");
+  for (std::size_t i = 0; i < m; ++i) {
+    if (!(diameters[i] > 0.0) || !std::isfinite(diameters[i]) ||
+        (i > 0 && !(diameters[i] > diameters[i - 1]))) {
+      throw std::invalid_argument("a grading's diameters must be positive, finite and increasing");
+    }
+    if (!(passing[i] >= 0.0 && passing[i] <= 1.0) || (i > 0 && passing[i] < passing[i - 1])) {
+      throw std::invalid_argument("a grading's passing fractions must lie in [0, 1] and never decrease");
+    }
+  }
+  if (passing.front() != 0.0 || passing.back() != 1.0) {
+    throw std::invalid_argument(
+        "a grading's passing fraction must be 0 at the first sieve and 1 at the last");
+  }
+  RadiusDistribution d;
+  d.kind = Kind::grading;
+  d.weight_exponent = weight_exponent;
+  // Between sieves a and b the weighted fraction dP is spread evenly in
+  // log d, a density dP / ln(b/a) / d; the number of grains is that over
+  // d^p, so the interval holds dP / ln(b/a) * (a^-p - b^-p) / p of them
+  // (dP itself for p = 0), in units of d_0^-p to stay in range.
+  const double p = weight_exponent;
+  double total = 0.0;
+  d.interval_cumulative.resize(m - 1);
+  for (std::size_t i = 0; i + 1 < m; ++i) {
+    const double dp = passing[i + 1] - passing[i];
+    double count = dp;
+    if (p > 0.0 && dp > 0.0) {
+      const double a = diameters[i] / diameters[0];
+      const double b = diameters[i + 1] / diameters[0];
+      count = dp / std::log(b / a) * (std::pow(a, -p) - std::pow(b, -p)) / p;
+    }
+    total += count;
+    d.interval_cumulative[i] = total;
+  }
+  for (double& c : d.interval_cumulative) c /= total;
+  d.interval_cumulative.back() = 1.0;
+  d.diameters = std::move(diameters);
+  d.passing = std::move(passing);
+  return d;
+}
 
 double RadiusDistribution::largest() const {
   switch (kind) {
@@ -19,6 +68,11 @@ double RadiusDistribution::largest() const {
       return max;
     case Kind::table:
       return *std::max_element(radii.begin(), radii.end());
+    case Kind::grading: {
+      // The first sieve that everything passes.
+      const auto all = std::find(passing.begin(), passing.end(), 1.0);
+      return 0.5 * diameters[static_cast<std::size_t>(all - passing.begin())];
+    }
   }
   return value;
 }
@@ -37,6 +91,20 @@ double RadiusDistribution::sample(std::mt19937_64& rng) const {
         if (u < acc) return radii[k];
       }
       return radii.back();
+    }
+    case Kind::grading: {
+      // An interval by its number fraction, then d in it from the density
+      // d^-(p+1) by its inverse distribution (log-uniform for p = 0).
+      const double u = unit_random(rng);
+      std::size_t i = 0;
+      while (i + 1 < interval_cumulative.size() && !(u < interval_cumulative[i])) ++i;
+      const double a = diameters[i];
+      const double b = diameters[i + 1];
+      const double v = unit_random(rng);
+      if (weight_exponent == 0) return 0.5 * a * std::pow(b / a, v);
+      const double p = weight_exponent;
+      const double x = std::pow(1.0 - v * (1.0 - std::pow(a / b, p)), -1.0 / p);
+      return 0.5 * std::min(a * x, b);
     }
   }
   return value;
@@ -155,8 +223,15 @@ Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
     return f;
   };
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> grid;
+  // A grading's sizes are drawn first and placed largest first.
+  std::vector<double> drawn;
+  if (radii.kind == RadiusDistribution::Kind::grading) {
+    drawn.resize(static_cast<std::size_t>(count));
+    for (double& r : drawn) r = radii.sample(rng);
+    std::sort(drawn.begin(), drawn.end(), std::greater<>());
+  }
   for (std::int64_t made = 0; made < count; ++made) {
-    const double r = radii.sample(rng);
+    const double r = drawn.empty() ? radii.sample(rng) : drawn[static_cast<std::size_t>(made)];
     bool placed = false;
     for (std::int64_t attempt = 0; attempt < max_attempts && !placed; ++attempt) {
       Vec<D> x;

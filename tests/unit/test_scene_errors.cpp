@@ -1025,5 +1025,62 @@ TEST(SceneErrors, TheWaterThrustProbeNeedsAWallTheWaterCannotPass) {
   EXPECT_NE(msg.find("wall \"block\" lets the pore water through"), std::string::npos) << msg;
 }
 
+// A grading curve (`grading = { diameters, passing, by }`) is read as a
+// sieve analysis gives it; whatever cannot be one is refused at its key.
+TEST(SceneErrors, GradingCurvesAreReadAndChecked) {
+  const std::string column =
+      "generator = \"column\"\nmaterial = \"sand\"\nbase = [0.0, 0.0]\ncount = 3\nradius = 0.0005";
+  auto with = [&](const std::string& sizes) {
+    return replace(kGood, column,
+                   "generator = \"random\"\nmaterial = \"sand\"\nmin = [0.0, 0.0]\nmax = [0.02, 0.02]\n"
+                   "count = 200\n" +
+                       sizes);
+  };
+  const std::string good = "grading = { diameters = [0.2e-3, 0.6e-3, 1.2e-3], passing = [0.0, 0.4, 1.0] }";
+  ASSERT_EQ(load_error(with(good)), "");
+  const auto scene = built_scene<2>(with(good));
+  ASSERT_EQ(scene.simulation.particles.size(), 200U);
+  for (std::size_t i = 0; i < scene.simulation.particles.size(); ++i) {
+    EXPECT_GE(scene.simulation.particles.radius[i], 0.1e-3);
+    EXPECT_LE(scene.simulation.particles.radius[i], 0.6e-3);
+  }
+  auto msg = load_error(with("grading = { diameters = [0.2e-3, 0.6e-3], passing = [0, 100] }"));
+  EXPECT_NE(
+      msg.find("[[particles]] #1 grading key 'passing': must be fractions in [0, 1] (not percent), got 100"),
+      std::string::npos)
+      << msg;
+  msg = load_error(with("grading = { diameters = [0.6e-3, 0.2e-3], passing = [0.0, 1.0] }"));
+  EXPECT_NE(
+      msg.find("key 'diameters': must increase, smallest first; element 2 (0.0002) is not above element 1"),
+      std::string::npos)
+      << msg;
+  msg = load_error(with("grading = { diameters = [0.2e-3, 0.6e-3, 1e-3], passing = [0.0, 0.7, 0.5] }"));
+  EXPECT_NE(msg.find("key 'passing': must never decrease"), std::string::npos) << msg;
+  msg = load_error(with("grading = { diameters = [0.2e-3, 0.6e-3], passing = [0.1, 1.0] }"));
+  EXPECT_NE(msg.find("key 'passing': must be 0 at the smallest diameter and 1 at the largest"),
+            std::string::npos)
+      << msg;
+  msg = load_error(with("grading = { diameters = [0.2e-3, 0.6e-3], passing = [0.0, 0.5, 1.0] }"));
+  EXPECT_NE(msg.find("key 'passing': needs one fraction per diameter: 2 diameters, 3 fractions"),
+            std::string::npos)
+      << msg;
+  msg = load_error(with("grading = { diameters = [0.2e-3, 0.6e-3], passing = [0.0, 1.0], by = \"volume\" }"));
+  EXPECT_NE(msg.find("key 'by': \"volume\" is not allowed; one of \"mass\", \"number\""), std::string::npos)
+      << msg;
+  msg = load_error(with("grading = { diameters = [0.2e-3], passing = [0.0] }"));
+  EXPECT_NE(msg.find("key 'diameters': needs at least two sieve diameters"), std::string::npos) << msg;
+  // Two ways of giving the sizes: the second would have been ignored.
+  msg = load_error(with("radius = 0.5e-3\n" + good));
+  EXPECT_NE(
+      msg.find(":30:11: error: [[particles]] #1 key 'grading': give the sizes one way only; 'radius' is "
+               "given too"),
+      std::string::npos)
+      << msg;
+  msg = load_error(with("radius = 0.5e-3\nradius_max = 0.6e-3"));
+  EXPECT_NE(msg.find("key 'radius_max': give the sizes one way only; 'radius' is given too"),
+            std::string::npos)
+      << msg;
+}
+
 }  // namespace
 }  // namespace darcydem

@@ -12,13 +12,32 @@
 namespace darcydem {
 
 struct RadiusDistribution {
-  enum class Kind { constant, uniform, table };
+  enum class Kind { constant, uniform, table, grading };
   Kind kind = Kind::constant;
   double value = 0.0;  ///< constant radius, m
   double min = 0.0;    ///< uniform range, m
   double max = 0.0;
   std::vector<double> radii;      ///< table of sizes, m
   std::vector<double> fractions;  ///< number fractions of the table (sum 1)
+  /// Grading curve (Kind::grading, made by `grading()`): sieve diameters
+  /// d_0 < ... < d_m, m, and the fraction passing each, 0 at d_0 to 1 at
+  /// d_m, never decreasing; between two sieves the fraction passing is
+  /// linear in log d, as a grading curve is drawn on its semi-log chart.
+  std::vector<double> diameters;
+  std::vector<double> passing;
+  /// The power of d the passing fraction weighs the grains by: the
+  /// dimension for a grading by mass (a sphere's mass goes as d^3, a disc's
+  /// of unit thickness as d^2), 0 for a grading by number.
+  int weight_exponent = 0;
+  /// Cumulative number fractions of the grains in each interval between
+  /// sieves, worked out by `grading()`.
+  std::vector<double> interval_cumulative;
+
+  /// A grading curve; throws std::invalid_argument unless diameters are
+  /// positive and increasing, passing runs from 0 to 1 without decreasing,
+  /// the two have the same length >= 2 and weight_exponent >= 0.
+  static RadiusDistribution grading(std::vector<double> diameters, std::vector<double> passing,
+                                    int weight_exponent);
 
   [[nodiscard]] double largest() const;
   [[nodiscard]] double sample(std::mt19937_64& rng) const;
@@ -53,7 +72,9 @@ Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, dou
 
 /// Random sequential addition of `count` non-overlapping particles inside the
 /// box [lo, hi]. Throws std::runtime_error when `max_attempts` tries per
-/// particle do not find room.
+/// particle do not find room. With a grading curve every size is drawn
+/// first and the largest grains are placed first, so that a wide grading
+/// fits (the sizes drawn are the same; only the order of placing changes).
 template <int D>
 Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count,
                           const RadiusDistribution& radii, std::uint64_t seed, std::int64_t max_attempts);

@@ -1,0 +1,159 @@
+// Grading curves: the random generator's sizes drawn from a sieve curve by
+// mass or by number. The expectation is the curve itself, read the way a
+// sieve analysis is: the mass (or number) of the grains finer than a
+// diameter over the whole. Between sieves the curve is linear in log d, so
+// at the geometric mean of two sieves it passes the mean of their fractions.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "darcydem/generation/generators.hpp"
+
+namespace darcydem {
+namespace {
+
+/// The fraction finer than x of the grains d, each weighing d^power (a
+/// sphere's mass goes as d^3, a disc's of unit thickness as d^2; 0 counts
+/// them), and its standard error. The fraction is a ratio of sums, so the
+/// delta method gives var = sum w^2 (1[d < x] - F)^2 / (sum w)^2.
+struct Finer {
+  double fraction = 0.0;
+  double sigma = 0.0;
+};
+Finer finer_than(const std::vector<double>& d, double x, int power) {
+  double total = 0.0;
+  double below = 0.0;
+  for (double di : d) {
+    const double w = std::pow(di, power);
+    total += w;
+    below += di < x ? w : 0.0;
+  }
+  const double f = below / total;
+  double var = 0.0;
+  for (double di : d) {
+    const double w = std::pow(di, power) / total;
+    const double e = (di < x ? 1.0 : 0.0) - f;
+    var += w * w * e * e;
+  }
+  return {f, std::sqrt(var)};
+}
+
+std::vector<double> draw_diameters(const RadiusDistribution& g, int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<double> d(static_cast<std::size_t>(n));
+  for (double& x : d) x = 2.0 * g.sample(rng);
+  return d;
+}
+
+/// Checks the drawn diameters against the curve at every sieve and at the
+/// geometric mean of every two: within 5 standard errors (the draws are
+/// seeded, so this either always passes or always fails; 5 sigma makes a
+/// correct sampler's failure a 1-in-10^6 accident of the seed), and the
+/// error small enough (`resolution`) for the check to mean something.
+void expect_follows_the_curve(const std::vector<double>& d, const std::vector<double>& sieves,
+                              const std::vector<double>& passing, int power, double resolution) {
+  const auto [lo, hi] = std::minmax_element(d.begin(), d.end());
+  EXPECT_GE(*lo, sieves.front());
+  EXPECT_LE(*hi, sieves.back());
+  for (std::size_t i = 0; i < sieves.size(); ++i) {
+    std::vector<std::pair<double, double>> points = {{sieves[i], passing[i]}};
+    if (i + 1 < sieves.size()) {
+      points.emplace_back(std::sqrt(sieves[i] * sieves[i + 1]), 0.5 * (passing[i] + passing[i + 1]));
+    }
+    for (const auto& [x, expected] : points) {
+      const Finer f = finer_than(d, x, power);
+      EXPECT_NEAR(f.fraction, expected, 5.0 * f.sigma + 1e-12) << "finer than " << x << " m";
+      EXPECT_LT(f.sigma, resolution) << "finer than " << x << " m";
+    }
+  }
+}
+
+TEST(Grading, SpheresFollowACurveByMass) {
+  // A well-graded sand, 0.2 to 2 mm (Cu about 4): the coarse grains are few
+  // by number but carry the mass, the case a sampler by number gets wrong.
+  const std::vector<double> sieves = {0.2e-3, 0.5e-3, 1.0e-3, 2.0e-3};
+  const std::vector<double> passing = {0.0, 0.3, 0.7, 1.0};
+  const auto g = RadiusDistribution::grading(sieves, passing, 3);
+  EXPECT_DOUBLE_EQ(g.largest(), 1.0e-3);
+  // 400 000 draws: the mass above 1 mm rests on about 0.9 % of the grains,
+  // which puts the standard error there at 0.0043.
+  const auto d = draw_diameters(g, 400000, 3);
+  expect_follows_the_curve(d, sieves, passing, 3, 0.005);
+  // By number the same grains are mostly fine. By hand: between sieves a
+  // and b the mass dP spread evenly in log d holds dP / ln(b/a) * (a^-3 -
+  // b^-3) / 3 grains (per unit of mass / d^3), which is 12.769, 1.3465 and
+  // 0.12624 mm^-3 for the three intervals, so 0.89659 of the grains are
+  // finer than 0.5 mm; binomial sigma 0.00047, allowed 5 sigma.
+  EXPECT_NEAR(finer_than(d, 0.5e-3, 0).fraction, 0.89659, 0.0024);
+}
+
+TEST(Grading, DiscsFollowACurveByMassWithAFlatTop) {
+  // In 2D a disc of unit thickness weighs as d^2. The curve reaches 1 at
+  // the third sieve: nothing coarser is drawn, and the largest radius is
+  // that sieve's half (the packing's cells are sized by it).
+  const std::vector<double> sieves = {0.1e-3, 0.3e-3, 0.9e-3, 1.2e-3};
+  const std::vector<double> passing = {0.0, 0.5, 1.0, 1.0};
+  const auto g = RadiusDistribution::grading(sieves, passing, 2);
+  EXPECT_DOUBLE_EQ(g.largest(), 0.45e-3);
+  const auto d = draw_diameters(g, 200000, 4);
+  EXPECT_LE(*std::max_element(d.begin(), d.end()), 0.9e-3);
+  expect_follows_the_curve(d, sieves, passing, 2, 0.004);
+}
+
+TEST(Grading, ACurveByNumberCountsGrains) {
+  // By number the fraction finer is binomial: sigma = sqrt(F (1 - F) / n),
+  // at most 0.0016 for 100 000 draws.
+  const std::vector<double> sieves = {0.25e-3, 0.5e-3, 4.0e-3};
+  const std::vector<double> passing = {0.0, 0.1, 1.0};
+  const auto g = RadiusDistribution::grading(sieves, passing, 0);
+  const auto d = draw_diameters(g, 100000, 5);
+  expect_follows_the_curve(d, sieves, passing, 0, 0.002);
+}
+
+TEST(Grading, RandomPackingPlacesTheLargestFirstAndKeepsTheCurve) {
+  // 3000 spheres of a 0.4-2.4 mm grading in a 20 x 20 x 40 mm box (solid
+  // fraction about 0.17): inside, not overlapping, placed largest first,
+  // and the grains made still follow the curve by mass. With 3000 grains
+  // the standard error is up to about 0.03 (a few hundred coarse grains
+  // carry the mass).
+  const std::vector<double> sieves = {0.4e-3, 0.8e-3, 1.6e-3, 2.4e-3};
+  const std::vector<double> passing = {0.0, 0.2, 0.7, 1.0};
+  const auto g = RadiusDistribution::grading(sieves, passing, 3);
+  const Vec<3> lo(0, 0, 0), hi(0.02, 0.02, 0.04);
+  const auto pk = random_packing<3>(lo, hi, 3000, g, 7, 1000);
+  ASSERT_EQ(pk.radius.size(), 3000U);
+  std::vector<double> d;
+  for (std::size_t i = 0; i < pk.radius.size(); ++i) {
+    const double r = pk.radius[i];
+    d.push_back(2.0 * r);
+    if (i > 0) {
+      EXPECT_LE(r, pk.radius[i - 1]);
+    }
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_GE(pk.position[i][k] - r, lo[k] - 1e-15);
+      EXPECT_LE(pk.position[i][k] + r, hi[k] + 1e-15);
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      ASSERT_GE((pk.position[i] - pk.position[j]).norm(), r + pk.radius[j] - 1e-15) << i << " and " << j;
+    }
+  }
+  expect_follows_the_curve(d, sieves, passing, 3, 0.04);
+  // The same seed gives the same packing.
+  EXPECT_EQ(random_packing<3>(lo, hi, 3000, g, 7, 1000).position[1234], pk.position[1234]);
+}
+
+TEST(Grading, BadCurvesAreRefused) {
+  EXPECT_THROW(RadiusDistribution::grading({1e-3}, {1.0}, 3), std::invalid_argument);
+  EXPECT_THROW(RadiusDistribution::grading({1e-3, 1e-3}, {0.0, 1.0}, 3), std::invalid_argument);
+  EXPECT_THROW(RadiusDistribution::grading({1e-3, 2e-3}, {0.0, 0.9}, 3), std::invalid_argument);
+  EXPECT_THROW(RadiusDistribution::grading({1e-3, 2e-3, 3e-3}, {0.0, 0.6, 0.5}, 3), std::invalid_argument);
+  EXPECT_THROW(RadiusDistribution::grading({1e-3, 2e-3}, {0.0, 1.0, 1.0}, 3), std::invalid_argument);
+  EXPECT_THROW(RadiusDistribution::grading({1e-3, 2e-3}, {0.0, 1.0}, -1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace darcydem
