@@ -4,8 +4,10 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -72,6 +74,28 @@ double RadiusDistribution::largest() const {
       // The first sieve that everything passes.
       const auto all = std::find(passing.begin(), passing.end(), 1.0);
       return 0.5 * diameters[static_cast<std::size_t>(all - passing.begin())];
+    }
+  }
+  return value;
+}
+
+double RadiusDistribution::smallest() const {
+  switch (kind) {
+    case Kind::constant:
+      return value;
+    case Kind::uniform:
+      return min;
+    case Kind::table: {
+      double r = largest();
+      for (std::size_t k = 0; k < radii.size(); ++k) {
+        if (fractions[k] > 0.0) r = std::min(r, radii[k]);
+      }
+      return r;
+    }
+    case Kind::grading: {
+      // The last sieve that nothing passes.
+      const auto none = std::find_if(passing.begin(), passing.end(), [](double p) { return p > 0.0; });
+      return 0.5 * diameters[static_cast<std::size_t>(none - passing.begin()) - 1];
     }
   }
   return value;
@@ -203,12 +227,16 @@ Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, dou
   return out;
 }
 
-template <int D>
-Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count,
-                          const RadiusDistribution& radii, std::uint64_t seed, std::int64_t max_attempts) {
-  std::mt19937_64 rng(seed);
+namespace {
+
+/// Random sequential addition into [lo, hi] of `count` particles whose
+/// radii `next_radius()` gives in turn (none above r_max), positions from
+/// `rng`. `what_to_change` ends the message when one finds no room.
+template <int D, class NextRadius>
+Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count, double r_max,
+                          NextRadius&& next_radius, std::mt19937_64& rng, std::int64_t max_attempts,
+                          std::string_view what_to_change) {
   Packing<D> out;
-  const double r_max = radii.largest();
   const double cell = 2.0 * r_max;
   std::array<std::int64_t, D> dims{};
   for (int k = 0; k < D; ++k) {
@@ -223,15 +251,8 @@ Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
     return f;
   };
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> grid;
-  // A grading's sizes are drawn first and placed largest first.
-  std::vector<double> drawn;
-  if (radii.kind == RadiusDistribution::Kind::grading) {
-    drawn.resize(static_cast<std::size_t>(count));
-    for (double& r : drawn) r = radii.sample(rng);
-    std::sort(drawn.begin(), drawn.end(), std::greater<>());
-  }
   for (std::int64_t made = 0; made < count; ++made) {
-    const double r = drawn.empty() ? radii.sample(rng) : drawn[static_cast<std::size_t>(made)];
+    const double r = next_radius();
     bool placed = false;
     for (std::int64_t attempt = 0; attempt < max_attempts && !placed; ++attempt) {
       Vec<D> x;
@@ -270,11 +291,76 @@ Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
     if (!placed) {
       throw std::runtime_error(
           fmt::format("random packing: no room for particle {} of {} after {} attempts (the box is too full; "
-                      "enlarge it, reduce the count, or raise max_attempts)",
-                      made + 1, count, max_attempts));
+                      "{})",
+                      made + 1, count, max_attempts, what_to_change));
     }
   }
   return out;
+}
+
+/// The volume of a grain of radius r: a sphere, or in 2D a disc of unit
+/// thickness (m^3).
+template <int D>
+double grain_volume(double r) {
+  return D == 3 ? 4.0 / 3.0 * std::numbers::pi * r * r * r : std::numbers::pi * r * r;
+}
+
+}  // namespace
+
+template <int D>
+Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count,
+                          const RadiusDistribution& radii, std::uint64_t seed, std::int64_t max_attempts) {
+  std::mt19937_64 rng(seed);
+  const std::string_view change = "enlarge it, reduce the count, or raise max_attempts";
+  if (radii.kind != RadiusDistribution::Kind::grading) {
+    // Each size drawn just before its place, as always (the same packings).
+    return place_randomly<D>(
+        lo, hi, count, radii.largest(), [&] { return radii.sample(rng); }, rng, max_attempts, change);
+  }
+  // A grading's sizes are drawn first and placed largest first.
+  std::vector<double> drawn(static_cast<std::size_t>(count));
+  for (double& r : drawn) r = radii.sample(rng);
+  std::sort(drawn.begin(), drawn.end(), std::greater<>());
+  std::size_t next = 0;
+  return place_randomly<D>(
+      lo, hi, count, radii.largest(), [&] { return drawn[next++]; }, rng, max_attempts, change);
+}
+
+template <int D>
+Packing<D> random_packing_to_porosity(const Vec<D>& lo, const Vec<D>& hi, double porosity,
+                                      const RadiusDistribution& radii, std::uint64_t seed,
+                                      std::int64_t max_attempts) {
+  std::mt19937_64 rng(seed);
+  double box = 1.0;
+  for (int k = 0; k < D; ++k) box *= hi[k] - lo[k];
+  const double target = (1.0 - porosity) * box;
+  // Draw until the grains' volume reaches the target; keep the last one
+  // only if that brings the volume nearer to it.
+  std::vector<double> drawn;
+  double solid = 0.0;
+  while (solid < target) {
+    const double r = radii.sample(rng);
+    const double v = grain_volume<D>(r);
+    if (solid + v - target > target - solid) break;
+    drawn.push_back(r);
+    solid += v;
+  }
+  if (drawn.empty()) {
+    throw std::runtime_error(fmt::format(
+        "a porosity of {} leaves room for less than half of the first grain drawn (of {:.4g} m^3) in "
+        "the box's {:.4g} m^3; lower it, or enlarge the box",
+        porosity, grain_volume<D>(radii.sample(rng)), box));
+  }
+  std::sort(drawn.begin(), drawn.end(), std::greater<>());
+  std::size_t next = 0;
+  const std::string change = fmt::format(
+      "random sequential addition fills at most about {} % of a box; raise the porosity, settle a looser "
+      "cloud "
+      "under gravity, or raise max_attempts",
+      D == 3 ? 38 : 54);
+  return place_randomly<D>(
+      lo, hi, static_cast<std::int64_t>(drawn.size()), radii.largest(), [&] { return drawn[next++]; }, rng,
+      max_attempts, change);
 }
 
 template <int D>
@@ -348,13 +434,15 @@ void write_packing_csv(const std::string& path, const ParticleData<D>& p, const 
   if (!out) throw std::runtime_error(fmt::format("{}: cannot write the particle file", path));
 }
 
-#define DARCYDEM_INSTANTIATE(D)                                                                  \
-  template Packing<D> lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);          \
-  template Packing<D> dense_lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);    \
-  template Packing<D> column_packing<D>(const Vec<D>&, const Vec<D>&, int, double, double);      \
-  template Packing<D> random_packing<D>(const Vec<D>&, const Vec<D>&, std::int64_t,              \
-                                        const RadiusDistribution&, std::uint64_t, std::int64_t); \
-  template Packing<D> read_packing_csv<D>(const std::string&);                                   \
+#define DARCYDEM_INSTANTIATE(D)                                                                              \
+  template Packing<D> lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);                      \
+  template Packing<D> dense_lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);                \
+  template Packing<D> column_packing<D>(const Vec<D>&, const Vec<D>&, int, double, double);                  \
+  template Packing<D> random_packing<D>(const Vec<D>&, const Vec<D>&, std::int64_t,                          \
+                                        const RadiusDistribution&, std::uint64_t, std::int64_t);             \
+  template Packing<D> random_packing_to_porosity<D>(const Vec<D>&, const Vec<D>&, double,                    \
+                                                    const RadiusDistribution&, std::uint64_t, std::int64_t); \
+  template Packing<D> read_packing_csv<D>(const std::string&);                                               \
   template void write_packing_csv<D>(const std::string&, const ParticleData<D>&, const std::string&);
 DARCYDEM_INSTANTIATE(2)
 DARCYDEM_INSTANTIATE(3)

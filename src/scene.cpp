@@ -721,20 +721,47 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     } else if (gen == "random") {
       const Vec<D> lo = to_vec<D>(r.numbers("min", D));
       const Vec<D> hi = to_vec<D>(r.numbers("max", D));
-      const auto count = r.integer("count");
-      if (count < 1) r.fail("count", "must be >= 1");
-      check_count_fits(r, "count", static_cast<double>(count));
+      // How many: a count, or as many as make the box's porosity.
+      if (r.has("count") && r.has("porosity")) r.fail("porosity", "give 'count' or 'porosity', not both");
+      if (!r.has("count") && !r.has("porosity")) {
+        r.missing(
+            "count",
+            "an integer; or instead 'porosity', a number in (0, 1): as many particles as leave that fraction "
+            "of the box empty");
+      }
+      std::int64_t count = 0;
+      double porosity = 0.0;
+      if (r.has("count")) {
+        count = r.integer("count");
+        if (count < 1) r.fail("count", "must be >= 1");
+        check_count_fits(r, "count", static_cast<double>(count));
+      } else {
+        porosity = r.check(
+            "porosity", r.number("porosity"), [](double v) { return v > 0.0 && v < 1.0; }, "in (0, 1)");
+      }
       const RadiusDistribution dist = read_radius(r, D);
       for (int k = 0; k < D; ++k) {
         if (hi[k] - lo[k] < 2.0 * dist.largest())
           r.fail("max", "the box must be wider than the largest particle in every direction");
       }
+      if (r.has("porosity")) {
+        // At most this many of the smallest grains.
+        double box = 1.0;
+        for (int k = 0; k < D; ++k) box *= hi[k] - lo[k];
+        const double r_min = dist.smallest();
+        const double v_min =
+            D == 3 ? 4.0 / 3.0 * std::numbers::pi * r_min * r_min * r_min : std::numbers::pi * r_min * r_min;
+        check_count_fits(r, "porosity", (1.0 - porosity) * box / v_min);
+      }
       const auto seed = r.optional_integer("seed").value_or(1);
       const auto attempts = r.optional_integer("max_attempts").value_or(1000);
       try {
-        pk = random_packing<D>(lo, hi, count, dist, static_cast<std::uint64_t>(seed), attempts);
+        pk = r.has("count")
+                 ? random_packing<D>(lo, hi, count, dist, static_cast<std::uint64_t>(seed), attempts)
+                 : random_packing_to_porosity<D>(lo, hi, porosity, dist, static_cast<std::uint64_t>(seed),
+                                                 attempts);
       } catch (const std::runtime_error& e) {
-        r.fail("count", e.what());
+        r.fail(r.has("count") ? "count" : "porosity", e.what());
       }
     } else {
       const std::string rel = r.string("file");

@@ -1076,6 +1076,18 @@ TEST(SceneErrors, GradingCurvesAreReadAndChecked) {
                "given too"),
       std::string::npos)
       << msg;
+  // How many: a count or the box's porosity, one of them.
+  ASSERT_EQ(load_error(replace(with(good), "count = 200", "porosity = 0.8")), "");
+  msg = load_error(replace(with(good), "count = 200", "count = 200\nporosity = 0.8"));
+  EXPECT_NE(msg.find("key 'porosity': give 'count' or 'porosity', not both"), std::string::npos) << msg;
+  msg = load_error(replace(with(good), "count = 200", "porosity = 1.5"));
+  EXPECT_NE(msg.find("key 'porosity': must be in (0, 1), got 1.5"), std::string::npos) << msg;
+  msg = load_error(replace(with(good), "count = 200", "porosity = 0.1"));
+  EXPECT_NE(msg.find("random sequential addition fills at most about 54 % of a box"), std::string::npos)
+      << msg;
+  msg = load_error(replace(with(good), "count = 200\n", ""));
+  EXPECT_NE(msg.find("missing required key 'count' (an integer; or instead 'porosity'"), std::string::npos)
+      << msg;
   msg = load_error(with("radius = 0.5e-3\nradius_max = 0.6e-3"));
   EXPECT_NE(msg.find("key 'radius_max': give the sizes one way only; 'radius' is given too"),
             std::string::npos)

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -72,6 +73,24 @@ void expect_follows_the_curve(const std::vector<double>& d, const std::vector<do
   }
 }
 
+/// A random packing's grains lie inside [lo, hi], do not overlap (to
+/// round-off of the coordinates) and come largest first.
+void expect_placed_largest_first(const Packing<3>& pk, const Vec<3>& lo, const Vec<3>& hi) {
+  for (std::size_t i = 0; i < pk.radius.size(); ++i) {
+    const double r = pk.radius[i];
+    if (i > 0) {
+      EXPECT_LE(r, pk.radius[i - 1]);
+    }
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_GE(pk.position[i][k] - r, lo[k] - 1e-15);
+      EXPECT_LE(pk.position[i][k] + r, hi[k] + 1e-15);
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      ASSERT_GE((pk.position[i] - pk.position[j]).norm(), r + pk.radius[j] - 1e-15) << i << " and " << j;
+    }
+  }
+}
+
 TEST(Grading, SpheresFollowACurveByMass) {
   // A well-graded sand, 0.2 to 2 mm (Cu about 4): the coarse grains are few
   // by number but carry the mass, the case a sampler by number gets wrong.
@@ -126,24 +145,46 @@ TEST(Grading, RandomPackingPlacesTheLargestFirstAndKeepsTheCurve) {
   const Vec<3> lo(0, 0, 0), hi(0.02, 0.02, 0.04);
   const auto pk = random_packing<3>(lo, hi, 3000, g, 7, 1000);
   ASSERT_EQ(pk.radius.size(), 3000U);
+  expect_placed_largest_first(pk, lo, hi);
   std::vector<double> d;
-  for (std::size_t i = 0; i < pk.radius.size(); ++i) {
-    const double r = pk.radius[i];
-    d.push_back(2.0 * r);
-    if (i > 0) {
-      EXPECT_LE(r, pk.radius[i - 1]);
-    }
-    for (int k = 0; k < 3; ++k) {
-      EXPECT_GE(pk.position[i][k] - r, lo[k] - 1e-15);
-      EXPECT_LE(pk.position[i][k] + r, hi[k] + 1e-15);
-    }
-    for (std::size_t j = 0; j < i; ++j) {
-      ASSERT_GE((pk.position[i] - pk.position[j]).norm(), r + pk.radius[j] - 1e-15) << i << " and " << j;
-    }
-  }
+  for (double r : pk.radius) d.push_back(2.0 * r);
   expect_follows_the_curve(d, sieves, passing, 3, 0.04);
   // The same seed gives the same packing.
   EXPECT_EQ(random_packing<3>(lo, hi, 3000, g, 7, 1000).position[1234], pk.position[1234]);
+}
+
+TEST(Grading, RandomPackingToAPorosityHasThatSolidVolume) {
+  // Equal discs of 0.5 mm in a 20 x 20 mm box at porosity 0.6: (1 - 0.6) x
+  // 4e-4 m^2 / (pi 0.25e-6 m^2) = 203.72 discs' worth, so 204, the nearer
+  // whole number (by hand). Solid fraction 0.4, below random sequential
+  // addition's 0.55 for discs.
+  RadiusDistribution equal;
+  equal.value = 0.5e-3;
+  const auto discs = random_packing_to_porosity<2>(Vec<2>(0, 0), Vec<2>(0.02, 0.02), 0.6, equal, 3, 1000);
+  EXPECT_EQ(discs.radius.size(), 204U);
+
+  // A grading by mass in 3D at porosity 0.75: the grains' volume is within
+  // half a grain of a quarter of the box's, and they lie inside it without
+  // overlapping, largest first.
+  const std::vector<double> sieves = {0.4e-3, 0.8e-3, 1.6e-3, 2.4e-3};
+  const std::vector<double> passing = {0.0, 0.2, 0.7, 1.0};
+  const auto g = RadiusDistribution::grading(sieves, passing, 3);
+  const Vec<3> lo(0, 0, 0), hi(0.015, 0.015, 0.03);
+  const auto pk = random_packing_to_porosity<3>(lo, hi, 0.75, g, 11, 1000);
+  const double box = 0.015 * 0.015 * 0.03;
+  double solid = 0.0;
+  double largest = 0.0;
+  for (std::size_t i = 0; i < pk.radius.size(); ++i) {
+    const double r = pk.radius[i];
+    const double v = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    solid += v;
+    largest = std::max(largest, v);
+  }
+  expect_placed_largest_first(pk, lo, hi);
+  EXPECT_GT(pk.radius.size(), 1000U);
+  EXPECT_LE(std::abs(solid - 0.25 * box), 0.5 * largest);
+  // A porosity random sequential addition cannot reach says so.
+  EXPECT_THROW(random_packing_to_porosity<3>(lo, hi, 0.5, g, 11, 200), std::runtime_error);
 }
 
 TEST(Grading, BadCurvesAreRefused) {
