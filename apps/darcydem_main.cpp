@@ -17,6 +17,7 @@
 #include <CLI/CLI.hpp>
 
 #include "darcydem/output/checkpoint_archive.hpp"
+#include "darcydem/particles/grading.hpp"
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/runner.hpp"
@@ -50,6 +51,9 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
         D, scene.simulation.particles.size(), scene.simulation.walls.size(), scene.stages.size(),
         scene.stages.size() == 1 ? "" : "s", scene.simulation.time_step,
         std::ceil(duration / scene.simulation.time_step));
+    if (scene.simulation.particles.size() > 0) {
+      std::cout << "  " << darcydem::describe_grading<D>(scene.simulation.particles.radius);
+    }
     if (scene.fluid) {
       const auto& f = *scene.fluid;
       const double dry = scene.simulation.critical_time_step();

@@ -17,6 +17,7 @@
 #include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/output/probes.hpp"
 #include "darcydem/output/vtk.hpp"
+#include "darcydem/particles/grading.hpp"
 #include "darcydem/simulation/run_checkpoint.hpp"
 #include "darcydem/version.hpp"
 
@@ -326,6 +327,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         describe_critical_step(fluid != nullptr
                                    ? fluid->critical_time_step(sim.particles, sim.critical_time_step())
                                    : sim.critical_time_step()));
+    if (!sim.particles.radius.empty()) *options.log << describe_grading<D>(sim.particles.radius);
     if (fluid != nullptr) {
       std::string sides;
       for (int k = 0; k < 2 * D; ++k)

@@ -40,6 +40,8 @@ scene="$src/examples/column_settling/column.toml"
   && ok "check says what an infinite critical step means (only fixed particles)" || bad "check: critical step"
 "$exe" check "$src/examples/fluid_cases/sheet_pile_heave.toml" | grep -q "OK (2D, 508 particles, 4 walls" \
   && ok "check accepts a scene with a box wall" || bad "check: box wall"
+"$exe" check "$scene" | grep -q "^  grains: all d = 1 mm$" \
+  && ok "check gives the grains' sizes" || bad "check: grains ($("$exe" check "$scene" | sed -n 2p))"
 
 sed 's/^density = 2650.0/densty = 2650.0/' "$scene" > "$work/bad.toml"
 msg="$("$exe" check "$work/bad.toml" 2>&1)"; rc=$?
