@@ -42,6 +42,9 @@ scene="$src/examples/column_settling/column.toml"
   && ok "check accepts a scene with a box wall" || bad "check: box wall"
 "$exe" check "$scene" | grep -q "^  grains: all d = 1 mm$" \
   && ok "check gives the grains' sizes" || bad "check: grains ($("$exe" check "$scene" | sed -n 2p))"
+"$exe" check "$src/examples/fluid_cases/graded_sand_seepage.toml" \
+  | grep -q "^  grains: d 0.8[0-9]* to 2.[0-9]* mm; by mass D10 " \
+  && ok "check gives a graded sand's D10 ... D60" || bad "check: graded sand"
 
 sed 's/^density = 2650.0/densty = 2650.0/' "$scene" > "$work/bad.toml"
 msg="$("$exe" check "$work/bad.toml" 2>&1)"; rc=$?
