@@ -67,9 +67,9 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
                           : fmt::format("{} (dry {})", darcydem::describe_critical_step(wet),
                                         darcydem::describe_critical_step(dry)));
       std::cout << "  " << darcydem::describe_grid(f.grid);
-      std::cout << "  " << darcydem::describe_permeability(f, scene.simulation.particles);
-      std::istringstream patches(darcydem::describe_patches_and_barriers(f, scene.simulation.walls));
-      for (std::string line; std::getline(patches, line);) std::cout << "  " << line << '\n';
+      std::istringstream lines(darcydem::describe_permeability(f, scene.simulation.particles) +
+                               darcydem::describe_patches_and_barriers(f, scene.simulation.walls));
+      for (std::string line; std::getline(lines, line);) std::cout << "  " << line << '\n';
     }
     return 0;
   }

@@ -616,6 +616,26 @@ std::string describe_permeability(const PoreFluid<D>& fluid, const ParticleData<
   out += fmt::format("; porosity taken in [{:.4g}, {:.4g}]; drag {}{}\n", spec.min_porosity,
                      spec.max_porosity, fluid.drag == DragLaw::darcy ? "darcy" : "ergun",
                      fluid.drag_cells == DragCells::overlaps ? " over the overlapped cells" : "");
+  // Ergun's drag follows Kozeny-Carman's pressure drop only for one d.
+  if (fluid.drag == DragLaw::ergun && !particles.radius.empty()) {
+    if (spec.model == PermeabilityModel::kozeny_carman) {
+      const double balanced = ergun_balance_diameter<D>(particles.radius);
+      const double excess = spec.diameter * spec.diameter / (balanced * balanced) - 1.0;
+      if (std::abs(excess) > 0.01) {
+        out += fmt::format(
+            "note: with Ergun's drag each grain takes its own d, which balances Kozeny-Carman for d = {:.6g} "
+            "m; "
+            "at d = {:.6g} m the viscous drag is {:.1f} % {} what the pressure drop needs (drag \"darcy\" "
+            "keeps "
+            "the balance)\n",
+            balanced, spec.diameter, 100.0 * std::abs(excess), excess > 0.0 ? "above" : "below");
+      }
+    } else {
+      out +=
+          "note: Ergun's drag does not follow a given permeability: the seepage force will not balance the "
+          "pressure drop (drag \"darcy\" takes it from the permeability and does)\n";
+    }
+  }
   return out;
 }
 

@@ -45,6 +45,10 @@ scene="$src/examples/column_settling/column.toml"
 "$exe" check "$src/examples/fluid_cases/graded_sand_seepage.toml" \
   | grep -q "^  grains: d 0.8[0-9]* to 2.[0-9]* mm; by mass D10 " \
   && ok "check gives a graded sand's D10 ... D60" || bad "check: graded sand"
+sed 's/^drag = "darcy"/drag = "ergun"/' "$src/examples/fluid_cases/graded_sand_seepage.toml" > "$work/graded_ergun.toml"
+"$exe" check "$work/graded_ergun.toml" \
+  | grep -q "^  note: with Ergun's drag each grain takes its own d, which balances Kozeny-Carman for d = 0.0013" \
+  && ok "check says how far Ergun's drag misses Kozeny-Carman on a graded sand" || bad "check: Ergun's note"
 
 sed 's/^density = 2650.0/densty = 2650.0/' "$scene" > "$work/bad.toml"
 msg="$("$exe" check "$work/bad.toml" 2>&1)"; rc=$?

@@ -1,6 +1,7 @@
 // Kozeny-Carman's default diameter for grains of several sizes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -23,6 +24,18 @@ TEST(FluidLaws, SpecificSurfaceDiameterOfTwoSizesByHand) {
   const std::vector<double> radius{0.0005, 0.001};
   EXPECT_NEAR(specific_surface_diameter<3>(radius), 1.8e-3, 1e-15);
   EXPECT_NEAR(specific_surface_diameter<2>(radius), 5.0e-3 / 3.0, 1e-15);
+}
+
+TEST(FluidLaws, ErgunBalanceDiameterOfTwoSizesByHand) {
+  // Ergun's viscous drag on a grain goes as V_p / d_p^2: d = 1 and 2 mm
+  // spheres give d^2 = (1 + 8) / (1 + 2) = 3 mm^2, so sqrt(3) mm, below
+  // the specific-surface 1.8 mm; discs d^2 = (1 + 4) / 2 = 2.5 mm^2. Equal
+  // grains: their own diameter.
+  const std::vector<double> radius{0.0005, 0.001};
+  EXPECT_NEAR(ergun_balance_diameter<3>(radius), std::sqrt(3.0) * 1e-3, 1e-15);
+  EXPECT_NEAR(ergun_balance_diameter<2>(radius), std::sqrt(2.5) * 1e-3, 1e-15);
+  EXPECT_DOUBLE_EQ(ergun_balance_diameter<3>(std::vector<double>(5, 0.00045)), 0.0009);
+  EXPECT_EQ(ergun_balance_diameter<2>({}), 0.0);
 }
 
 TEST(FluidLaws, SpecificSurfaceDiameterHasTheMixturesSurfacePerVolume) {

@@ -83,9 +83,15 @@ struct ForceBalance {
   double sideways = 0.0;      ///< |horizontal force| / (drop x area + buoyancy)
 };
 ForceBalance force_balance(const Packing<3>& pk, DragLaw drag, PermeabilityModel model, double q,
-                           DragCells cells = DragCells::centre) {
+                           DragCells cells = DragCells::centre, double kozeny_carman_diameter = 0.0) {
   ParticleData<3> p;
   auto f = frozen_packing(p, pk, drag, model, q);
+  if (kozeny_carman_diameter > 0.0) {
+    // Another d: the permeability again, and the steady state with it.
+    f.permeability.diameter = kozeny_carman_diameter;
+    f.initialize(p);
+    f.update(p, 1000.0, 2000.0);
+  }
   f.drag_cells = cells;
   const auto [total, solid] = darcydem::testing::fluid_force_on_grains(f, p, g);
   const double buoyancy = f.fluid.density * g * solid;
@@ -256,6 +262,42 @@ TEST(PoreFluid, ErgunWithKozenyCarmanOnGradedGrainsAndLooseCells) {
   EXPECT_LT(std::abs(b.total_miss), 0.01);
   // With 5 grains per cell the centres' +3 % dominates (+2.2 %, not
   // asserted); drag_cells = overlaps takes it away (the test below).
+}
+
+TEST(PoreFluid, ErgunOnAWideGradingMissesByWhatTheRunLogSays) {
+  // A sand graded from 0.3 to 1.2 mm by mass (Cu about 2), made at
+  // porosity 0.75. Ergun's viscous drag goes as V_p / d_p^2 grain by
+  // grain, Kozeny-Carman's pressure drop as 1 / d^2, so with the default
+  // d, the specific-surface diameter, the drag is (d_s / d_e)^2 - 1 above
+  // what the pressure drop needs, d_e = ergun_balance_diameter (the run
+  // log's note says so). The drag carries the share n of the seepage
+  // force in each cell, so the seepage force is off by about n (d_s /
+  // d_e)^2 - n, n the packing's mean porosity (the flow-weighted mean
+  // differs; the inertial term and the Wen-Yu blend above n = 0.8 add a
+  // little): allowed 15 % of that (measured +11.43 % against +12.46 %).
+  // The drag spread over the overlapped cells takes away the centres'
+  // sampling offset. With d = d_e instead the balance is back within
+  // issue 3's 1 % (measured -0.78 %: each cell's grains have their own
+  // d_e, and cells above n = 0.8 blend into Wen-Yu; not separated).
+  const auto g = RadiusDistribution::grading({0.3e-3, 0.6e-3, 1.2e-3}, {0.0, 0.4, 1.0}, 3);
+  const auto pk = random_packing_to_porosity<3>(Vec<3>::Zero(), Vec<3>(0.01, 0.01, 0.02), 0.75, g, 5, 2000);
+  const double d_s = specific_surface_diameter<3>(pk.radius);
+  const double d_e = ergun_balance_diameter<3>(pk.radius);
+  const double excess = d_s * d_s / (d_e * d_e) - 1.0;
+  double solid = 0.0;
+  for (double r : pk.radius) solid += particle_volume<3>(r);
+  const double n = 1.0 - solid / 2e-6;
+  const auto off =
+      force_balance(pk, DragLaw::ergun, PermeabilityModel::kozeny_carman, 1e-5, DragCells::overlaps);
+  const auto on =
+      force_balance(pk, DragLaw::ergun, PermeabilityModel::kozeny_carman, 1e-5, DragCells::overlaps, d_e);
+  std::printf(
+      "wide grading: %zu grains, n %.4f, d_s %.4f mm, d_e %.4f mm: the drag %+.2f %%, expected miss %+.2f "
+      "%%\n",
+      pk.radius.size(), n, d_s * 1e3, d_e * 1e3, 100.0 * excess, 100.0 * n * excess);
+  EXPECT_GT(excess, 0.04);  // a grading wide enough to matter
+  EXPECT_NEAR(off.seepage_miss, n * excess, 0.15 * n * excess);
+  EXPECT_LT(std::abs(on.seepage_miss), 0.01);
 }
 
 TEST(PoreFluid, DragSpreadOverTheOverlappedCellsBalancesExactly) {

@@ -58,6 +58,25 @@ double specific_surface_diameter(const std::vector<double>& radius) {
   return surface_like > 0.0 ? volume_like / surface_like : 0.0;
 }
 
+/// The d of Kozeny-Carman that Ergun's viscous drag balances when each
+/// grain takes its own diameter: the drag goes as V_p / d_p^2 grain by
+/// grain, Kozeny-Carman's pressure drop as 1 / d^2, so d^2 = sum V_p /
+/// sum (V_p / d_p^2): sqrt(sum d^3 / sum d) for spheres, sqrt(sum d^2 / N)
+/// for discs. It is below the specific-surface diameter for unequal grains;
+/// 0 without grains.
+template <int D>
+double ergun_balance_diameter(const std::vector<double>& radius) {
+  static_assert(D == 2 || D == 3);
+  double volume_like = 0.0;  // sum d^D
+  double drag_like = 0.0;    // sum d^(D-2)
+  for (double r : radius) {
+    const double d = 2.0 * r;
+    drag_like += D == 3 ? d : 1.0;
+    volume_like += D == 3 ? d * d * d : d * d;
+  }
+  return drag_like > 0.0 ? std::sqrt(volume_like / drag_like) : 0.0;
+}
+
 enum class DragLaw {
   darcy,  ///< beta = n^2 mu / kappa from the cell's own permeability
   ergun,  ///< Ergun (n < 0.8) blended into Wen-Yu (n > 0.8)
