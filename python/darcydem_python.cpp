@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <iostream>
 #include <memory>
@@ -31,6 +32,7 @@
 
 #include "darcydem/analysis/seepage_analytic.hpp"
 #include "darcydem/output/checkpoint_archive.hpp"
+#include "darcydem/particles/grading.hpp"
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/runner.hpp"
@@ -397,6 +399,31 @@ PYBIND11_MODULE(darcydem, m) {
       py::arg("checkpoint_every") = 0.0, py::arg("threads") = 0, py::arg("log") = false,
       "runs a scene as `darcydem run` does, writing its output directory; returns a summary; with "
       "log=True the program's run log and progress lines go to stderr");
+  m.def(
+      "grading",
+      [](const std::vector<double>& radii, int dimension) {
+        if (radii.empty()) throw py::value_error("grading: no radii");
+        for (double r : radii) {
+          if (!(r > 0.0) || !std::isfinite(r))
+            throw py::value_error("grading: radii must be positive and finite");
+        }
+        if (dimension != 2 && dimension != 3) throw py::value_error("grading: dimension must be 2 or 3");
+        const auto g = dimension == 2 ? darcydem::grading_of<2>(radii) : darcydem::grading_of<3>(radii);
+        py::dict out;
+        out["d_min"] = g.d_min;
+        out["d_max"] = g.d_max;
+        out["d10"] = g.d10;
+        out["d30"] = g.d30;
+        out["d50"] = g.d50;
+        out["d60"] = g.d60;
+        out["uniformity"] = g.uniformity();
+        out["curvature"] = g.curvature();
+        return out;
+      },
+      py::arg("radii"), py::kw_only(), py::arg("dimension") = 3,
+      "the grains' grading by mass, as the run log gives it: d_min, d_max and D10, D30, D50, D60 (m; D_x the "
+      "smallest diameter that with all grains no larger carries x of the mass: spheres d^3, discs of unit "
+      "thickness d^2), the coefficients of uniformity D60/D10 and curvature D30^2/(D10 D60)");
   // Terzaghi's 1D consolidation (top drained, bottom sealed, drainage path
   // `height`), as the verification tests take it, for scripts that compare
   // a run with it (examples/fluid_cases/run_oedometer.py).

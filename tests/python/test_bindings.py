@@ -140,6 +140,31 @@ class TerzaghiClosedForms(unittest.TestCase):
                                delta=1e-6 * first_mode)
 
 
+class Grading(unittest.TestCase):
+    def test_a_two_size_mixture_by_hand(self):
+        # Ten spheres of 1 mm and ten of 2 mm: the small ones carry 10 / 90
+        # of the mass, so D10 = 1 mm and D30 ... D60 = 2 mm; as discs (mass
+        # as d^2) 10 / 50, the same D's. Cu = 2, Cc = 2.
+        radii = [0.5e-3] * 10 + [1e-3] * 10
+        for dimension in (2, 3):
+            g = darcydem.grading(radii, dimension=dimension)
+            self.assertEqual((g["d10"], g["d30"], g["d60"]), (1e-3, 2e-3, 2e-3))
+            self.assertEqual((g["uniformity"], g["curvature"]), (2.0, 2.0))
+
+    def test_a_scenes_grains(self):
+        # The column's 50 equal discs of 1 mm: every D is 1 mm.
+        model = darcydem.load(os.path.join(SOURCE, "examples/column_settling/column.toml"))
+        g = darcydem.grading(model.radii, dimension=model.dimension)
+        self.assertEqual((g["d_min"], g["d10"], g["d60"], g["uniformity"]), (1e-3, 1e-3, 1e-3, 1.0))
+
+    def test_bad_radii_are_refused(self):
+        for radii in ([], [0.0], [float("nan")]):
+            with self.assertRaises(ValueError):
+                darcydem.grading(radii)
+        with self.assertRaises(ValueError):
+            darcydem.grading([1e-3], dimension=4)
+
+
 class BadInput(unittest.TestCase):
     def test_a_bad_scene_raises_scene_error_with_file_line_and_key(self):
         folder = tempfile.mkdtemp()
