@@ -54,6 +54,7 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
     if (scene.simulation.particles.size() > 0) {
       std::cout << "  " << darcydem::describe_grading<D>(scene.simulation.particles.radius);
     }
+    for (const auto& note : scene.notes) std::cout << "  note: " << note << '\n';
     if (scene.fluid) {
       const auto& f = *scene.fluid;
       const double dry = scene.simulation.critical_time_step();

@@ -62,6 +62,17 @@ RadiusDistribution RadiusDistribution::grading(std::vector<double> diameters, st
   return d;
 }
 
+double RadiusDistribution::passing_diameter(double x) const {
+  if (kind != Kind::grading) throw std::logic_error("passing_diameter: not a grading curve");
+  std::size_t i = 1;
+  while (i + 1 < passing.size() && passing[i] < x) ++i;
+  const double p0 = passing[i - 1];
+  const double p1 = passing[i];
+  if (!(p1 > p0)) return diameters[i];
+  const double t = std::clamp((x - p0) / (p1 - p0), 0.0, 1.0);
+  return diameters[i - 1] * std::pow(diameters[i] / diameters[i - 1], t);
+}
+
 double RadiusDistribution::largest() const {
   switch (kind) {
     case Kind::constant:

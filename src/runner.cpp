@@ -328,6 +328,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
                                    ? fluid->critical_time_step(sim.particles, sim.critical_time_step())
                                    : sim.critical_time_step()));
     if (!sim.particles.radius.empty()) *options.log << describe_grading<D>(sim.particles.radius);
+    for (const auto& note : scene.notes) *options.log << "note: " << note << '\n';
     if (fluid != nullptr) {
       std::string sides;
       for (int k = 0; k < 2 * D; ++k)

@@ -15,6 +15,7 @@
 #include "darcydem/contact/contact_laws.hpp"
 #include "darcydem/generation/generators.hpp"
 #include "darcydem/neighbour/linked_cells.hpp"
+#include "darcydem/particles/grading.hpp"
 #include "darcydem/scene/scene_fluid.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 
@@ -119,6 +120,29 @@ RadiusDistribution read_grading(TableReader& r, const toml::table& t, int dimens
                     TableReader::format_number(passing.front()), TableReader::format_number(passing.back())));
   }
   return RadiusDistribution::grading(diameters, passing, by == "mass" ? dimension : 0);
+}
+
+/// A note when the grains drawn from a grading miss its D10, D50 or D60 by
+/// more than 10 %: a grading by mass over a wide range rests its mass on
+/// few coarse grains, which a small sample lacks.
+template <int D>
+std::optional<std::string> grading_followed_loosely(const RadiusDistribution& curve,
+                                                    const std::vector<double>& radius,
+                                                    const std::string& where) {
+  if (radius.empty()) return std::nullopt;
+  const GradingSummary made = grading_of<D>(radius);
+  const std::array<double, 3> wanted = {curve.passing_diameter(0.1), curve.passing_diameter(0.5),
+                                        curve.passing_diameter(0.6)};
+  const std::array<double, 3> got = {made.d10, made.d50, made.d60};
+  bool loose = false;
+  for (std::size_t k = 0; k < 3; ++k) loose = loose || std::abs(got[k] / wanted[k] - 1.0) > 0.1;
+  if (!loose) return std::nullopt;
+  return fmt::format(
+      "{}: the {} grains drawn follow the grading curve loosely: D10, D50, D60 {:.4g}, {:.4g}, {:.4g} mm "
+      "against the curve's {:.4g}, {:.4g}, {:.4g} mm (more grains, or a narrower grading, follow it "
+      "closer{})",
+      where, radius.size(), got[0] * 1e3, got[1] * 1e3, got[2] * 1e3, wanted[0] * 1e3, wanted[1] * 1e3,
+      wanted[2] * 1e3, curve.weight_exponent > 0 ? "; by mass the few coarse grains carry much of it" : "");
 }
 
 RadiusDistribution read_radius(TableReader& r, int dimension) {
@@ -762,6 +786,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                  attempts);
       } catch (const std::runtime_error& e) {
         r.fail(r.has("count") ? "count" : "porosity", e.what());
+      }
+      if (dist.kind == RadiusDistribution::Kind::grading) {
+        if (auto note = grading_followed_loosely<D>(dist, pk.radius, r.where())) scene.notes.push_back(*note);
       }
     } else {
       const std::string rel = r.string("file");

@@ -1044,6 +1044,14 @@ TEST(SceneErrors, GradingCurvesAreReadAndChecked) {
     EXPECT_GE(scene.simulation.particles.radius[i], 0.1e-3);
     EXPECT_LE(scene.simulation.particles.radius[i], 0.6e-3);
   }
+  EXPECT_TRUE(scene.notes.empty());
+  // A grading by mass over three decades: 200 grains cannot follow it (its
+  // mass is in a few coarse grains), and the reader says so.
+  const auto wide = built_scene<2>(with("grading = { diameters = [1e-6, 1e-3], passing = [0.0, 1.0] }"));
+  ASSERT_EQ(wide.notes.size(), 1U);
+  EXPECT_NE(wide.notes[0].find("[[particles]] #1: the 200 grains drawn follow the grading curve loosely"),
+            std::string::npos)
+      << wide.notes[0];
   auto msg = load_error(with("grading = { diameters = [0.2e-3, 0.6e-3], passing = [0, 100] }"));
   EXPECT_NE(
       msg.find("[[particles]] #1 grading key 'passing': must be fractions in [0, 1] (not percent), got 100"),

@@ -130,6 +130,21 @@ TEST(Grading, TheRunLogsSummaryReadsTheCurveBack) {
   EXPECT_NEAR(s.uniformity(), 0.8409 / 0.2714, 0.1 * 0.8409 / 0.2714);
 }
 
+TEST(Grading, TheCurvesDiametersAreReadOnItsSemiLogChart) {
+  // By hand, as in the test above; a sieve's own fraction gives the sieve;
+  // on a flat part the first diameter that reaches it.
+  const auto g = RadiusDistribution::grading({0.2e-3, 0.5e-3, 1.0e-3, 2.0e-3}, {0.0, 0.3, 0.7, 1.0}, 3);
+  EXPECT_NEAR(g.passing_diameter(0.1), 0.2e-3 * std::cbrt(2.5), 1e-15);
+  EXPECT_NEAR(g.passing_diameter(0.3), 0.5e-3, 1e-15);
+  EXPECT_NEAR(g.passing_diameter(0.5), 0.5e-3 * std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(g.passing_diameter(0.6), 0.5e-3 * std::pow(2.0, 0.75), 1e-15);
+  EXPECT_NEAR(g.passing_diameter(1.0), 2.0e-3, 1e-15);
+  const auto flat = RadiusDistribution::grading({1e-3, 2e-3, 4e-3}, {0.0, 1.0, 1.0}, 3);
+  EXPECT_NEAR(flat.passing_diameter(1.0), 2e-3, 1e-15);
+  RadiusDistribution constant;
+  EXPECT_THROW((void)constant.passing_diameter(0.5), std::logic_error);
+}
+
 TEST(Grading, DiscsFollowACurveByMassWithAFlatTop) {
   // In 2D a disc of unit thickness weighs as d^2. The curve reaches 1 at
   // the third sieve: nothing coarser is drawn, and the largest radius is

@@ -39,6 +39,9 @@ struct RadiusDistribution {
   static RadiusDistribution grading(std::vector<double> diameters, std::vector<double> passing,
                                     int weight_exponent);
 
+  /// A grading's D_x: the diameter the curve passes x (in (0, 1]) at,
+  /// read between sieves linearly in log d; the first such for a flat part.
+  [[nodiscard]] double passing_diameter(double x) const;
   [[nodiscard]] double largest() const;
   /// The smallest radius that can be drawn, m.
   [[nodiscard]] double smallest() const;

@@ -114,6 +114,10 @@ struct Scene {
   std::vector<Stage<D>> stages;
   std::unique_ptr<PoreFluid<D>> fluid;  ///< optional pore fluid ([fluid])
   std::optional<SeepageColumnSpec> seepage_column;
+  /// What the reader found worth saying about a scene it accepts (e.g. a
+  /// grading the few grains drawn follow loosely): `darcydem check` and the
+  /// run log print them.
+  std::vector<std::string> notes;
 };
 
 /// Reads `simulation.dimension` (2 or 3) from a parsed scene.
