@@ -4,7 +4,6 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
-#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -309,13 +308,6 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
   return out;
 }
 
-/// The volume of a grain of radius r: a sphere, or in 2D a disc of unit
-/// thickness (m^3).
-template <int D>
-double grain_volume(double r) {
-  return D == 3 ? 4.0 / 3.0 * std::numbers::pi * r * r * r : std::numbers::pi * r * r;
-}
-
 }  // namespace
 
 template <int D>
@@ -351,7 +343,7 @@ Packing<D> random_packing_to_porosity(const Vec<D>& lo, const Vec<D>& hi, double
   double solid = 0.0;
   while (solid < target) {
     const double r = radii.sample(rng);
-    const double v = grain_volume<D>(r);
+    const double v = particle_volume<D>(r);
     if (solid + v - target > target - solid) break;
     drawn.push_back(r);
     solid += v;
@@ -360,7 +352,7 @@ Packing<D> random_packing_to_porosity(const Vec<D>& lo, const Vec<D>& hi, double
     throw std::runtime_error(fmt::format(
         "a porosity of {} leaves room for less than half of the first grain drawn (of {:.4g} m^3) in "
         "the box's {:.4g} m^3; lower it, or enlarge the box",
-        porosity, grain_volume<D>(radii.sample(rng)), box));
+        porosity, particle_volume<D>(radii.sample(rng)), box));
   }
   std::sort(drawn.begin(), drawn.end(), std::greater<>());
   std::size_t next = 0;

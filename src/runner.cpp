@@ -624,11 +624,9 @@ std::string describe_permeability(const PoreFluid<D>& fluid, const ParticleData<
       const double excess = spec.diameter * spec.diameter / (balanced * balanced) - 1.0;
       if (std::abs(excess) > 0.01) {
         out += fmt::format(
-            "note: with Ergun's drag each grain takes its own d, which balances Kozeny-Carman for d = {:.6g} "
-            "m; "
-            "at d = {:.6g} m the viscous drag is {:.1f} % {} what the pressure drop needs (drag \"darcy\" "
-            "keeps "
-            "the balance)\n",
+            "note: with Ergun's drag each grain takes its own d, which balances Kozeny-Carman for "
+            "d = {:.6g} m; at d = {:.6g} m the viscous drag is {:.1f} % {} what the pressure drop needs "
+            "(drag \"darcy\" keeps the balance)\n",
             balanced, spec.diameter, 100.0 * std::abs(excess), excess > 0.0 ? "above" : "below");
       }
     } else {

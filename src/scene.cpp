@@ -772,10 +772,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         // At most this many of the smallest grains.
         double box = 1.0;
         for (int k = 0; k < D; ++k) box *= hi[k] - lo[k];
-        const double r_min = dist.smallest();
-        const double v_min =
-            D == 3 ? 4.0 / 3.0 * std::numbers::pi * r_min * r_min * r_min : std::numbers::pi * r_min * r_min;
-        check_count_fits(r, "porosity", (1.0 - porosity) * box / v_min);
+        check_count_fits(r, "porosity", (1.0 - porosity) * box / particle_volume<D>(dist.smallest()));
       }
       const auto seed = r.optional_integer("seed").value_or(1);
       const auto attempts = r.optional_integer("max_attempts").value_or(1000);

@@ -92,11 +92,15 @@ void expect_placed_largest_first(const Packing<3>& pk, const Vec<3>& lo, const V
   }
 }
 
+/// A well-graded sand, 0.2 to 2 mm by mass (Cu about 3): the coarse grains
+/// are few by number but carry the mass, the case a sampler by number gets
+/// wrong. Its D_x, read by hand, are in the tests below.
+const std::vector<double> sand_sieves = {0.2e-3, 0.5e-3, 1.0e-3, 2.0e-3};
+const std::vector<double> sand_passing = {0.0, 0.3, 0.7, 1.0};
+
 TEST(Grading, SpheresFollowACurveByMass) {
-  // A well-graded sand, 0.2 to 2 mm (Cu about 4): the coarse grains are few
-  // by number but carry the mass, the case a sampler by number gets wrong.
-  const std::vector<double> sieves = {0.2e-3, 0.5e-3, 1.0e-3, 2.0e-3};
-  const std::vector<double> passing = {0.0, 0.3, 0.7, 1.0};
+  const std::vector<double>& sieves = sand_sieves;
+  const std::vector<double>& passing = sand_passing;
   const auto g = RadiusDistribution::grading(sieves, passing, 3);
   EXPECT_DOUBLE_EQ(g.largest(), 1.0e-3);
   // 400 000 draws: the mass above 1 mm rests on about 0.9 % of the grains,
@@ -119,7 +123,7 @@ TEST(Grading, TheRunLogsSummaryReadsTheCurveBack) {
   // in the fraction moves D_x by 0.0043 / (dP / d ln d), at most 1.3 %
   // here (dP / d ln d = 0.327 below 0.5 mm); allowed 5 %. D30 falls on a
   // sieve, where the curve steepens from 0.327 to 0.577: allowed 3 %.
-  const auto g = RadiusDistribution::grading({0.2e-3, 0.5e-3, 1.0e-3, 2.0e-3}, {0.0, 0.3, 0.7, 1.0}, 3);
+  const auto g = RadiusDistribution::grading(sand_sieves, sand_passing, 3);
   std::vector<double> r = draw_diameters(g, 400000, 3);
   for (double& x : r) x *= 0.5;
   const GradingSummary s = grading_of<3>(r);
@@ -133,7 +137,7 @@ TEST(Grading, TheRunLogsSummaryReadsTheCurveBack) {
 TEST(Grading, TheCurvesDiametersAreReadOnItsSemiLogChart) {
   // By hand, as in the test above; a sieve's own fraction gives the sieve;
   // on a flat part the first diameter that reaches it.
-  const auto g = RadiusDistribution::grading({0.2e-3, 0.5e-3, 1.0e-3, 2.0e-3}, {0.0, 0.3, 0.7, 1.0}, 3);
+  const auto g = RadiusDistribution::grading(sand_sieves, sand_passing, 3);
   EXPECT_NEAR(g.passing_diameter(0.1), 0.2e-3 * std::cbrt(2.5), 1e-15);
   EXPECT_NEAR(g.passing_diameter(0.3), 0.5e-3, 1e-15);
   EXPECT_NEAR(g.passing_diameter(0.5), 0.5e-3 * std::sqrt(2.0), 1e-15);

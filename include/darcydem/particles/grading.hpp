@@ -10,8 +10,9 @@ namespace darcydem {
 struct GradingSummary {
   double d_min = 0.0;  ///< smallest diameter, m
   double d_max = 0.0;  ///< largest diameter, m
-  double d10 =
-      0.0;  ///< D_x: the smallest grain diameter that, with all grains no larger, carries x of the mass, m
+  /// D_x: the smallest grain diameter that, with all grains no larger,
+  /// carries x of the mass, m.
+  double d10 = 0.0;
   double d30 = 0.0;
   double d50 = 0.0;
   double d60 = 0.0;
