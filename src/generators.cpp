@@ -241,19 +241,32 @@ namespace {
 
 /// Random sequential addition into [lo, hi] of `count` particles whose
 /// radii `next_radius()` gives in turn (none above r_max), positions from
-/// `rng`. `what_to_change` ends the message when one finds no room.
+/// `rng`. Along an axis that `wrap` marks the box is a period: centres
+/// anywhere in [lo, hi), distances to the nearest image. `what_to_change`
+/// ends the message when one finds no room.
 template <int D, class NextRadius>
-Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count, double r_max,
-                          NextRadius&& next_radius, std::mt19937_64& rng, std::int64_t max_attempts,
-                          std::string_view what_to_change) {
+Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, const std::array<bool, D>& wrap,
+                          std::int64_t count, double r_max, NextRadius&& next_radius, std::mt19937_64& rng,
+                          std::int64_t max_attempts, std::string_view what_to_change) {
   Packing<D> out;
-  const double cell = 2.0 * r_max;
+  // Search cells at least 2 r_max wide; along a period a whole number of
+  // them fills it, so that the cells wrap.
   std::array<std::int64_t, D> dims{};
+  Vec<D> width;
+  Vec<D> length = hi - lo;
   for (int k = 0; k < D; ++k) {
-    dims[k] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((hi[k] - lo[k]) / cell)));
+    const double n = length[k] / (2.0 * r_max);
+    dims[k] = std::max<std::int64_t>(1, static_cast<std::int64_t>(wrap[k] ? std::floor(n) : std::ceil(n)));
+    width[k] = wrap[k] ? length[k] / static_cast<double>(dims[k]) : 2.0 * r_max;
   }
   auto cell_of = [&](const Vec<D>& x, int k) {
-    return std::clamp<std::int64_t>(static_cast<std::int64_t>((x[k] - lo[k]) / cell), 0, dims[k] - 1);
+    return std::clamp<std::int64_t>(static_cast<std::int64_t>((x[k] - lo[k]) / width[k]), 0, dims[k] - 1);
+  };
+  auto nearest_image = [&](Vec<D> d) {
+    for (int k = 0; k < D; ++k) {
+      if (wrap[k]) d[k] -= length[k] * std::round(d[k] / length[k]);
+    }
+    return d;
   };
   auto flat = [&](const std::array<std::int64_t, D>& c) {
     std::int64_t f = c[D - 1];
@@ -266,7 +279,11 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
     bool placed = false;
     for (std::int64_t attempt = 0; attempt < max_attempts && !placed; ++attempt) {
       Vec<D> x;
-      for (int k = 0; k < D; ++k) x[k] = lo[k] + r + (hi[k] - lo[k] - 2.0 * r) * unit_random(rng);
+      for (int k = 0; k < D; ++k) {
+        x[k] = wrap[k] ? lo[k] + length[k] * unit_random(rng)
+                       : lo[k] + r + (length[k] - 2.0 * r) * unit_random(rng);
+        if (wrap[k] && !(x[k] < hi[k])) x[k] = lo[k];  // rounded up to the period's end
+      }
       std::array<std::int64_t, D> c{};
       for (int k = 0; k < D; ++k) c[k] = cell_of(x, k);
       bool free = true;
@@ -278,6 +295,7 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
         for (int k = 0; k < D; ++k) {
           o[k] = c[k] + (rest % 3) - 1;
           rest /= 3;
+          if (wrap[k]) o[k] = (o[k] + dims[k]) % dims[k];
           inside = inside && o[k] >= 0 && o[k] < dims[k];
         }
         if (!inside) continue;
@@ -285,7 +303,7 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
         if (it == grid.end()) continue;
         for (std::uint32_t j : it->second) {
           const double reach = r + out.radius[j];
-          if ((out.position[j] - x).squaredNorm() < reach * reach) {
+          if (nearest_image(out.position[j] - x).squaredNorm() < reach * reach) {
             free = false;
             break;
           }
@@ -312,13 +330,14 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
 
 template <int D>
 Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count,
-                          const RadiusDistribution& radii, std::uint64_t seed, std::int64_t max_attempts) {
+                          const RadiusDistribution& radii, std::uint64_t seed, std::int64_t max_attempts,
+                          const std::array<bool, D>& wrap) {
   std::mt19937_64 rng(seed);
   const std::string_view change = "enlarge it, reduce the count, or raise max_attempts";
   if (radii.kind != RadiusDistribution::Kind::grading) {
     // Each size drawn just before its place, as always (the same packings).
     return place_randomly<D>(
-        lo, hi, count, radii.largest(), [&] { return radii.sample(rng); }, rng, max_attempts, change);
+        lo, hi, wrap, count, radii.largest(), [&] { return radii.sample(rng); }, rng, max_attempts, change);
   }
   // A grading's sizes are drawn first and placed largest first.
   std::vector<double> drawn(static_cast<std::size_t>(count));
@@ -326,13 +345,13 @@ Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
   std::sort(drawn.begin(), drawn.end(), std::greater<>());
   std::size_t next = 0;
   return place_randomly<D>(
-      lo, hi, count, radii.largest(), [&] { return drawn[next++]; }, rng, max_attempts, change);
+      lo, hi, wrap, count, radii.largest(), [&] { return drawn[next++]; }, rng, max_attempts, change);
 }
 
 template <int D>
 Packing<D> random_packing_to_porosity(const Vec<D>& lo, const Vec<D>& hi, double porosity,
                                       const RadiusDistribution& radii, std::uint64_t seed,
-                                      std::int64_t max_attempts) {
+                                      std::int64_t max_attempts, const std::array<bool, D>& wrap) {
   std::mt19937_64 rng(seed);
   double box = 1.0;
   for (int k = 0; k < D; ++k) box *= hi[k] - lo[k];
@@ -362,8 +381,8 @@ Packing<D> random_packing_to_porosity(const Vec<D>& lo, const Vec<D>& hi, double
       "under gravity, or raise max_attempts",
       D == 3 ? 38 : 54);
   return place_randomly<D>(
-      lo, hi, static_cast<std::int64_t>(drawn.size()), radii.largest(), [&] { return drawn[next++]; }, rng,
-      max_attempts, change);
+      lo, hi, wrap, static_cast<std::int64_t>(drawn.size()), radii.largest(), [&] { return drawn[next++]; },
+      rng, max_attempts, change);
 }
 
 template <int D>
@@ -437,15 +456,17 @@ void write_packing_csv(const std::string& path, const ParticleData<D>& p, const 
   if (!out) throw std::runtime_error(fmt::format("{}: cannot write the particle file", path));
 }
 
-#define DARCYDEM_INSTANTIATE(D)                                                                              \
-  template Packing<D> lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);                      \
-  template Packing<D> dense_lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);                \
-  template Packing<D> column_packing<D>(const Vec<D>&, const Vec<D>&, int, double, double);                  \
-  template Packing<D> random_packing<D>(const Vec<D>&, const Vec<D>&, std::int64_t,                          \
-                                        const RadiusDistribution&, std::uint64_t, std::int64_t);             \
-  template Packing<D> random_packing_to_porosity<D>(const Vec<D>&, const Vec<D>&, double,                    \
-                                                    const RadiusDistribution&, std::uint64_t, std::int64_t); \
-  template Packing<D> read_packing_csv<D>(const std::string&);                                               \
+#define DARCYDEM_INSTANTIATE(D)                                                                             \
+  template Packing<D> lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);                     \
+  template Packing<D> dense_lattice_packing<D>(const Vec<D>&, const Vec<D>&, double, double);               \
+  template Packing<D> column_packing<D>(const Vec<D>&, const Vec<D>&, int, double, double);                 \
+  template Packing<D> random_packing<D>(const Vec<D>&, const Vec<D>&, std::int64_t,                         \
+                                        const RadiusDistribution&, std::uint64_t, std::int64_t,             \
+                                        const std::array<bool, D>&);                                        \
+  template Packing<D> random_packing_to_porosity<D>(const Vec<D>&, const Vec<D>&, double,                   \
+                                                    const RadiusDistribution&, std::uint64_t, std::int64_t, \
+                                                    const std::array<bool, D>&);                            \
+  template Packing<D> read_packing_csv<D>(const std::string&);                                              \
   template void write_packing_csv<D>(const std::string&, const ParticleData<D>&, const std::string&);
 DARCYDEM_INSTANTIATE(2)
 DARCYDEM_INSTANTIATE(3)

@@ -903,6 +903,21 @@ double PoreFluid<D>::pressure_at(const Vec<D>& x) const {
 }
 
 template <int D>
+double PoreFluid<D>::side_pressure(int side) const {
+  const int patch = side - 2 * D;
+  double force = 0.0;
+  double area = 0.0;
+  for (const BoundaryFace& bf : boundary_faces_) {
+    if (patch >= 0 ? bf.patch != patch : bf.side != side) continue;
+    const double g = face_gq_[bf.side / 2][bf.index][0];
+    const bool upper = (bf.side & 1) != 0;
+    force += bf.area * (upper ? pressure_[bf.cell] + g * bf.half : pressure_[bf.cell] - g * bf.half);
+    area += bf.area;
+  }
+  return area > 0.0 ? force / area : std::numeric_limits<double>::quiet_NaN();
+}
+
+template <int D>
 std::vector<Vec<D>> PoreFluid<D>::darcy_velocity() const {
   std::vector<Vec<D>> v(grid.size());
   for (std::size_t c = 0; c < grid.size(); ++c) {

@@ -130,6 +130,8 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       if (fluid == nullptr) return 0.0;
       return probe.side < 2 * D ? fluid->side_inflow(probe.side)
                                 : fluid->patch_inflow(static_cast<std::size_t>(probe.side - 2 * D));
+    case ProbeQuantity::side_pressure:
+      return fluid != nullptr ? fluid->side_pressure(probe.side) : 0.0;
     case ProbeQuantity::fluid_balance:
       return fluid != nullptr ? fluid->total_balance().imbalance() : 0.0;
     case ProbeQuantity::fluid_iterations:

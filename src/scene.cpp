@@ -776,11 +776,20 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       }
       const auto seed = r.optional_integer("seed").value_or(1);
       const auto attempts = r.optional_integer("max_attempts").value_or(1000);
+      // A box that spans a [periodic] axis's whole period fills it: the
+      // cloud wraps round, grains straddling its ends.
+      std::array<bool, D> wrap{};
+      for (int k = 0; k < D; ++k) {
+        const auto& cell = sim.periodic;
+        const double tol = 1e-9 * cell.length[k];
+        wrap[k] = cell.periodic[k] && std::abs(lo[k] - cell.lower[k]) <= tol &&
+                  std::abs(hi[k] - (cell.lower[k] + cell.length[k])) <= tol;
+      }
       try {
         pk = r.has("count")
-                 ? random_packing<D>(lo, hi, count, dist, static_cast<std::uint64_t>(seed), attempts)
+                 ? random_packing<D>(lo, hi, count, dist, static_cast<std::uint64_t>(seed), attempts, wrap)
                  : random_packing_to_porosity<D>(lo, hi, porosity, dist, static_cast<std::uint64_t>(seed),
-                                                 attempts);
+                                                 attempts, wrap);
       } catch (const std::runtime_error& e) {
         r.fail(r.has("count") ? "count" : "porosity", e.what());
       }
@@ -871,15 +880,16 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       r.fail("name", fmt::format("probe \"{}\" is defined twice", p.name));
     }
     probe_names.push_back(p.name);
-    const std::string q =
-        r.choice("quantity",
-                 {"particle_position", "particle_velocity", "wall_position", "wall_force", "wall_fluid_force",
-                  "kinetic_energy", "contact_count", "coordination", "max_overlap", "unbalanced_force",
-                  "pore_pressure", "pore_pressure_profile", "fluid_inflow", "fluid_balance",
-                  "fluid_iterations", "particles_in_box", "mean_particle_position", "stress", "porosity"});
+    const std::string q = r.choice(
+        "quantity", {"particle_position", "particle_velocity",      "wall_position", "wall_force",
+                     "wall_fluid_force",  "kinetic_energy",         "contact_count", "coordination",
+                     "max_overlap",       "unbalanced_force",       "pore_pressure", "pore_pressure_profile",
+                     "fluid_inflow",      "side_pressure",          "fluid_balance", "fluid_iterations",
+                     "particles_in_box",  "mean_particle_position", "stress",        "porosity"});
     r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points", "min", "max"});
     const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
-                             q == "fluid_balance" || q == "fluid_iterations" || q == "wall_fluid_force";
+                             q == "side_pressure" || q == "fluid_balance" || q == "fluid_iterations" ||
+                             q == "wall_fluid_force";
     if (fluid_probe && !scene.fluid) {
       r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
     }
@@ -887,7 +897,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         q == "particles_in_box" || q == "mean_particle_position" || q == "stress" || q == "porosity";
     for (std::string k : {"position", "side", "from", "to", "points", "min", "max"}) {
       const bool applies = (q == "pore_pressure" && k == "position") ||
-                           (q == "fluid_inflow" && k == "side") ||
+                           ((q == "fluid_inflow" || q == "side_pressure") && k == "side") ||
                            (q == "pore_pressure_profile" && (k == "from" || k == "to" || k == "points")) ||
                            (box_probe && (k == "min" || k == "max"));
       if (r.has(k) && !applies) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
@@ -948,13 +958,19 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     } else if (q == "pore_pressure") {
       p.quantity = ProbeQuantity::pore_pressure;
       p.position = r.numbers("position", D);
-    } else if (q == "fluid_inflow") {
-      p.quantity = ProbeQuantity::fluid_inflow;
+    } else if (q == "fluid_inflow" || q == "side_pressure") {
+      p.quantity = q == "fluid_inflow" ? ProbeQuantity::fluid_inflow : ProbeQuantity::side_pressure;
       // A side, or a patch of one (index 2 D + its index in the patches).
       auto names = std::vector<std::string>(side_names, side_names + 2 * D);
       for (const auto& patch : scene.fluid->patches) names.push_back(patch.name);
       const std::string side = r.choice("side", names);
       p.side = static_cast<int>(std::find(names.begin(), names.end(), side) - names.begin());
+      if (p.side < 2 * D && scene.fluid->grid.periodic[p.side / 2]) {
+        r.fail("side",
+               fmt::format("the fluid grid is periodic along {}: its side {} is no boundary (allowed: "
+                           "a side along a non-periodic axis, or a patch)",
+                           "xyz"[p.side / 2], side));
+      }
     } else if (q == "fluid_balance" || q == "fluid_iterations") {
       p.quantity = q == "fluid_balance" ? ProbeQuantity::fluid_balance : ProbeQuantity::fluid_iterations;
     } else if (q == "particle_position" || q == "particle_velocity") {

@@ -536,6 +536,7 @@ TEST(SceneErrors, FluidPatchesAreChecked) {
   // A probe reads a patch's inflow by its name.
   const std::string probe = "\n[[probe]]\nname = \"q\"\nquantity = \"fluid_inflow\"\nside = \"inlet\"\n";
   EXPECT_EQ(load_error(with_patch(inlet, probe)), "");
+  EXPECT_EQ(load_error(with_patch(inlet, replace(probe, "fluid_inflow", "side_pressure"))), "");
   msg = load_error(with_patch(inlet, replace(probe, "side = \"inlet\"", "side = \"inlte\"")));
   EXPECT_NE(msg.find("did you mean \"inlet\"?"), std::string::npos) << msg;
   // The seepage column's analysis compares with a 1D solution: whole sides only.
@@ -935,6 +936,17 @@ TEST(SceneErrors, PeriodicFluidGridIsChecked) {
   const std::string stage = "gravity = [0.0, -9.81]\n";
   msg = load_error(replace(good, stage, stage + "[stage.fluid.boundary]\nx_max = { type = \"no_flow\" }\n"));
   EXPECT_NE(msg.find("key 'x_max': the scene is periodic along x"), std::string::npos) << msg;
+  // A probe of a side's inflow or pressure: not on the periodic axis's sides.
+  for (const std::string quantity : {"fluid_inflow", "side_pressure"}) {
+    const std::string probe =
+        "\n[[probe]]\nname = \"p\"\nquantity = \"" + quantity + "\"\nside = \"y_min\"\n";
+    EXPECT_EQ(load_error(good + probe), "") << quantity;
+    msg = load_error(good + replace(probe, "y_min", "x_max"));
+    EXPECT_NE(msg.find("[[probe]] #1 key 'side': the fluid grid is periodic along x: its side x_max is no "
+                       "boundary (allowed: a side along a non-periodic axis, or a patch)"),
+              std::string::npos)
+        << msg;
+  }
 }
 
 TEST(SceneErrors, WallsThatDisplaceTheFluidAreChecked) {

@@ -113,6 +113,38 @@ TEST(Generators, RandomPackingIsInsideAndDoesNotOverlap) {
   EXPECT_NE(other.position[123], pk.position[123]);
 }
 
+// Along an axis marked to wrap, the box is a period: centres anywhere in
+// [lo, hi), grains straddling its ends, none overlapping another's nearest
+// image. Centres fall uniformly, so the share within a radius of either end
+// of x is 2 r / L = 1/6 (binomial; 4 sigma). z keeps its walls.
+TEST(Generators, RandomPackingWrapsRoundAPeriod) {
+  RadiusDistribution d;
+  d.value = 0.5e-3;
+  const double L = 6e-3;
+  const Vec<3> lo(0, 0, 0), hi(L, L, 0.02);
+  const std::int64_t n = 360;  // solid fraction 0.262 of the box
+  const auto pk = random_packing<3>(lo, hi, n, d, 3, 100000, {true, true, false});
+  ASSERT_EQ(pk.position.size(), static_cast<std::size_t>(n));
+  int near_end = 0;
+  for (std::size_t i = 0; i < pk.position.size(); ++i) {
+    const auto& x = pk.position[i];
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_GE(x[k], 0.0);
+      EXPECT_LT(x[k], L);
+    }
+    EXPECT_GE(x.z() - 0.5e-3, -1e-15);
+    EXPECT_LE(x.z() + 0.5e-3, 0.02 + 1e-15);
+    near_end += (x.x() < 0.5e-3 || x.x() > L - 0.5e-3) ? 1 : 0;
+    for (std::size_t j = 0; j < i; ++j) {
+      Vec<3> gap = pk.position[j] - x;
+      for (int k = 0; k < 2; ++k) gap[k] -= L * std::round(gap[k] / L);
+      EXPECT_GE(gap.norm(), 1e-3 - 1e-15) << i << " and " << j;
+    }
+  }
+  const double mean = n / 6.0;
+  EXPECT_NEAR(near_end, mean, 4.0 * std::sqrt(mean * 5.0 / 6.0));
+}
+
 // The dense lattices: nearest centres exactly a spacing apart, and a
 // particle away from the box's edges has the kissing number of its
 // arrangement as neighbours at that distance (6 hexagonal, 12 fcc), none

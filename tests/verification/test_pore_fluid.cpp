@@ -161,6 +161,13 @@ TEST(PoreFluid, DarcyLawThroughUniformPermeability) {
   const double area = 0.01 * 0.01;
   EXPECT_NEAR(f.side_inflow(4), q * area, 1e-12 * q * area);
   EXPECT_NEAR(f.side_inflow(5), -q * area, 1e-9 * q * area);
+  // The sides' pressures (side_pressure) from the same line: the inlet
+  // z = 0 at q mu H / kappa, the drained top at its 0, and a no-flow side
+  // the mean of u over the height, q mu H / (2 kappa).
+  EXPECT_NEAR(f.side_pressure(4), scale, 1e-9 * scale);
+  EXPECT_NEAR(f.side_pressure(5), 0.0, 1e-12 * scale);
+  EXPECT_NEAR(f.side_pressure(0), 0.5 * scale, 1e-9 * scale);
+  EXPECT_NEAR(f.side_pressure(3), 0.5 * scale, 1e-9 * scale);
 }
 
 /// The steady flow through the frozen packing solved by CG on the grid's

@@ -35,6 +35,18 @@ TEST(SceneCases, SlipToRollReachesFiveSevenths) {
 // assert (measured: 1.6e-4).
 TEST(SceneCases, PeriodicBedRestsOnTheFloorWithItsWholeWeight) {
   auto scene = testing::load_scene<3>("examples/dem_cases/periodic_bed.toml");
+  // Its random cloud spans the period along x and y, so it wraps round
+  // (docs/SCENE.md): centres fall uniformly, and about 200 x (2 r / L) = 33
+  // grains (r 0.4-0.6 mm, L = 6 mm) lie within their radius of x's ends
+  // (binomial, sigma 5.3); at least 10 (4 sigma below). Without wrapping,
+  // none.
+  int straddling = 0;
+  for (std::size_t i = 0; i < scene.simulation.particles.size(); ++i) {
+    const double x = scene.simulation.particles.position[i].x();
+    const double r = scene.simulation.particles.radius[i];
+    straddling += (x < r || x > 0.006 - r) ? 1 : 0;
+  }
+  EXPECT_GE(straddling, 10);
   testing::run_stages(scene);
   const auto& sim = scene.simulation;
   ASSERT_LT(sim.unbalanced_force_ratio(), 1e-4) << "the bed must have come to rest";

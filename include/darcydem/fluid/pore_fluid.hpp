@@ -226,6 +226,16 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Flow into the grid through one patch (index in `patches`) in the last
   /// step, m^3/s; part of its side's side_inflow.
   [[nodiscard]] double patch_inflow(std::size_t patch) const { return patch_inflow_.at(patch); }
+  /// The excess pressure on a side of the grid (`side` 0 .. 2D-1, as
+  /// side_inflow) or on a patch (`side` = 2D + its index in `patches`),
+  /// Pa: the mean over its faces, weighted by their areas, of each face's
+  /// pressure, its cell's carried to the face by the face's gradient (on a
+  /// drained face the imposed value; on a flux face the cell's plus the
+  /// drop of the inflow through the half cell; on a no-flow face the
+  /// cell's). What a piezometer at an inlet reads: the pressure drop of a
+  /// permeameter or a fluidization curve. NaN for a side without faces
+  /// (a periodic axis).
+  [[nodiscard]] double side_pressure(int side) const;
   /// Boundary faces of a patch (as found by initialize()).
   [[nodiscard]] std::size_t patch_faces(std::size_t patch) const { return patch_faces_.at(patch); }
   /// Area of a patch's faces, m^2 (2D: per metre).

@@ -1,6 +1,7 @@
 #pragma once
 // Particle generators: regular lattice, a single column, random
 // non-overlapping packing in a box, and a CSV file.
+#include <array>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -80,9 +81,13 @@ Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, dou
 /// particle do not find room. With a grading curve every size is drawn
 /// first and the largest grains are placed first, so that a wide grading
 /// fits (the sizes drawn are the same; only the order of placing changes).
+/// Along an axis that `wrap` marks, [lo, hi) is a period: the centres lie
+/// anywhere in it and grains may straddle its ends, kept apart from each
+/// other's nearest image (a cloud filling a [periodic] cell).
 template <int D>
 Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count,
-                          const RadiusDistribution& radii, std::uint64_t seed, std::int64_t max_attempts);
+                          const RadiusDistribution& radii, std::uint64_t seed, std::int64_t max_attempts,
+                          const std::array<bool, D>& wrap = {});
 
 /// The same, with as many particles as bring the grains' volume nearest to
 /// (1 - porosity) of the box's (spheres; in 2D discs of unit thickness over
@@ -90,11 +95,11 @@ Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
 /// kept only if that is nearer, so the volume is off by at most half a
 /// grain; then placed largest first. Random sequential addition jams at a
 /// solid fraction of about 0.38 (spheres) or 0.55 (discs) of equal grains,
-/// so a lower porosity throws std::runtime_error.
+/// so a lower porosity throws std::runtime_error. `wrap` as above.
 template <int D>
 Packing<D> random_packing_to_porosity(const Vec<D>& lo, const Vec<D>& hi, double porosity,
                                       const RadiusDistribution& radii, std::uint64_t seed,
-                                      std::int64_t max_attempts);
+                                      std::int64_t max_attempts, const std::array<bool, D>& wrap = {});
 
 /// Reads `x,y[,z],radius` rows (a header line naming the columns first).
 /// Throws std::runtime_error naming the file and line on a bad row.

@@ -29,6 +29,7 @@ enum class ProbeQuantity {
   unbalanced_force,
   pore_pressure,           ///< excess pore pressure at a point, Pa
   fluid_inflow,            ///< flow into the grid through one side, m^3/s
+  side_pressure,           ///< excess pressure on one side (or patch) of the grid, Pa
   fluid_balance,           ///< inflow - stored - pore change since the start, m^3
   fluid_iterations,        ///< iterations of the last pressure solve
   particles_in_box,        ///< how many particle centres lie in a box
@@ -47,7 +48,7 @@ struct ProbeSpec {
   /// impermeable plate), or -1 (a wall that displaces the fluid)
   std::int64_t barrier = -1;
   std::vector<double> position;  ///< pore_pressure: the point, m
-  int side = 0;                  ///< fluid_inflow: x_min, x_max, y_min, ...
+  int side = 0;                  ///< fluid_inflow, side_pressure: x_min, x_max, y_min, ...
   /// particles_in_box, mean_particle_position, stress, porosity: the box, m
   std::vector<double> box_min, box_max;
   std::array<int, 2> tensor{0, 0};  ///< stress: the component (i, j); (-1, -1) the mean, trace / D
