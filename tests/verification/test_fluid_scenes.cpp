@@ -331,6 +331,92 @@ TEST(FluidScenes, GradedUpwardSeepage) {
   }
 }
 
+// Fluidization (examples/fluid_cases/fluidized_bed.toml): 240 spheres of
+// 1 mm, 2650 kg/m^3, in a 4 x 4 mm cell periodic along x and y, settled in
+// water, then an inflow through the floor ramped from 0 to 25 mm/s over
+// 0.5 s and held (the fluidization curve: fluidization_curve.py). Once
+// fluidized, the bed hangs on the water: the floor carries nothing and the
+// pressure drop is its submerged weight per area,
+//   W' / A = (2650 - 1000) x 9.80665 x 240 (pi / 6) (1e-3)^3 / 16e-6
+//          = 127.085 Pa,
+// whatever the bed's porosity, which grows with the flow. Averaged over the
+// rows at q >= 16 mm/s (1.2 x the 13 mm/s where the inlet pressure meets
+// W' / A), every 5 ms: the inlet pressure (side_pressure) less the drop
+// through the clear water above the bed (the cells there take max_porosity
+// 0.9: mu q h / kappa(0.9), h the grid's 24 mm less the bed's height
+// 2 z_mean, under 1 % of W' / A) within 2.5 % of W' / A, the floor's share
+// of W' below 3 %, and the two together W' within 1 %. Bounds: the bed is
+// never still (its layers fluctuate and, held at 25 mm/s, it overshoots
+// and swings, the floor taking up to 10 % of W' at moments; measured means
+// -0.85 % and 0.76 %); the sum is the grains' momentum balance, off only
+// by their mean acceleration (-0.09 % measured).
+TEST(FluidScenes, FluidizedBed) {
+  auto scene = darcydem::testing::load_scene<3>("examples/fluid_cases/fluidized_bed.toml");
+  ASSERT_EQ(scene.simulation.particles.size(), 240U);
+  // The cloud fills the period and wraps round: about 240 x (2 r / L) = 60
+  // grains lie within a radius of x's ends (binomial, sigma 6.8); none would
+  // without wrapping.
+  int straddling = 0;
+  for (const auto& x : scene.simulation.particles.position)
+    straddling += (x.x() < 5e-4 || x.x() > 3.5e-3) ? 1 : 0;
+  EXPECT_GE(straddling, 30);
+  RunOptions options;
+  options.out_dir = temp_dir("fluidized_bed");
+  run_scene(scene, options);
+  auto probes = read_probes(options.out_dir + "/probes.csv");
+  const double area = 16e-6;
+  const double weight_per_area = 1650.0 * 9.80665 * 240.0 * std::numbers::pi / 6.0 * 1e-9 / area;
+  EXPECT_NEAR(weight_per_area, 127.085, 1e-3);
+  const double kappa_clear = 1e-6 * 0.729 / (150.0 * 0.01);  // Kozeny-Carman at n = 0.9, d = 1 mm
+  double pressure = 0.0;
+  double floor = 0.0;
+  int rows = 0;
+  for (std::size_t i = 0; i < probes["time"].size(); ++i) {
+    const double q = probes["inflow"][i] / area;
+    if (q < 16e-3) continue;
+    const double clear = 0.024 - 2.0 * probes["mean_height"][i];
+    pressure += probes["inlet_pressure"][i] - 1e-3 * q * clear / kappa_clear;
+    floor += -probes["floor_force"][i] / area;
+    ++rows;
+  }
+  ASSERT_GT(rows, 50);  // 0.3 s of rows every 5 ms
+  pressure /= rows;
+  floor /= rows;
+  std::printf(
+      "fluidized bed, %d rows: inlet pressure less the clear water's drop %.3f Pa, floor %.3f Pa, against "
+      "W'/A %.3f Pa (%+.2f %%, %.2f %%, sum %+.2f %%)\n",
+      rows, pressure, floor, weight_per_area, 100.0 * (pressure / weight_per_area - 1.0),
+      100.0 * floor / weight_per_area, 100.0 * ((pressure + floor) / weight_per_area - 1.0));
+  EXPECT_NEAR(pressure, weight_per_area, 0.025 * weight_per_area);
+  EXPECT_LT(floor, 0.03 * weight_per_area);
+  EXPECT_NEAR(pressure + floor, weight_per_area, 0.01 * weight_per_area);
+
+  // Where the fixed bed's line meets it: Darcy's law with Kozeny-Carman's
+  // permeability at the bed's porosity when the inflow starts (height H =
+  // 2 z_mean, n = 1 - V_s / (A H)) lifts the bed at q_mf = (W' / A) kappa /
+  // (mu H). Measured: the first row whose inlet pressure reaches 98 % of
+  // W' / A, its q within 6 % of q_mf: the rows are 0.25 mm/s (2 %) apart,
+  // and the bed is not uniform (looser at the floor, the top cell holding
+  // its surface): along the fixed branch the inlet pressure runs 2-4 %
+  // below Kozeny-Carman's line at the row's own mean porosity.
+  std::size_t start = 0;
+  while (start < probes["time"].size() && !(probes["inflow"][start] > 0.0)) ++start;
+  ASSERT_LT(start, probes["time"].size());
+  const double height = 2.0 * probes["mean_height"][start];
+  const double n = 1.0 - 240.0 * std::numbers::pi / 6.0 * 1e-9 / (area * height);
+  const double kappa = 1e-6 * n * n * n / (150.0 * (1.0 - n) * (1.0 - n));
+  const double q_mf = weight_per_area * kappa / (1e-3 * height);
+  std::size_t lift = start;
+  while (lift < probes["time"].size() && probes["inlet_pressure"][lift] < 0.98 * weight_per_area) ++lift;
+  ASSERT_LT(lift, probes["time"].size());
+  const double q_lift = probes["inflow"][lift] / area;
+  std::printf(
+      "fluidized bed: porosity %.4f, height %.3f mm at the inflow's start; lifted at q = %.3f mm/s "
+      "against Kozeny-Carman's %.3f mm/s (%+.2f %%)\n",
+      n, height * 1e3, q_lift * 1e3, q_mf * 1e3, 100.0 * (q_lift / q_mf - 1.0));
+  EXPECT_NEAR(q_lift, q_mf, 0.06 * q_mf);
+}
+
 TEST(FluidScenes, UpwardSeepageThroughABed) {
   auto scene = darcydem::testing::load_scene<3>("examples/fluid_cases/upward_seepage_bed.toml");
   const double thrust = expect_upward_seepage_balance(scene, "upward seepage");
