@@ -157,9 +157,21 @@ TEST(FluidPatches, APatchOverAWholeSideIsThatSide) {
     }
     f.initialize(p);
     for (double t : {0.1, 0.2, 0.5, 2.0}) f.update(p, 0.1, t);
-    return f.pressure();
+    return f;
   };
-  EXPECT_EQ(run(true), run(false));
+  const auto with_patch = run(true);
+  const auto without = run(false);
+  EXPECT_EQ(with_patch.pressure(), without.pressure());
+  // The floor's pressure (side_pressure), by the patch's name or the
+  // side's, in both: the steady 1D line's 5 Pa + q mu H / kappa_y at the
+  // floor, within 1e-5: the last step (0.1 s) still stores the water of
+  // its rise, (H / K_f) du / dt = (0.004 / 2e9) x 69 Pa / 0.1 s = 1.4e-9 m/s
+  // against q = 1e-3 m/s, about 1e-6 of the drop (measured 4.2e-7).
+  const double floor = 5.0 + 1e-3 * kMu * 0.004 / 3e-11;
+  EXPECT_NEAR(with_patch.side_pressure(4), floor, 1e-5 * floor);  // the patch: 2 D + 0
+  EXPECT_EQ(with_patch.side_pressure(2), with_patch.side_pressure(4));
+  EXPECT_EQ(without.side_pressure(2), with_patch.side_pressure(4));
+  EXPECT_NEAR(without.side_pressure(3), 5.0, 1e-12 * floor);  // the drained top
 }
 
 TEST(FluidPatches, PatchesIn3DTakeTheirFacesOnly) {
