@@ -796,6 +796,16 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       if (dist.kind == RadiusDistribution::Kind::grading) {
         if (auto note = grading_followed_loosely<D>(dist, pk.radius, r.where())) scene.notes.push_back(*note);
       }
+      std::string wrapped;
+      for (int k = 0; k < D; ++k) {
+        if (wrap[k]) wrapped += std::string(wrapped.empty() ? "" : " and ") + "xyz"[k];
+      }
+      if (!wrapped.empty()) {
+        scene.notes.push_back(
+            fmt::format("{}: the box spans the period along {}, so the cloud wraps round it: "
+                        "grains straddle the period's ends",
+                        r.where(), wrapped));
+      }
     } else {
       const std::string rel = r.string("file");
       const std::string path = (base / rel).string();

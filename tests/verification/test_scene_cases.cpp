@@ -47,6 +47,10 @@ TEST(SceneCases, PeriodicBedRestsOnTheFloorWithItsWholeWeight) {
     straddling += (x < r || x > 0.006 - r) ? 1 : 0;
   }
   EXPECT_GE(straddling, 10);
+  ASSERT_EQ(scene.notes.size(), 1U);
+  EXPECT_EQ(scene.notes[0],
+            "[[particles]] #1: the box spans the period along x and y, so the cloud wraps round it: grains "
+            "straddle the period's ends");
   testing::run_stages(scene);
   const auto& sim = scene.simulation;
   ASSERT_LT(sim.unbalanced_force_ratio(), 1e-4) << "the bed must have come to rest";
