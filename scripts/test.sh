@@ -24,7 +24,7 @@ if [ "${1:-}" = "--sanitize" ]; then
   # upward-seepage bed again, about 3 minutes here; the graded grid's code
   # runs here in the GradedGrid tests). So is the 3D oedometer (two runs of
   # about 90 000 steps of 850 spheres; its coupled code runs here in the
-  # hydrostatic and upward-seepage beds). So is the fluidized bed (136 000
+  # hydrostatic and upward-seepage beds). So is the fluidized bed (155 000
   # steps of 240 spheres; its drag over the overlapped cells, side pressure
   # and wrapped cloud run here in the DragSpread, Darcy and Generators tests).
   OMP_NUM_THREADS=1 ctest --output-on-failure -j "$(nproc)" -E "SeepageColumn(3D)?Kf1e7|HeaveStarts|Oedometer|SheetPileHeave|PilePenetration|GradedUpwardSeepage|FluidizedBed|Reproducibility.*/0\.1"

@@ -11,6 +11,8 @@
 
 #include <fmt/format.h>
 
+#include "darcydem/core/periodic_cell.hpp"
+
 namespace darcydem {
 
 RadiusDistribution RadiusDistribution::grading(std::vector<double> diameters, std::vector<double> passing,
@@ -253,7 +255,7 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, const std::array<b
   // them fills it, so that the cells wrap.
   std::array<std::int64_t, D> dims{};
   Vec<D> width;
-  Vec<D> length = hi - lo;
+  const Vec<D> length = hi - lo;
   for (int k = 0; k < D; ++k) {
     const double n = length[k] / (2.0 * r_max);
     dims[k] = std::max<std::int64_t>(1, static_cast<std::int64_t>(wrap[k] ? std::floor(n) : std::ceil(n)));
@@ -262,12 +264,10 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, const std::array<b
   auto cell_of = [&](const Vec<D>& x, int k) {
     return std::clamp<std::int64_t>(static_cast<std::int64_t>((x[k] - lo[k]) / width[k]), 0, dims[k] - 1);
   };
-  auto nearest_image = [&](Vec<D> d) {
-    for (int k = 0; k < D; ++k) {
-      if (wrap[k]) d[k] -= length[k] * std::round(d[k] / length[k]);
-    }
-    return d;
-  };
+  PeriodicCell<D> period;
+  for (int k = 0; k < D; ++k) {
+    if (wrap[k]) period.set_axis(k, lo[k], hi[k]);
+  }
   auto flat = [&](const std::array<std::int64_t, D>& c) {
     std::int64_t f = c[D - 1];
     for (int k = D - 2; k >= 0; --k) f = f * dims[k] + c[k];
@@ -282,8 +282,8 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, const std::array<b
       for (int k = 0; k < D; ++k) {
         x[k] = wrap[k] ? lo[k] + length[k] * unit_random(rng)
                        : lo[k] + r + (length[k] - 2.0 * r) * unit_random(rng);
-        if (wrap[k] && !(x[k] < hi[k])) x[k] = lo[k];  // rounded up to the period's end
       }
+      x = period.wrap(x);  // a centre rounded up to the period's end
       std::array<std::int64_t, D> c{};
       for (int k = 0; k < D; ++k) c[k] = cell_of(x, k);
       bool free = true;
@@ -303,7 +303,7 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, const std::array<b
         if (it == grid.end()) continue;
         for (std::uint32_t j : it->second) {
           const double reach = r + out.radius[j];
-          if (nearest_image(out.position[j] - x).squaredNorm() < reach * reach) {
+          if (period.shortest(out.position[j] - x).squaredNorm() < reach * reach) {
             free = false;
             break;
           }
