@@ -101,6 +101,8 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
     case ProbeQuantity::particle_velocity: {
       const std::size_t i =
           probe.particle < 0 ? topmost_particle(p) : p.index_of(static_cast<std::uint32_t>(probe.particle));
+      // A particle that has left the [domain], or none left at all.
+      if (i >= p.size()) return std::numeric_limits<double>::quiet_NaN();
       return pick(probe.quantity == ProbeQuantity::particle_position ? p.position[i] : p.velocity[i]);
     }
     case ProbeQuantity::wall_position:
@@ -113,6 +115,10 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
                                      : fluid->wall_thrust(sim.walls, probe.wall));
     case ProbeQuantity::kinetic_energy:
       return sim.kinetic_energy();
+    case ProbeQuantity::removed_particles:
+      return static_cast<double>(sim.removed_count);
+    case ProbeQuantity::removed_mass:
+      return sim.removed_mass;
     case ProbeQuantity::contact_count:
       return static_cast<double>(sim.contact_count());
     case ProbeQuantity::coordination:

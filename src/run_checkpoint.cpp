@@ -12,7 +12,8 @@ namespace darcydem {
 namespace {
 
 constexpr const char* checkpoint_magic = "darcydem checkpoint";
-constexpr std::uint32_t format = 4;  // 2: the pore fluid's patches; 3: the walls' series; 4: the contacts'
+constexpr std::uint32_t format = 5;  // 2: the pore fluid's patches; 3: the walls' series; 4: the contacts'
+// series; 5: the particles removed outside the domain
 constexpr const char* end_mark = "end of checkpoint";
 
 /// The header: what a reader must share with the writer.
@@ -48,7 +49,8 @@ Header header_of(const Scene<D>& scene, const RunState<D>& state) {
   h.one_and_a_half = 1.5;
   h.version = version_string;
   h.scene_hash = scene.text_hash;
-  h.particles = state.simulation.particles.size();
+  // As the scene built them: those removed outside the [domain] included.
+  h.particles = state.simulation.particles.size() + state.simulation.removed_count;
   h.fluid = state.fluid != nullptr;
   h.analysis = state.analysis != nullptr;
   return h;
@@ -118,7 +120,7 @@ void read_checkpoint(const std::string& path, const Scene<D>& scene, const RunSt
   std::string end;
   ar(end);
   if (end != end_mark) throw CheckpointError(fmt::format("{}: damaged (no end mark)", path));
-  if (state.simulation.particles.size() != want.particles)
+  if (state.simulation.particles.size() + state.simulation.removed_count != want.particles)
     throw CheckpointError(fmt::format("{}: damaged (particle arrays of the wrong length)", path));
 }
 

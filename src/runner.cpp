@@ -137,6 +137,10 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
        << fmt::format("  \"threads\": {},\n", omp_get_max_threads())
        << fmt::format("  \"resumes\": {},\n", pos.resumes);
   if (summary.checkpoint_written) json << "  \"checkpoint\": \"checkpoint.bin\",\n";
+  if (sim.has_domain) {
+    json << fmt::format("  \"removed\": {{\"particles\": {}, \"mass\": {:.17g}, \"volume\": {:.17g}}},\n",
+                        sim.removed_count, sim.removed_mass, sim.removed_volume);
+  }
   if (fluid != nullptr) {
     const auto& tb = fluid->total_balance();
     json << fmt::format(
@@ -481,6 +485,12 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       write_probes();
       write_snapshot();
       if (seepage) seepage->stage_ended(scene, stage.name, !summary.interrupted);
+      if (sim.has_domain && options.log != nullptr && sim.removed_count > 0) {
+        *options.log << fmt::format(
+            "{} particles have left the [domain] so far ({:.6g} kg, {:.6g} m^3 of grains): removed; {} "
+            "remain\n",
+            sim.removed_count, sim.removed_mass, sim.removed_volume, sim.particles.size());
+      }
       if (fluid != nullptr && options.log != nullptr) {
         const auto& tb = fluid->total_balance();
         *options.log << fmt::format(

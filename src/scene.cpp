@@ -39,7 +39,7 @@ void check_count_fits(const TableReader& r, std::string_view key, double count) 
 
 const std::vector<std::string> kTopLevel = {"simulation", "periodic",  "material", "contact",
                                             "wall",       "particles", "output",   "probe",
-                                            "stage",      "fluid",     "analysis"};
+                                            "stage",      "fluid",     "analysis", "domain"};
 
 template <int D>
 Vec<D> to_vec(const std::vector<double>& v) {
@@ -431,6 +431,79 @@ void check_periods(TableReader& r, const Simulation<D>& sim, const std::vector<s
              fmt::format("the period {:.6g} m must exceed 2 x (2 x largest radius + skin) = {:.6g} m, so "
                          "that a particle meets one image of each neighbour",
                          cell.length[k], shortest));
+    }
+  }
+}
+
+/// [domain]: min, max (the box particles are removed outside of). Every
+/// particle starts inside it, it holds each period, and it holds the fluid
+/// grid with a margin of the largest radius, so that a grain it removes has
+/// no volume in the grid's cells (the pore water's balance keeps).
+template <int D>
+void read_domain(TableReader& r, Simulation<D>& sim, const PoreFluid<D>* fluid,
+                 const std::vector<std::string>& origin, std::vector<std::string>& notes) {
+  const auto lo = r.numbers("min", D);
+  const auto hi = r.numbers("max", D);
+  r.finish();
+  for (int k = 0; k < D; ++k) {
+    if (!(std::isfinite(lo[k]) && std::isfinite(hi[k]) && hi[k] > lo[k])) {
+      r.fail("max",
+             fmt::format("must be greater than 'min' along every axis (m); along {} min = {} and max = {}",
+                         "xyz"[k], TableReader::format_number(lo[k]), TableReader::format_number(hi[k])));
+    }
+    sim.domain_lower[k] = lo[k];
+    sim.domain_upper[k] = hi[k];
+  }
+  sim.has_domain = true;
+  const auto& cell = sim.periodic;
+  for (int k = 0; k < D; ++k) {
+    if (!cell.periodic[k]) continue;
+    const double end = cell.lower[k] + cell.length[k];
+    if (lo[k] > cell.lower[k] || hi[k] < end) {
+      r.fail(
+          lo[k] > cell.lower[k] ? "min" : "max",
+          fmt::format("along the periodic axis {} the domain must hold the period [{}, {}] ([periodic] {}): "
+                      "particles leave through the period's ends and come back, not out of the domain",
+                      "xyz"[k], TableReader::format_number(cell.lower[k]), TableReader::format_number(end),
+                      "xyz"[k]));
+    }
+  }
+  const auto& p = sim.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (int k = 0; k < D; ++k) {
+      if (p.position[i][k] < lo[k] || p.position[i][k] > hi[k]) {
+        throw SceneError(fmt::format(
+            "{}: error: particle {} starts at {} = {:.6g} m, outside the [domain] (allowed: {} <= {} <= {}, "
+            "from {}'s min and max)",
+            origin[i], i, "xyz"[k], p.position[i][k], TableReader::format_number(lo[k]), "xyz"[k],
+            TableReader::format_number(hi[k]), r.here()));
+      }
+    }
+  }
+  std::string box;
+  for (int k = 0; k < D; ++k)
+    box += fmt::format("{}{} in [{}, {}]", k == 0 ? "" : ", ", "xyz"[k], TableReader::format_number(lo[k]),
+                       TableReader::format_number(hi[k]));
+  notes.push_back(
+      fmt::format("[domain]: particles whose centres leave {} m are removed from the run (the "
+                  "removed_particles and removed_mass probes and run.json count them)",
+                  box));
+  if (fluid == nullptr) return;
+  double r_max = 0.0;
+  for (double radius : p.radius) r_max = std::max(r_max, radius);
+  const Vec<D> g_lo = fluid->grid.origin;
+  const Vec<D> g_hi = fluid->grid.upper();
+  for (int k = 0; k < D; ++k) {
+    if (cell.periodic[k]) continue;
+    const bool low = g_lo[k] - r_max < lo[k];
+    if (low || g_hi[k] + r_max > hi[k]) {
+      r.fail(
+          low ? "min" : "max",
+          fmt::format("must leave the largest grain's radius ({:.6g} m) between the fluid grid, [{:.6g}, "
+                      "{:.6g}] along {}, and the domain's side: a grain removed while it overlaps the grid "
+                      "would take its volume out of the pore water's balance (allowed: {} {} {:.6g} m)",
+                      r_max, g_lo[k], g_hi[k], "xyz"[k], low ? "min <=" : "max >=", "xyz"[k],
+                      low ? g_lo[k] - r_max : g_hi[k] + r_max));
     }
   }
 }
@@ -869,6 +942,14 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                      "needs a pore fluid to keep out: the scene has no [fluid] table");
   }
 
+  // [domain]
+  if (const toml::table* t = top.optional_table("domain")) {
+    TableReader r(*t, "[domain]", file);
+    read_domain<D>(r, sim, scene.fluid.get(), origin, scene.notes);
+  } else if (top.has("domain")) {
+    top.fail("domain", "must be a table ([domain] with min = [...], max = [...])");
+  }
+
   // [output] and [[probe]]
   if (const toml::table* t = top.optional_table("output")) {
     TableReader r(*t, "[output]", file);
@@ -890,18 +971,40 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       r.fail("name", fmt::format("probe \"{}\" is defined twice", p.name));
     }
     probe_names.push_back(p.name);
-    const std::string q = r.choice(
-        "quantity", {"particle_position", "particle_velocity",      "wall_position", "wall_force",
-                     "wall_fluid_force",  "kinetic_energy",         "contact_count", "coordination",
-                     "max_overlap",       "unbalanced_force",       "pore_pressure", "pore_pressure_profile",
-                     "fluid_inflow",      "side_pressure",          "fluid_balance", "fluid_iterations",
-                     "particles_in_box",  "mean_particle_position", "stress",        "porosity"});
+    const std::string q = r.choice("quantity", {"particle_position",
+                                                "particle_velocity",
+                                                "wall_position",
+                                                "wall_force",
+                                                "wall_fluid_force",
+                                                "kinetic_energy",
+                                                "contact_count",
+                                                "coordination",
+                                                "max_overlap",
+                                                "unbalanced_force",
+                                                "pore_pressure",
+                                                "pore_pressure_profile",
+                                                "fluid_inflow",
+                                                "side_pressure",
+                                                "fluid_balance",
+                                                "fluid_iterations",
+                                                "particles_in_box",
+                                                "mean_particle_position",
+                                                "stress",
+                                                "porosity",
+                                                "removed_particles",
+                                                "removed_mass"});
     r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points", "min", "max"});
     const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
                              q == "side_pressure" || q == "fluid_balance" || q == "fluid_iterations" ||
                              q == "wall_fluid_force";
     if (fluid_probe && !scene.fluid) {
       r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
+    }
+    if ((q == "removed_particles" || q == "removed_mass") && !sim.has_domain) {
+      r.fail("quantity",
+             fmt::format("\"{}\" counts what leaves the [domain]: the scene has no [domain] table "
+                         "(min = [...], max = [...])",
+                         q));
     }
     const bool box_probe =
         q == "particles_in_box" || q == "mean_particle_position" || q == "stress" || q == "porosity";
@@ -1021,11 +1124,13 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       for (auto k : {"particle", "component", "wall"}) {
         if (r.has(k)) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
       }
-      p.quantity = q == "kinetic_energy"  ? ProbeQuantity::kinetic_energy
-                   : q == "contact_count" ? ProbeQuantity::contact_count
-                   : q == "coordination"  ? ProbeQuantity::coordination
-                   : q == "max_overlap"   ? ProbeQuantity::max_overlap
-                                          : ProbeQuantity::unbalanced_force;
+      p.quantity = q == "kinetic_energy"      ? ProbeQuantity::kinetic_energy
+                   : q == "contact_count"     ? ProbeQuantity::contact_count
+                   : q == "coordination"      ? ProbeQuantity::coordination
+                   : q == "max_overlap"       ? ProbeQuantity::max_overlap
+                   : q == "removed_particles" ? ProbeQuantity::removed_particles
+                   : q == "removed_mass"      ? ProbeQuantity::removed_mass
+                                              : ProbeQuantity::unbalanced_force;
     }
     scene.output.probes.push_back(p);
   });

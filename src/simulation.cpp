@@ -99,20 +99,57 @@ void Simulation<D>::rebuild() {
   if (periodic.any()) {
     for (auto& x : particles.position) x = periodic.wrap(x);
   }
+  // Each particle's index at the last build, for the lists' histories.
+  std::vector<std::uint32_t> kept = remove_outside_domain();
+  if (!kept.empty()) old_index = &kept;
   if (particles.size() > sort_threshold) {
     order = list_.spatial_order(particles.position, particles.radius, skin, periodic);
     bool identity = true;
     for (std::size_t k = 0; k < order.size() && identity; ++k) identity = order[k] == k;
     if (!identity) {
       particles.permute(order);
-      old_index = &order;
       // Forces a field holds move with their particles.
       if (field_force_.size() == order.size()) ParticleData<D>::reorder(field_force_, order);
+      if (!kept.empty()) {
+        for (auto& k : order) k = kept[k];
+      }
+      old_index = &order;
     }
   }
   list_.build(particles.position, particles.radius, skin, rolling_, old_index, periodic);
   wall_list_.build(particles.position, particles.radius, walls, skin, rolling_, old_index);
   block_sums_.assign(static_cast<std::size_t>(list_.block_count()), {0.0, 0.0});
+}
+
+template <int D>
+std::vector<std::uint32_t> Simulation<D>::remove_outside_domain() {
+  std::vector<std::uint32_t> kept;
+  if (!has_domain) return kept;
+  auto inside = [&](const Vec<D>& x) {
+    bool in = true;
+    for (int k = 0; k < D; ++k) in = in && x[k] >= domain_lower[k] && x[k] <= domain_upper[k];
+    return in;  // false for a NaN position: the list build reports it
+  };
+  const std::size_t n = particles.size();
+  std::size_t first_out = 0;
+  while (first_out < n &&
+         (inside(particles.position[first_out]) || !particles.position[first_out].allFinite()))
+    ++first_out;
+  if (first_out == n) return kept;
+  kept.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (inside(particles.position[i]) || !particles.position[i].allFinite()) {
+      kept.push_back(static_cast<std::uint32_t>(i));
+      continue;
+    }
+    ++removed_count;
+    removed_volume += particle_volume<D>(particles.radius[i]);
+    if (particles.inv_mass[i] > 0.0) removed_mass += 1.0 / particles.inv_mass[i];
+  }
+  // Forces a field holds go with their particles.
+  if (field_force_.size() == n) ParticleData<D>::reorder(field_force_, kept);
+  particles.permute(kept);
+  return kept;
 }
 
 template <int D>

@@ -73,7 +73,7 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
   // the first particle against the second, so it changes sign if they swapped.
   std::vector<Vec<D>> next_tangential(pairs, Vec<D>::Zero());
   std::vector<AngVec<D>> next_rolling(keep_rolling ? pairs : 0, AngVec<D>::Zero());
-  if (row_offset.size() == offset.size()) {
+  if (old_list_fits(row_offset.size(), static_cast<std::size_t>(n), old_index)) {
     const bool old_rolling = keep_rolling && rolling.size() == neighbour.size();
     for_each_index_dynamic(n, [&](std::int64_t i) {
       const std::uint32_t oi = old_index != nullptr ? (*old_index)[i] : static_cast<std::uint32_t>(i);

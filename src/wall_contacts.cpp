@@ -1,3 +1,4 @@
+#include "darcydem/neighbour/verlet_list.hpp"
 #include "darcydem/walls/wall.hpp"
 
 namespace darcydem {
@@ -11,7 +12,7 @@ void WallContactList<D>::build(const std::vector<Vec<D>>& position, const std::v
   std::vector<std::uint16_t> next_wall;
   std::vector<Vec<D>> next_tangential;
   std::vector<AngVec<D>> next_rolling;
-  const bool have_old = offset.size() == n + 1;
+  const bool have_old = old_list_fits(offset.size(), n, old_index);
   const bool old_rolling = keep_rolling && rolling.size() == wall.size();
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t w = 0; w < walls.size(); ++w) {

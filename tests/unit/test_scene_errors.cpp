@@ -1114,5 +1114,79 @@ TEST(SceneErrors, GradingCurvesAreReadAndChecked) {
       << msg;
 }
 
+// [domain]: the box outside of which particles are removed. The column's
+// centres lie at x = 0, y = 0.5 to 2.5 mm; the fluid grid spans x in
+// [-0.5, 0.5] mm, y in [0, 4] mm, and the largest radius is 0.5 mm.
+TEST(SceneErrors, DomainIsReadAndChecked) {
+  const std::string domain = "\n[domain]\nmin = [-0.01, -0.01]\nmax = [0.01, 0.01]\n";
+  const std::string good = std::string(kGood) + domain;
+  ASSERT_EQ(load_error(good), "");
+  const auto scene = built_scene<2>(good);
+  EXPECT_TRUE(scene.simulation.has_domain);
+  EXPECT_EQ(scene.simulation.domain_lower[1], -0.01);
+  EXPECT_EQ(scene.simulation.domain_upper[0], 0.01);
+  ASSERT_FALSE(scene.notes.empty());
+  EXPECT_NE(
+      scene.notes.back().find("[domain]: particles whose centres leave x in [-0.01, 0.01], y in [-0.01, "
+                              "0.01] m are removed from the run"),
+      std::string::npos)
+      << scene.notes.back();
+  EXPECT_FALSE(built_scene<2>(kGood).simulation.has_domain);
+
+  auto msg = load_error(replace(good, "max = [0.01, 0.01]", "max = [0.01, -0.02]"));
+  EXPECT_NE(
+      msg.find("[domain] key 'max': must be greater than 'min' along every axis (m); along y min = -0.01 "
+               "and max = -0.02"),
+      std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, "max = [0.01, 0.01]", "max = [0.01, 0.01, 0.01]"));
+  EXPECT_NE(msg.find("[domain] key 'max'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "max = [0.01, 0.01]", "max = [0.01, 0.01]\nmargin = 1"));
+  EXPECT_NE(msg.find("unknown key 'margin'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "max = [0.01, 0.01]", "max = [0.01, 0.002]"));
+  EXPECT_NE(msg.find("particle 2 starts at y = 0.0025 m, outside the [domain] (allowed: -0.01 <= y <= 0.002"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("[[particles]] #1"), std::string::npos) << msg;
+  msg = load_error("domain = 3\n" + std::string(kGood));  // a key of the top level
+  EXPECT_NE(msg.find("key 'domain': must be a table"), std::string::npos) << msg;
+
+  // The probes of what left it need one.
+  const std::string probe = "\n[[probe]]\nname = \"gone\"\nquantity = \"removed_mass\"\n";
+  EXPECT_EQ(load_error(good + probe), "");
+  msg = load_error(std::string(kGood) + probe);
+  EXPECT_NE(msg.find("key 'quantity': \"removed_mass\" counts what leaves the [domain]: the scene has no "
+                     "[domain] table"),
+            std::string::npos)
+      << msg;
+  msg = load_error(good + replace(probe, "quantity = \"removed_mass\"",
+                                  "quantity = \"removed_particles\"\ncomponent = \"x\""));
+  EXPECT_NE(msg.find("key 'component': does not apply to quantity \"removed_particles\""), std::string::npos)
+      << msg;
+
+  // With a pore fluid it must hold the grid with a radius to spare: a grain
+  // it removes has no volume in the cells.
+  ASSERT_EQ(load_error(with_fluid(domain)), "");
+  msg = load_error(with_fluid(replace(domain, "min = [-0.01, -0.01]", "min = [-0.01, -0.0004]")));
+  EXPECT_NE(msg.find("[domain] key 'min': must leave the largest grain's radius (0.0005 m) between the fluid "
+                     "grid, [0, 0.004] along y, and the domain's side"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("(allowed: min <= y -0.0005 m)"), std::string::npos) << msg;
+  msg = load_error(with_fluid(replace(domain, "max = [0.01, 0.01]", "max = [0.0009, 0.01]")));
+  EXPECT_NE(msg.find("[domain] key 'max': must leave the largest grain's radius"), std::string::npos) << msg;
+
+  // Along a periodic axis it holds the period.
+  const std::string periodic = "\n[periodic]\nx = [-0.003, 0.003]\n";
+  const std::string with_period = replace(good, "\n[[material]]", periodic + "\n[[material]]");
+  EXPECT_EQ(load_error(with_period), "");
+  msg = load_error(replace(with_period, "min = [-0.01, -0.01]", "min = [-0.002, -0.01]"));
+  EXPECT_NE(msg.find("[domain] key 'min': along the periodic axis x the domain must hold the period [-0.003, "
+                     "0.003] ([periodic] x)"),
+            std::string::npos)
+      << msg;
+}
+
 }  // namespace
 }  // namespace darcydem

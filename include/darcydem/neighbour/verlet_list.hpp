@@ -21,6 +21,21 @@
 
 namespace darcydem {
 
+/// Whether a list built for the particles of the last build (its offsets'
+/// length `old_offsets`, the particle count + 1) can hand its histories to a
+/// build for n particles: without old_index, when the count is the same;
+/// with it, when every old index is in the old list (particles may have been
+/// removed since, Simulation::has_domain, but none added).
+inline bool old_list_fits(std::size_t old_offsets, std::size_t n,
+                          const std::vector<std::uint32_t>* old_index) {
+  if (old_offsets == 0) return false;
+  if (old_index == nullptr) return old_offsets == n + 1;
+  for (const std::uint32_t o : *old_index) {
+    if (o + 1 >= old_offsets) return false;
+  }
+  return true;
+}
+
 template <int D>
 class VerletList {
  public:

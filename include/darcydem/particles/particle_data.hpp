@@ -57,16 +57,18 @@ struct ParticleData {
   }
 
   /// Reorders one per-particle array (left alone if empty): new entry k is
-  /// old entry order[k]. For arrays kept beside the particles, too.
+  /// old entry order[k]. For arrays kept beside the particles, too. An
+  /// order shorter than the array keeps only the entries it names.
   template <class T>
   static void reorder(std::vector<T>& v, const std::vector<std::uint32_t>& order) {
     if (v.empty()) return;
-    std::vector<T> out(v.size());
+    std::vector<T> out(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
     v.swap(out);
   }
 
-  /// Reorders every per-particle array: new particle k is old particle order[k].
+  /// Reorders every per-particle array: new particle k is old particle
+  /// order[k]; the particles order does not name are removed.
   void permute(const std::vector<std::uint32_t>& order) {
     auto apply = [&](auto& v) { reorder(v, order); };
     apply(id);

@@ -34,8 +34,10 @@ enum class ProbeQuantity {
   fluid_iterations,        ///< iterations of the last pressure solve
   particles_in_box,        ///< how many particle centres lie in a box
   mean_particle_position,  ///< one component of their mean centre, m (NaN with none)
-  stress,    ///< a component of the contacts' mean stress in a box, Pa (Simulation::contact_stress)
-  porosity,  ///< 1 - the grains' volume in a box (exact overlaps) / its volume
+  stress,             ///< a component of the contacts' mean stress in a box, Pa (Simulation::contact_stress)
+  porosity,           ///< 1 - the grains' volume in a box (exact overlaps) / its volume
+  removed_particles,  ///< how many particles have left the [domain] so far
+  removed_mass,       ///< their mass, kg (2D: per metre)
 };
 
 struct ProbeSpec {

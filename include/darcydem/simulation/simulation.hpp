@@ -73,6 +73,20 @@ class Simulation {
   /// partner's nearest image, and every list build puts the particles back
   /// into the period. Each period must exceed shortest_period().
   PeriodicCell<D> periodic;
+  /// The domain (PFC's domain with the condition "destroy"): when set, the
+  /// particles whose centres have left the box [domain_lower, domain_upper]
+  /// are removed from the run at the next list build, which comes before
+  /// any of them has moved half the skin past where it was at the last
+  /// build. Along a periodic axis the box must hold the period.
+  bool has_domain = false;
+  Vec<D> domain_lower = Vec<D>::Zero();  ///< m
+  Vec<D> domain_upper = Vec<D>::Zero();  ///< m
+  /// What has left the domain so far: how many particles, their mass (kg;
+  /// 2D: per metre of thickness; a fixed particle counts no mass) and volume
+  /// (m^3; 2D: m^2 per metre).
+  std::uint64_t removed_count = 0;
+  double removed_mass = 0.0;
+  double removed_volume = 0.0;
   /// Optional body-force field (the pore fluid), evaluated every step; not owned.
   const ParticleForceField<D>* force_field = nullptr;
 
@@ -137,7 +151,7 @@ class Simulation {
   template <class Archive>
   void checkpoint(Archive& ar) {
     ar(particles, walls, gravity, damping, skin, time_step, time, steps, list_, wall_list_, field_force_,
-       block_sums_);
+       block_sums_, removed_count, removed_mass, removed_volume);
     bool from_field = field_forces_from_ != nullptr;
     ar(from_field);
     if constexpr (Archive::loading) field_forces_from_ = from_field ? force_field : nullptr;
@@ -178,6 +192,9 @@ class Simulation {
   /// Throws if a period is too short for the particles and skin.
   void check_periods() const;
   void rebuild();
+  /// Removes the particles outside the domain (has_domain); returns, for
+  /// each particle kept, the index it had (empty if none was removed).
+  std::vector<std::uint32_t> remove_outside_domain();
 
   enum class LawChoice { linear, hertz, mixed };
   LawChoice law_choice_ = LawChoice::linear;
