@@ -53,8 +53,9 @@ template <int D, class V>
 py::array_t<double> per_particle(const ParticleData<D>& p, const std::vector<V>& values, int width) {
   py::array_t<double> out({static_cast<py::ssize_t>(p.size()), static_cast<py::ssize_t>(width)});
   auto a = out.template mutable_unchecked<2>();
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    for (int c = 0; c < width; ++c) a(p.id[k], c) = values[k][c];
+  const auto order = p.creation_order();  // those left, if a domain removed some
+  for (std::size_t row = 0; row < order.size(); ++row) {
+    for (int c = 0; c < width; ++c) a(row, c) = values[order[row]][c];
   }
   return out;
 }
@@ -311,7 +312,8 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
             const auto& p = s.sim().particles;
             py::array_t<double> out(static_cast<py::ssize_t>(p.size()));
             auto a = out.mutable_unchecked<1>();
-            for (std::size_t k = 0; k < p.size(); ++k) a(p.id[k]) = p.radius[k];
+            const auto order = p.creation_order();
+            for (std::size_t row = 0; row < order.size(); ++row) a(row) = p.radius[order[row]];
             return out;
           },
           "particle radii, m, (N,), in creation order")

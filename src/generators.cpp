@@ -439,8 +439,7 @@ Packing<D> read_packing_csv(const std::string& path) {
 
 template <int D>
 void write_packing_csv(const std::string& path, const ParticleData<D>& p, const std::string& comment) {
-  std::vector<std::size_t> by_id(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) by_id[p.id[i]] = i;
+  const std::vector<std::size_t> by_id = p.creation_order();
   std::string text;
   std::stringstream lines(comment);
   std::string line;

@@ -256,6 +256,10 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         lo = lo.cwiseMin(fluid->grid.origin);
         hi = hi.cwiseMax(fluid->grid.upper());
       }
+      if (!lo.allFinite() || !hi.allFinite()) {  // no particles left (a domain removed them all)
+        lo = Vec<D>::Zero();
+        hi = Vec<D>::Zero();
+      }
       const std::string wname = fmt::format("walls_{:05d}.vtu", pos.snapshot_index);
       write_walls_vtu<D>((out / wname).string(), sim.walls, lo, hi);
       wall_series.add(sim.time, wname);

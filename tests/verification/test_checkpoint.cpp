@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -331,6 +332,50 @@ TEST(Checkpoint, ResumedSealedPistonWritesTheSameFiles) {
   const std::string scene = (dir / "impermeable_piston.toml").string();
   std::ofstream(scene) << text;
   expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 169000, 1);
+}
+
+TEST(Checkpoint, ResumedSiloWritesTheSameFilesAfterGrainsLeftTheDomain) {
+  // examples/dem_cases/silo_discharge.toml with 300 discs, 0.2 s of filling
+  // and 0.3 s of discharge (19 306 steps), stopped at step 15 000 (0.39 s),
+  // when some grains have left the domain and others are on their way: the
+  // removed count and mass, and the lists of the grains left (their indices
+  // moved down), must come back, and the header's particle count is the
+  // scene's, removed ones included.
+  const fs::path dir = fresh_dir("silo");
+  fs::create_directories(dir);
+  const std::string text = darcydem::testing::scene_variant(
+      "examples/dem_cases/silo_discharge.toml",
+      {{"count = 1400", "count = 300"},
+       {"name = \"fill\"\nduration = 0.6", "name = \"fill\"\nduration = 0.2"},
+       {"name = \"discharge\"\nduration = 1.5", "name = \"discharge\"\nduration = 0.3"}});
+  const std::string scene = (dir / "silo.toml").string();
+  std::ofstream(scene) << text;
+  const std::uint64_t stop = 15000;
+  {
+    // Grains have gone by the stop, and more go after it.
+    const fs::path probe_run = dir / "probe_run";
+    const RunSummary a = run<2>(scene, probe_run, 0, false);
+    const std::string probes = contents(probe_run / "probes.csv");
+    std::istringstream rows(probes);
+    std::string line;
+    std::getline(rows, line);  // time,discharged,discharged_count,in_silo,kinetic_energy
+    double at_stop = -1.0;
+    double at_end = -1.0;
+    while (std::getline(rows, line)) {
+      std::istringstream cells(line);
+      std::string time, mass, count;
+      std::getline(cells, time, ',');
+      std::getline(cells, mass, ',');
+      std::getline(cells, count, ',');
+      if (std::stod(time) <= static_cast<double>(stop) * a.simulated_time / static_cast<double>(a.steps))
+        at_stop = std::stod(count);
+      at_end = std::stod(count);
+    }
+    ASSERT_GT(at_stop, 0.0);
+    ASSERT_GT(at_end, at_stop);
+    fs::remove_all(probe_run);
+  }
+  expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, stop, 1);
 }
 
 // What is refused, with the file and the reason: no checkpoint (the run

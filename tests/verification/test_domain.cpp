@@ -8,8 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -277,5 +279,57 @@ TEST(Domain, RemovingGrainsLeavesTheOthersContactHistories) {
   double worst = 0.0;
   for (std::size_t i = 0; i < alone.size(); ++i) worst = std::max(worst, (sorted[i] - alone[i]).norm());
   EXPECT_LT(worst, 1e-9);
+  std::filesystem::remove_all(dir);
+}
+
+// examples/dem_cases/silo_discharge.toml: 1400 discs leave a silo 80 mm wide
+// through a 16 mm orifice and fall out of the domain, which removes them.
+TEST(Domain, SiloDischargesAtASteadyRate) {
+  const std::string dir = temp_dir("domain_silo");
+  Scene<2> scene = darcydem::testing::load_scene<2>("examples/dem_cases/silo_discharge.toml");
+  double total = 0.0;  // kg per metre
+  for (double inv : scene.simulation.particles.inv_mass) total += 1.0 / inv;
+  RunOptions options;
+  options.out_dir = dir;
+  ASSERT_FALSE(run_scene<2>(scene, options).interrupted);
+  const auto probes = read_probes(dir + "/probes.csv");
+  const auto& t = probes.at("time");
+  const auto& out = probes.at("discharged");
+  // When the discharged mass first reached a share of the whole (linear
+  // between the rows, 10 ms apart).
+  auto time_at = [&](double share) {
+    const double m = share * total;
+    for (std::size_t k = 1; k < out.size(); ++k) {
+      if (out[k] >= m) return t[k - 1] + (t[k] - t[k - 1]) * (m - out[k - 1]) / (out[k] - out[k - 1]);
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  const double t10 = time_at(0.1);
+  const double t30 = time_at(0.3);
+  const double t50 = time_at(0.5);
+  ASSERT_TRUE(std::isfinite(t50)) << "the silo did not discharge half its grains (clogged?)";
+  const double first = 0.2 * total / (t30 - t10);
+  const double second = 0.2 * total / (t50 - t30);
+  // Beverloo's constant in 2D for this run, W = C rho_b sqrt(g) (D_o - k d)^(3/2),
+  // with the settled bed's areal solid fraction (0.82), k = 1.5 and d the
+  // mean diameter 2 mm: for the record (docs/VERIFICATION.md).
+  const double beverloo = 2500.0 * 0.82 * std::sqrt(g) * std::pow(0.016 - 1.5 * 0.002, 1.5);
+  std::printf(
+      "silo: %.4g kg/m in all; 10-30 %% out in %.4f to %.4f s, 30-50 %% to %.4f s: %.4g and %.4g "
+      "kg/(s m) (ratio %.4f); Beverloo's C %.3f\n",
+      total, t10, t30, t50, first, second, second / first, 0.5 * (first + second) / beverloo);
+  // Steady: the second window's rate within 10 % of the first's. A liquid
+  // would slow as the square root of its head: the silo's height, about
+  // 68 mm when full, is 80 % and 60 % of it at the windows' middles, so
+  // sqrt(0.6 / 0.8) = 0.87, 13 % slower. The grains' rate fluctuates (arches
+  // form and break at the orifice): this example with seeds 1, 2, 4 and 7
+  // gave ratios 0.931, 1.015, 1.020 and 0.965, and Beverloo's C 0.91-0.99.
+  // The bound takes that scatter and still refuses a liquid's slowing.
+  EXPECT_NEAR(second / first, 1.0, 0.10);
+  // Mass: what left plus what remains is what the scene made.
+  double remaining = 0.0;
+  for (double inv : scene.simulation.particles.inv_mass) remaining += 1.0 / inv;
+  EXPECT_NEAR(scene.simulation.removed_mass + remaining, total, 1e-12 * total);
+  EXPECT_GT(scene.simulation.removed_count, 700U);
   std::filesystem::remove_all(dir);
 }

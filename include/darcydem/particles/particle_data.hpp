@@ -1,5 +1,6 @@
 #pragma once
 // Particle state, one array per field (structure of arrays).
+#include <algorithm>
 #include <cstdint>
 #include <type_traits>
 #include <vector>
@@ -54,6 +55,15 @@ struct ParticleData {
       if (id[i] == creation) return i;
     }
     return id.size();
+  }
+
+  /// The particles' indices in creation order (by id; ids of particles
+  /// removed outside a domain are missing).
+  [[nodiscard]] std::vector<std::size_t> creation_order() const {
+    std::vector<std::size_t> order(size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+    return order;
   }
 
   /// Reorders one per-particle array (left alone if empty): new entry k is
