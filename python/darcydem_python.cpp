@@ -23,6 +23,7 @@
 #include <atomic>
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -317,6 +318,23 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
             return out;
           },
           "particle radii, m, (N,), in creation order")
+      .def_property_readonly(
+          "ids",
+          [](const M& s) {
+            const auto& p = s.sim().particles;
+            py::array_t<std::int64_t> out(static_cast<py::ssize_t>(p.size()));
+            auto a = out.mutable_unchecked<1>();
+            const auto order = p.creation_order();
+            for (std::size_t row = 0; row < order.size(); ++row) a(row) = p.id[order[row]];
+            return out;
+          },
+          "each row's particle number (its index in creation order), (N,), increasing; with a [domain] "
+          "the numbers of the particles removed are missing")
+      .def_property_readonly(
+          "removed_count", [](const M& s) { return s.sim().removed_count; },
+          "particles removed outside the [domain] so far")
+      .def_property_readonly(
+          "removed_mass", [](const M& s) { return s.sim().removed_mass; }, "their mass, kg (2D: per metre)")
       .def_property(
           "gravity", [](const M& s) { return as_tuple<D>(s.sim().gravity); },
           [](M& s, const std::vector<double>& g) { s.sim().gravity = as_vec<D>(g, "gravity"); }, "m/s^2")

@@ -398,5 +398,56 @@ class SealedPiston(unittest.TestCase):
         self.assertLess(abs(piston["water_force"][0]), 1e-12 * abs(piston["water_force"][1]))
 
 
+class Silo(unittest.TestCase):
+    """examples/dem_cases/silo_discharge.toml with 300 discs: grains fall
+    out of the [domain] and are removed; the arrays keep the others in
+    creation order, and the removed ones are counted."""
+
+    def test_the_grains_left_and_those_removed(self):
+        folder = tempfile.mkdtemp()
+        with open(os.path.join(SOURCE, "examples", "dem_cases", "silo_discharge.toml")) as f:
+            text = f.read()
+        for old, new in (
+            ("count = 1400", "count = 300"),
+            ('name = "fill"\nduration = 0.6', 'name = "fill"\nduration = 0.2'),
+            ('name = "discharge"\nduration = 1.5', 'name = "discharge"\nduration = 0.3'),
+        ):
+            self.assertIn(old, text)
+            text = text.replace(old, new)
+        scene = write_scene(folder, text, "silo.toml")
+        out = os.path.join(folder, "out")
+        summary = darcydem.run(scene, out=out)
+        model = darcydem.load(scene)
+        self.assertEqual(list(model.ids), list(range(300)))
+        # Discs of unit thickness, 2500 kg/m^3: the mass per metre.
+        radii = model.radii
+        total = 2500.0 * math.pi * float(np.sum(radii**2))
+        fill = round(0.2 / model.time_step)
+        model.step(fill)
+        model.apply_stage("discharge")
+        model.step(summary["steps"] - fill)
+        ids = model.ids
+        self.assertGreater(model.removed_count, 0)
+        self.assertEqual(len(ids) + model.removed_count, 300)
+        self.assertEqual(model.particle_count, len(ids))
+        self.assertTrue(np.all(np.diff(ids) > 0))
+        # Each row is the particle its number says: its radius (drawn
+        # between 0.8 and 1.2 mm, none two alike) is that particle's.
+        np.testing.assert_array_equal(model.radii, radii[ids])
+        # Those left are inside the domain, and with those removed they make
+        # the scene's mass (a sum of 300 terms: round-off 1e-13 of it).
+        x = model.positions
+        self.assertTrue(np.all(x >= np.array([-0.05, -0.03])) and np.all(x <= np.array([0.13, 0.2])))
+        left = 2500.0 * math.pi * float(np.sum(model.radii**2))
+        self.assertAlmostEqual(left + model.removed_mass, total, delta=1e-13 * total)
+        # The program's run removed the same grains and left them in the
+        # same places (particles_final.csv is in creation order too).
+        with open(os.path.join(out, "particles_final.csv")) as f:
+            rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))][1:]
+        final = np.array([[float(v) for v in r] for r in rows])
+        np.testing.assert_array_equal(x, final[:, :2])
+        np.testing.assert_array_equal(model.radii, final[:, 2])
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)
