@@ -308,6 +308,17 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           [](const M& s) { return per_particle<D>(s.sim().particles, s.sim().particles.velocity, D); },
           "particle velocities, m/s, (N, D), in creation order")
       .def_property_readonly(
+          "fluid_forces",
+          [](const M& s) {
+            const auto& p = s.sim().particles;
+            const auto& f = s.sim().field_forces();
+            if (f.size() == p.size()) return per_particle<D>(p, f, D);
+            const std::vector<Vec<D>> none(p.size(), Vec<D>::Zero());  // no pore fluid: none acts
+            return per_particle<D>(p, none, D);
+          },
+          "the pore fluid's force on each particle as the last step applied it (buoyancy, pressure "
+          "gradient and drag), N (2D: per metre), (N, D), in creation order; zero without a [fluid]")
+      .def_property_readonly(
           "radii",
           [](const M& s) {
             const auto& p = s.sim().particles;

@@ -98,11 +98,16 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
   const auto& p = sim.particles;
   switch (probe.quantity) {
     case ProbeQuantity::particle_position:
-    case ProbeQuantity::particle_velocity: {
+    case ProbeQuantity::particle_velocity:
+    case ProbeQuantity::particle_fluid_force: {
       const std::size_t i =
           probe.particle < 0 ? topmost_particle(p) : p.index_of(static_cast<std::uint32_t>(probe.particle));
       // A particle that has left the [domain], or none left at all.
       if (i >= p.size()) return std::numeric_limits<double>::quiet_NaN();
+      if (probe.quantity == ProbeQuantity::particle_fluid_force) {
+        const auto& f = sim.field_forces();
+        return f.size() == p.size() ? pick(f[i]) : 0.0;  // no fluid force evaluated yet: none acted
+      }
       return pick(probe.quantity == ProbeQuantity::particle_position ? p.position[i] : p.velocity[i]);
     }
     case ProbeQuantity::wall_position:
@@ -155,9 +160,13 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       return probe.tensor[0] < 0 ? s.trace() / D : s(probe.tensor[0], probe.tensor[1]);
     }
     case ProbeQuantity::particles_in_box:
-    case ProbeQuantity::mean_particle_position: {
+    case ProbeQuantity::mean_particle_position:
+    case ProbeQuantity::fluid_force: {
       double count = 0.0;
       double sum = 0.0;
+      Vec<D> force = Vec<D>::Zero();
+      const auto& f = sim.field_forces();
+      const bool forces = f.size() == p.size();
       Vec<D> lo;
       Vec<D> hi;
       for (int k = 0; k < D; ++k) {
@@ -169,9 +178,11 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       for (std::size_t i = 0; i < p.size(); ++i) {
         if (sim.periodic.image_in_box(p.position[i], lo, hi, &image)) {
           count += 1.0;
-          sum += image[probe.component];
+          if (probe.component >= 0) sum += image[probe.component];
+          if (forces) force += f[i];
         }
       }
+      if (probe.quantity == ProbeQuantity::fluid_force) return pick(force);
       if (probe.quantity == ProbeQuantity::particles_in_box) return count;
       return count > 0.0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
     }

@@ -992,11 +992,13 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "stress",
                                                 "porosity",
                                                 "removed_particles",
-                                                "removed_mass"});
+                                                "removed_mass",
+                                                "particle_fluid_force",
+                                                "fluid_force"});
     r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points", "min", "max"});
     const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
                              q == "side_pressure" || q == "fluid_balance" || q == "fluid_iterations" ||
-                             q == "wall_fluid_force";
+                             q == "wall_fluid_force" || q == "particle_fluid_force" || q == "fluid_force";
     if (fluid_probe && !scene.fluid) {
       r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
     }
@@ -1006,8 +1008,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                          "(min = [...], max = [...])",
                          q));
     }
-    const bool box_probe =
-        q == "particles_in_box" || q == "mean_particle_position" || q == "stress" || q == "porosity";
+    const bool box_probe = q == "particles_in_box" || q == "mean_particle_position" || q == "stress" ||
+                           q == "porosity" || q == "fluid_force";
     for (std::string k : {"position", "side", "from", "to", "points", "min", "max"}) {
       const bool applies = (q == "pore_pressure" && k == "position") ||
                            ((q == "fluid_inflow" || q == "side_pressure") && k == "side") ||
@@ -1037,6 +1039,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       p.quantity = q == "particles_in_box"         ? ProbeQuantity::particles_in_box
                    : q == "mean_particle_position" ? ProbeQuantity::mean_particle_position
                    : q == "stress"                 ? ProbeQuantity::stress
+                   : q == "fluid_force"            ? ProbeQuantity::fluid_force
                                                    : ProbeQuantity::porosity;
       p.box_min = r.numbers("min", D);
       p.box_max = r.numbers("max", D);
@@ -1060,6 +1063,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       }
       if (q == "mean_particle_position") {
         p.component = static_cast<int>(axis_component<D>(r, "component", false));
+      } else if (q == "fluid_force") {
+        p.component = static_cast<int>(axis_component<D>(r, "component", true));
       } else if (q == "stress") {
         p.tensor = tensor_component<D>(r, "component");
       } else if (r.has("component")) {
@@ -1086,9 +1091,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       }
     } else if (q == "fluid_balance" || q == "fluid_iterations") {
       p.quantity = q == "fluid_balance" ? ProbeQuantity::fluid_balance : ProbeQuantity::fluid_iterations;
-    } else if (q == "particle_position" || q == "particle_velocity") {
-      p.quantity =
-          q == "particle_position" ? ProbeQuantity::particle_position : ProbeQuantity::particle_velocity;
+    } else if (q == "particle_position" || q == "particle_velocity" || q == "particle_fluid_force") {
+      p.quantity = q == "particle_position"   ? ProbeQuantity::particle_position
+                   : q == "particle_velocity" ? ProbeQuantity::particle_velocity
+                                              : ProbeQuantity::particle_fluid_force;
       const toml::node* n = r.raw("particle");
       if (n == nullptr) r.fail_table("missing required key 'particle' (an index, or \"top\")");
       if (n->is_string() && *n->value<std::string>() == "top") {

@@ -38,7 +38,8 @@ void write_scalar_array(fmt::ostream& out, const char* type, const char* name, s
 }  // namespace
 
 template <int D>
-void write_particles_vtu(const std::string& path, const ParticleData<D>& p) {
+void write_particles_vtu(const std::string& path, const ParticleData<D>& p,
+                         const std::vector<Vec<D>>* fluid_force) {
   try {
     auto out = fmt::output_file(path);
     const std::size_t n = p.size();
@@ -57,6 +58,9 @@ void write_particles_vtu(const std::string& path, const ParticleData<D>& p) {
     out.print("        </DataArray>\n");
     write_vector_array<D>(out, "velocity", n, [&](std::size_t i) { return p.velocity[i]; });
     write_vector_array<D>(out, "force", n, [&](std::size_t i) { return p.force[i]; });
+    if (fluid_force != nullptr && fluid_force->size() == n) {
+      write_vector_array<D>(out, "fluid_force", n, [&](std::size_t i) { return (*fluid_force)[i]; });
+    }
     write_vector_array<D>(out, "angular_velocity", n, [&](std::size_t i) {
       if constexpr (D == 2) {
         return Vec<3>(0.0, 0.0, p.angular_velocity[i][0]);
@@ -294,8 +298,8 @@ void write_contacts_vtu(const std::string& path, const ParticleData<D>& p,
   }
 }
 
-template void write_particles_vtu<2>(const std::string&, const ParticleData<2>&);
-template void write_particles_vtu<3>(const std::string&, const ParticleData<3>&);
+template void write_particles_vtu<2>(const std::string&, const ParticleData<2>&, const std::vector<Vec<2>>*);
+template void write_particles_vtu<3>(const std::string&, const ParticleData<3>&, const std::vector<Vec<3>>*);
 template void write_contacts_vtu<2>(const std::string&, const ParticleData<2>&,
                                     const std::vector<ContactRecord<2>>&);
 template void write_contacts_vtu<3>(const std::string&, const ParticleData<3>&,

@@ -719,6 +719,35 @@ TEST(SceneErrors, FluidProbeWithoutFluidIsRefused) {
   EXPECT_NE(msg.find("needs a pore fluid: the scene has no [fluid] table"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, FluidForceProbesAreChecked) {
+  // The pore fluid's force on a box's grains (a component or the norm) or
+  // on one grain: both need a [fluid], and take the keys of their kind.
+  const std::string probes =
+      "\n[[probe]]\nname = \"bed\"\nquantity = \"fluid_force\"\nmin = [-0.001, 0.0]\nmax = [0.001, 0.01]\n"
+      "component = \"norm\"\n\n[[probe]]\nname = \"one\"\nquantity = \"particle_fluid_force\"\n"
+      "particle = 0\ncomponent = \"y\"\n";
+  const std::string good = with_fluid() + probes;
+  EXPECT_EQ(load_error(good), "");
+  auto msg = load_error(std::string(kGood) + probes);
+  EXPECT_NE(
+      msg.find("[[probe]] #1 key 'quantity': \"fluid_force\" needs a pore fluid: the scene has no [fluid] "
+               "table"),
+      std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, "max = [0.001, 0.01]", "max = [0.001, 0.0]"));
+  EXPECT_NE(msg.find("key 'max': must be greater than 'min' along every axis"), std::string::npos) << msg;
+  msg = load_error(replace(good, "component = \"norm\"", "component = \"z\""));  // the scene is 2D
+  EXPECT_NE(msg.find("[[probe]] #1 key 'component'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "component = \"norm\"\n", "component = \"norm\"\nparticle = 0\n"));
+  EXPECT_NE(msg.find("key 'particle': does not apply to quantity \"fluid_force\""), std::string::npos) << msg;
+  msg = load_error(replace(good, "particle = 0\n", ""));
+  EXPECT_NE(msg.find("[[probe]] #2"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("missing required key 'particle'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "particle = 0\n", "particle = 100000\n"));
+  EXPECT_NE(msg.find("key 'particle': must be in 0.."), std::string::npos) << msg;
+}
+
 TEST(SceneErrors, TimeStepAboveTheCoupledCriticalStepIsRefused) {
   // The dry critical step is 1.44e-4 s; with K_f = 1e7 Pa the pore fluid's
   // undrained stiffness brings it to a few microseconds: 5e-5 s is refused.

@@ -14,8 +14,12 @@
 
 namespace darcydem {
 
+/// The particles as VTK points (.vtu): radius, id, velocity, force,
+/// angular_velocity, and with `fluid_force` (one per particle, N) the pore
+/// fluid's force on each too.
 template <int D>
-void write_particles_vtu(const std::string& path, const ParticleData<D>& particles);
+void write_particles_vtu(const std::string& path, const ParticleData<D>& particles,
+                         const std::vector<Vec<D>>* fluid_force = nullptr);
 
 /// The contact network as VTK lines (.vtu), one per contact: from the first
 /// particle's centre to the other's (its nearest periodic image) or to the

@@ -38,6 +38,8 @@ enum class ProbeQuantity {
   porosity,           ///< 1 - the grains' volume in a box (exact overlaps) / its volume
   removed_particles,  ///< how many particles have left the [domain] so far
   removed_mass,       ///< their mass, kg (2D: per metre)
+  particle_fluid_force,  ///< the pore fluid's force on one particle, N (Simulation::field_forces)
+  fluid_force,           ///< the pore fluid's force on the particles whose centres lie in a box, N
 };
 
 struct ProbeSpec {
@@ -51,7 +53,7 @@ struct ProbeSpec {
   std::int64_t barrier = -1;
   std::vector<double> position;  ///< pore_pressure: the point, m
   int side = 0;                  ///< fluid_inflow, side_pressure: x_min, x_max, y_min, ...
-  /// particles_in_box, mean_particle_position, stress, porosity: the box, m
+  /// particles_in_box, mean_particle_position, stress, porosity, fluid_force: the box, m
   std::vector<double> box_min, box_max;
   std::array<int, 2> tensor{0, 0};  ///< stress: the component (i, j); (-1, -1) the mean, trace / D
 };
