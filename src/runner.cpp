@@ -42,12 +42,29 @@ std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
+/// Which of the stage's stop conditions holds now ("" if none).
 template <int D>
-bool stop_condition_met(const Simulation<D>& sim, const Stage<D>& stage) {
-  if (stage.kinetic_energy_below && sim.kinetic_energy() < *stage.kinetic_energy_below) return true;
-  if (stage.unbalanced_force_below && sim.unbalanced_force_ratio() < *stage.unbalanced_force_below)
-    return true;
-  return false;
+std::string stop_condition_met(const Scene<D>& scene, const Stage<D>& stage) {
+  const Simulation<D>& sim = scene.simulation;
+  if (stage.kinetic_energy_below) {
+    const double e = sim.kinetic_energy();
+    if (e < *stage.kinetic_energy_below)
+      return fmt::format("kinetic energy {:.6g} J below {:.6g} J", e, *stage.kinetic_energy_below);
+  }
+  if (stage.unbalanced_force_below) {
+    const double r = sim.unbalanced_force_ratio();
+    if (r < *stage.unbalanced_force_below)
+      return fmt::format("unbalanced force ratio {:.6g} below {:.6g}", r, *stage.unbalanced_force_below);
+  }
+  if (stage.stop_probe) {
+    const ProbeSpec& probe = scene.output.probes[*stage.stop_probe];
+    const double v = evaluate_probe(probe, sim, scene.fluid.get());
+    if (stage.probe_above && v > *stage.probe_above)
+      return fmt::format("probe {} = {:.10g} above {:.10g}", probe.name, v, *stage.probe_above);
+    if (stage.probe_below && v < *stage.probe_below)
+      return fmt::format("probe {} = {:.10g} below {:.10g}", probe.name, v, *stage.probe_below);
+  }
+  return {};
 }
 
 class Progress {
@@ -434,8 +451,10 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       const std::uint64_t first_step = resumed_here ? pos.stage_steps : 0;
       const double t_end = sim.time + static_cast<double>(n_steps - std::min(first_step, n_steps)) * dt;
       bool stopped_early = false;
+      std::string stop_reason;
       const auto check_interval = static_cast<std::uint64_t>(stage.check_interval);
-      const bool stops = stage.kinetic_energy_below.has_value() || stage.unbalanced_force_below.has_value();
+      const bool stops = stage.kinetic_energy_below.has_value() || stage.unbalanced_force_below.has_value() ||
+                         stage.stop_probe.has_value();
       for (std::uint64_t s = first_step; s < n_steps; ++s) {
         // Advance to the next step at which anything below may act (fluid
         // update, output, stop check, progress): the steps in between run
@@ -466,9 +485,12 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
           write_snapshot();
           next_snapshot += scene.output.snapshot_interval;
         }
-        if ((s + 1) % check_interval == 0 && stop_condition_met(sim, stage)) {
-          stopped_early = true;
-          break;
+        if ((s + 1) % check_interval == 0) {
+          stop_reason = stop_condition_met(scene, stage);
+          if (!stop_reason.empty()) {
+            stopped_early = true;
+            break;
+          }
         }
         if (((s + 1) & 255U) == 0) {
           if ((options.interrupt != nullptr && options.interrupt->load()) ||
@@ -523,7 +545,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       if (summary.interrupted) break;
       summary.stages_completed.push_back(stage.name);
       if (options.log != nullptr && stopped_early) {
-        *options.log << fmt::format("stage {}: stop condition met at t = {:.6g} s\n", stage.name, sim.time);
+        *options.log << fmt::format("stage {}: stop condition met at t = {:.6g} s: {}\n", stage.name,
+                                    sim.time, stop_reason);
       }
     }
   } catch (const std::exception& e) {

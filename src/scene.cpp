@@ -1162,10 +1162,38 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       if (auto v = sr.optional_number("unbalanced_force_below")) {
         s.unbalanced_force_below = sr.check("unbalanced_force_below", *v, is_positive, "> 0");
       }
+      if (auto name = sr.optional_string("probe")) {
+        // A [[probe]] by name (a profile's points are NAME_0, NAME_1, ...).
+        std::vector<std::string> names;
+        for (const auto& p : scene.output.probes) names.push_back(p.name);
+        const auto it = std::find(names.begin(), names.end(), *name);
+        if (it == names.end()) {
+          std::string hint;
+          if (auto h = did_you_mean(*name, names); !h.empty())
+            hint = fmt::format(" (did you mean \"{}\"?)", h);
+          sr.fail("probe", names.empty()
+                               ? fmt::format("no probe named \"{}\": the scene has no [[probe]]", *name)
+                               : fmt::format("no probe named \"{}\"{}", *name, hint));
+        }
+        s.stop_probe = static_cast<std::size_t>(it - names.begin());
+        auto finite = [](double v) { return std::isfinite(v); };
+        if (auto v = sr.optional_number("above"))
+          s.probe_above = sr.check("above", *v, finite, "a finite number");
+        if (auto v = sr.optional_number("below"))
+          s.probe_below = sr.check("below", *v, finite, "a finite number");
+        if (!s.probe_above && !s.probe_below) {
+          sr.fail("probe", "needs 'above' or 'below' (or both): the probe's value at which the stage ends");
+        }
+      } else {
+        for (auto k : {"above", "below"}) {
+          if (sr.has(k)) sr.fail(k, "applies to a probe: give 'probe' = the name of a [[probe]]");
+        }
+      }
       s.check_interval = sr.optional_integer("check_interval").value_or(100);
       if (s.check_interval < 1) sr.fail("check_interval", "must be >= 1 step");
-      if (!s.kinetic_energy_below && !s.unbalanced_force_below) {
-        sr.fail_table("needs 'kinetic_energy_below' or 'unbalanced_force_below'");
+      if (!s.kinetic_energy_below && !s.unbalanced_force_below && !s.stop_probe) {
+        sr.fail_table(
+            "needs 'kinetic_energy_below', 'unbalanced_force_below' or 'probe' with 'above' or 'below'");
       }
       sr.finish();
     }

@@ -748,6 +748,36 @@ TEST(SceneErrors, FluidForceProbesAreChecked) {
   EXPECT_NE(msg.find("key 'particle': must be in 0.."), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, ProbeStopConditionsAreChecked) {
+  // stop_when = { probe = NAME, above/below = value }: a [[probe]] by its
+  // name (a near miss suggested), at least one finite threshold.
+  const std::string good =
+      replace(kGood, "gravity = [0.0, -9.81]\n",
+              "gravity = [0.0, -9.81]\nstop_when = { probe = \"top_y\", below = 0.001 }\n\n"
+              "[[probe]]\nname = \"top_y\"\nquantity = \"particle_position\"\n"
+              "particle = \"top\"\ncomponent = \"y\"\n");
+  EXPECT_EQ(load_error(good), "");
+  EXPECT_EQ(load_error(replace(good, "below = 0.001", "above = 0.0, below = 0.001")), "");
+  auto msg = load_error(replace(good, "probe = \"top_y\"", "probe = \"top_z\""));
+  EXPECT_NE(
+      msg.find("[[stage]] #1 stop_when key 'probe': no probe named \"top_z\" (did you mean \"top_y\"?)"),
+      std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, ", below = 0.001", ""));
+  EXPECT_NE(msg.find("key 'probe': needs 'above' or 'below'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "below = 0.001", "below = nan"));
+  EXPECT_NE(msg.find("key 'below'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "probe = \"top_y\", ", ""));
+  EXPECT_NE(msg.find("key 'below': applies to a probe: give 'probe'"), std::string::npos) << msg;
+  msg = load_error(replace(kGood, "gravity = [0.0, -9.81]\n",
+                           "gravity = [0.0, -9.81]\nstop_when = { probe = \"top_y\", below = 0.001 }\n"));
+  EXPECT_NE(msg.find("no probe named \"top_y\": the scene has no [[probe]]"), std::string::npos) << msg;
+  msg = load_error(replace(good, "probe = \"top_y\", below = 0.001", "check_interval = 10"));
+  EXPECT_NE(msg.find("needs 'kinetic_energy_below', 'unbalanced_force_below' or 'probe'"), std::string::npos)
+      << msg;
+}
+
 TEST(SceneErrors, TimeStepAboveTheCoupledCriticalStepIsRefused) {
   // The dry critical step is 1.44e-4 s; with K_f = 1e7 Pa the pore fluid's
   // undrained stiffness brings it to a few microseconds: 5e-5 s is refused.

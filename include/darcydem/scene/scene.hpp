@@ -89,7 +89,12 @@ struct Stage {
   std::optional<double> viscous_damping;
   std::optional<double> kinetic_energy_below;    ///< J: stop once below
   std::optional<double> unbalanced_force_below;  ///< -: stop once below
-  std::int64_t check_interval = 100;             ///< steps between stop checks
+  /// A probe's value: stop once above `probe_above` or below `probe_below`
+  /// (either or both; a NaN reading stops nothing).
+  std::optional<std::size_t> stop_probe;  ///< index in OutputSpec::probes
+  std::optional<double> probe_above;
+  std::optional<double> probe_below;
+  std::int64_t check_interval = 100;  ///< steps between stop checks
   std::vector<WallChange<D>> walls;
   std::vector<std::pair<int, FluidBoundary>> fluid_sides;    ///< changes of the fluid's sides
   std::vector<std::pair<int, FluidBoundary>> fluid_patches;  ///< and of its patches (index in patches)
