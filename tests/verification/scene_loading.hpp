@@ -1,5 +1,6 @@
 #pragma once
 // Loads scene files from the source tree, as a user would run them.
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -18,6 +19,15 @@ Scene<D> load_scene_file(const std::string& path) {
   std::string text;
   const toml::table root = parse_toml_file(path, text);
   return build_scene<D>(root, path, text);
+}
+
+/// Writes `text` as dir/name (making dir) and loads it.
+template <int D>
+Scene<D> scene_from_text(const std::string& dir, const std::string& name, const std::string& text) {
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/" + name;
+  std::ofstream(path) << text;
+  return load_scene_file<D>(path);
 }
 
 /// Loads a scene file from the source tree (path relative to it).

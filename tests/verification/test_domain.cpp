@@ -21,20 +21,12 @@
 
 using namespace darcydem;
 using darcydem::testing::read_probes;
+using darcydem::testing::scene_from_text;
 using darcydem::testing::temp_dir;
 
 namespace {
 
 constexpr double g = 9.80665;
-
-/// Writes `text` as dir/name and loads it.
-template <int D>
-Scene<D> scene_from_text(const std::string& dir, const std::string& name, const std::string& text) {
-  std::filesystem::create_directories(dir);
-  const std::string path = dir + "/" + name;
-  std::ofstream(path) << text;
-  return darcydem::testing::load_scene_file<D>(path);
-}
 
 // Five discs of 1 mm radius fall from rest, 10 mm apart along x (they never
 // touch), their centres 5, 10, 20, 40 and 80 mm above the domain's floor at

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -81,10 +80,7 @@ stop_when = { probe = "speed", above = 2.0 }
 
 TEST(StopConditions, AStageEndsWhereItsProbeCrossesTheThreshold) {
   const std::string dir = temp_dir("stop_on_probe");
-  std::filesystem::create_directories(dir);
-  const std::string path = dir + "/scene.toml";
-  std::ofstream(path) << falling_disc;
-  Scene<2> scene = darcydem::testing::load_scene_file<2>(path);
+  Scene<2> scene = darcydem::testing::scene_from_text<2>(dir, "scene.toml", falling_disc);
   ASSERT_EQ(scene.stages.size(), 2U);
   ASSERT_TRUE(scene.stages[0].stop_probe.has_value());
   // By hand: after n steps from rest, y_n = 1 - g (n dt)^2 / 2 and
@@ -114,8 +110,8 @@ TEST(StopConditions, AStageEndsWhereItsProbeCrossesTheThreshold) {
   EXPECT_NE(log.str().find("probe height = 0.89"), std::string::npos) << log.str();
   EXPECT_NE(log.str().find("below 0.9"), std::string::npos) << log.str();
   EXPECT_NE(log.str().find("probe speed = 2.0"), std::string::npos) << log.str();
-  // Each stage's end is a row of probes.csv: the height there is the first
-  // below 0.9 m, the one a step before it was not.
+  // Each stage's end is a row of probes.csv: the height there is below
+  // 0.9 m (that it is the first such step, the step count above shows).
   const auto probes = read_probes(options.out_dir + "/probes.csv");
   const double t_fall = static_cast<double>(fall) * dt;
   bool found = false;
@@ -123,7 +119,6 @@ TEST(StopConditions, AStageEndsWhereItsProbeCrossesTheThreshold) {
     if (std::abs(probes.at("time")[k] - t_fall) < 0.5 * dt) {
       found = true;
       EXPECT_LT(probes.at("height")[k], 0.9);
-      EXPECT_GE(1.0 - 0.5 * g * std::pow(t_fall - dt, 2), 0.9);
     }
   }
   EXPECT_TRUE(found) << "no row at the end of stage fall, t = " << t_fall;
