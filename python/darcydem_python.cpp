@@ -4,8 +4,8 @@
 //   darcydem.run("scene.toml", out="out/run")   # as `darcydem run`, returns a summary dict
 //   model = darcydem.load("scene.toml")         # as `darcydem check`, at the first stage's start
 //   model.apply_stage("settle")                 # a stage's settings, as a run starts it
-//   model.step(1000)                            # DEM steps, with the fluid's steps among them
-//   model.positions, model.velocities           # numpy arrays (N, D), particles in creation order
+//   model.step(1000)                            # DEM steps, with the fluid's steps and inlets' grains among
+//   them model.positions, model.velocities           # numpy arrays (N, D), particles in creation order
 //   model.fluid.pressure                        # numpy array over the cells, indexed [i, j(, k)]
 //   darcydem.consolidation_degree(t, height=H, conductivity=k, compressibility=m_v, fluid_storage=n/K_f)
 //                                               # Terzaghi's closed forms (analysis/seepage_analytic.hpp)
@@ -103,7 +103,10 @@ class Model {
       : scene_(build_scene<D>(root, file, text)) {
     // As a run starts: the first stage's settings, and the contact forces'
     // magnitudes summed (for unbalanced_force_ratio).
-    if (!scene_.stages.empty()) darcydem::apply_stage(sim(), fluid(), scene_.stages.front());
+    if (!scene_.stages.empty()) {
+      darcydem::apply_stage(sim(), fluid(), scene_.stages.front());
+      apply_inlet_changes(scene_.inlets, scene_.stages.front(), sim().time);
+    }
     sim().measure_contact_forces = true;
     sim().prepare();
   }
@@ -124,6 +127,7 @@ class Model {
       if (s.name == name) {
         if (starts_new_coupling_interval(fluid(), s) && since_update_ > 0) fluid_step();
         darcydem::apply_stage(sim(), fluid(), s);
+        apply_inlet_changes(scene_.inlets, s, sim().time);
         return;
       }
     }
@@ -134,7 +138,7 @@ class Model {
   }
 
   /// `count` DEM steps, with a fluid step after every steps_per_update of
-  /// them, as a run takes them.
+  /// them and the inlets' insertions when they are due, as a run takes them.
   void step(std::uint64_t count) {
     while (count > 0) {
       std::uint64_t run = std::min(count, kSignalCheckSteps);
@@ -143,6 +147,7 @@ class Model {
                                         1, run);
       {
         py::gil_scoped_release unlocked;
+        run = std::min(run, insert_due_grains());
         sim().advance(run);
         since_update_ += run;
         if (fluid() != nullptr && since_update_ >= static_cast<std::uint64_t>(fluid()->steps_per_update))
@@ -154,6 +159,23 @@ class Model {
   }
 
  private:
+  /// The inlets' insertions due now, as a run makes them; returns the
+  /// steps to the next one (as many as there may be when none is coming).
+  std::uint64_t insert_due_grains() {
+    auto& sim = this->sim();
+    const double dt = sim.time_step;
+    std::uint64_t until = ~std::uint64_t{0};
+    for (auto& in : scene_.inlets) {
+      while (in.active && !in.exhausted() && sim.time >= in.next_time - 0.5 * dt) insert_due(in, sim);
+      if (!in.active || in.exhausted()) continue;
+      // As the run counts: one step short of the predicted crossing, then
+      // step by step, so that rounding in the clock cannot skip it.
+      const double ahead = std::floor((in.next_time - 0.5 * dt - sim.time) / dt) - 1.0;
+      until = std::min(until, ahead >= 1.0 ? static_cast<std::uint64_t>(std::min(ahead, 1e18)) : 1);
+    }
+    return until;
+  }
+
   void fluid_step() {
     darcydem::fluid_step(sim(), *fluid(), since_update_);
     since_update_ = 0;
@@ -346,6 +368,11 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "particles removed outside the [domain] so far")
       .def_property_readonly(
           "removed_mass", [](const M& s) { return s.sim().removed_mass; }, "their mass, kg (2D: per metre)")
+      .def_property_readonly(
+          "inserted_count", [](const M& s) { return s.sim().inserted_count; },
+          "particles the [[inlet]]s have added so far")
+      .def_property_readonly(
+          "inserted_mass", [](const M& s) { return s.sim().inserted_mass; }, "their mass, kg (2D: per metre)")
       .def_property(
           "gravity", [](const M& s) { return as_tuple<D>(s.sim().gravity); },
           [](M& s, const std::vector<double>& g) { s.sim().gravity = as_vec<D>(g, "gravity"); }, "m/s^2")

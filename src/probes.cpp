@@ -93,7 +93,8 @@ std::vector<typename Simulation<D>::Moment> cell_contact_stress(const Simulation
 }
 
 template <int D>
-double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const PoreFluid<D>* fluid) {
+double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const PoreFluid<D>* fluid,
+                      const std::vector<Inlet<D>>* inlets) {
   auto pick = [&](const Vec<D>& v) { return probe.component < 0 ? v.norm() : v[probe.component]; };
   const auto& p = sim.particles;
   switch (probe.quantity) {
@@ -124,6 +125,14 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       return static_cast<double>(sim.removed_count);
     case ProbeQuantity::removed_mass:
       return sim.removed_mass;
+    case ProbeQuantity::inserted_particles:
+      if (inlets != nullptr && probe.inlet >= 0)
+        return static_cast<double>((*inlets)[static_cast<std::size_t>(probe.inlet)].inserted);
+      return static_cast<double>(sim.inserted_count);
+    case ProbeQuantity::inserted_mass:
+      if (inlets != nullptr && probe.inlet >= 0)
+        return (*inlets)[static_cast<std::size_t>(probe.inlet)].inserted_mass;
+      return sim.inserted_mass;
     case ProbeQuantity::contact_count:
       return static_cast<double>(sim.contact_count());
     case ProbeQuantity::coordination:
@@ -190,8 +199,10 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
   return 0.0;
 }
 
-template double evaluate_probe<2>(const ProbeSpec&, const Simulation<2>&, const PoreFluid<2>*);
-template double evaluate_probe<3>(const ProbeSpec&, const Simulation<3>&, const PoreFluid<3>*);
+template double evaluate_probe<2>(const ProbeSpec&, const Simulation<2>&, const PoreFluid<2>*,
+                                  const std::vector<Inlet<2>>*);
+template double evaluate_probe<3>(const ProbeSpec&, const Simulation<3>&, const PoreFluid<3>*,
+                                  const std::vector<Inlet<3>>*);
 template double box_porosity<2>(const ParticleData<2>&, const Vec<2>&, const Vec<2>&, const PeriodicCell<2>&);
 template double box_porosity<3>(const ParticleData<3>&, const Vec<3>&, const Vec<3>&, const PeriodicCell<3>&);
 template std::vector<Simulation<2>::Moment> cell_contact_stress<2>(const Simulation<2>&, const FluidGrid<2>&);

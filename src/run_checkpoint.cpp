@@ -12,8 +12,8 @@ namespace darcydem {
 namespace {
 
 constexpr const char* checkpoint_magic = "darcydem checkpoint";
-constexpr std::uint32_t format = 5;  // 2: the pore fluid's patches; 3: the walls' series; 4: the contacts'
-// series; 5: the particles removed outside the domain
+constexpr std::uint32_t format = 6;  // 2: the pore fluid's patches; 3: the walls' series; 4: the contacts'
+// series; 5: the particles removed outside the domain; 6: inlets
 constexpr const char* end_mark = "end of checkpoint";
 
 /// The header: what a reader must share with the writer.
@@ -49,8 +49,10 @@ Header header_of(const Scene<D>& scene, const RunState<D>& state) {
   h.one_and_a_half = 1.5;
   h.version = version_string;
   h.scene_hash = scene.text_hash;
-  // As the scene built them: those removed outside the [domain] included.
-  h.particles = state.simulation.particles.size() + state.simulation.removed_count;
+  // As the scene built them: those removed outside the [domain] included,
+  // those an inlet added not.
+  const auto& sim = state.simulation;
+  h.particles = sim.particles.size() + sim.removed_count - sim.inserted_count;
   h.fluid = state.fluid != nullptr;
   h.analysis = state.analysis != nullptr;
   return h;
@@ -58,7 +60,7 @@ Header header_of(const Scene<D>& scene, const RunState<D>& state) {
 
 template <class Archive, int D>
 void state_items(Archive& ar, const RunState<D>& state) {
-  ar(state.position, state.simulation);
+  ar(state.position, state.simulation, state.inlets);
   if (state.fluid != nullptr) state.fluid->checkpoint(ar, &state.simulation.field_forces());
   if (state.analysis != nullptr) ar(*state.analysis);
   ar(state.particle_series, state.fluid_series, state.wall_series, state.contact_series);
@@ -120,7 +122,8 @@ void read_checkpoint(const std::string& path, const Scene<D>& scene, const RunSt
   std::string end;
   ar(end);
   if (end != end_mark) throw CheckpointError(fmt::format("{}: damaged (no end mark)", path));
-  if (state.simulation.particles.size() + state.simulation.removed_count != want.particles)
+  const auto& sim = state.simulation;
+  if (sim.particles.size() + sim.removed_count - sim.inserted_count != want.particles)
     throw CheckpointError(fmt::format("{}: damaged (particle arrays of the wrong length)", path));
 }
 

@@ -58,7 +58,7 @@ std::string stop_condition_met(const Scene<D>& scene, const Stage<D>& stage) {
   }
   if (stage.stop_probe) {
     const ProbeSpec& probe = scene.output.probes[*stage.stop_probe];
-    const double v = evaluate_probe(probe, sim, scene.fluid.get());
+    const double v = evaluate_probe(probe, sim, scene.fluid.get(), &scene.inlets);
     if (stage.probe_above && v > *stage.probe_above)
       return fmt::format("probe {} = {:.10g} above {:.10g}", probe.name, v, *stage.probe_above);
     if (stage.probe_below && v < *stage.probe_below)
@@ -158,6 +158,16 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
     json << fmt::format("  \"removed\": {{\"particles\": {}, \"mass\": {:.17g}, \"volume\": {:.17g}}},\n",
                         sim.removed_count, sim.removed_mass, sim.removed_volume);
   }
+  if (!scene.inlets.empty()) {
+    std::string inlets;
+    for (const auto& in : scene.inlets) {
+      inlets += fmt::format("{}{{\"name\": {}, \"particles\": {}, \"mass\": {:.17g}, \"short_of_room\": {}}}",
+                            inlets.empty() ? "" : ", ", json_string(in.name), in.inserted, in.inserted_mass,
+                            in.short_events);
+    }
+    json << fmt::format("  \"inserted\": {{\"particles\": {}, \"mass\": {:.17g}, \"inlets\": [{}]}},\n",
+                        sim.inserted_count, sim.inserted_mass, inlets);
+  }
   if (fluid != nullptr) {
     const auto& tb = fluid->total_balance();
     json << fmt::format(
@@ -217,6 +227,15 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
   }
 }
 
+template <int D>
+void apply_inlet_changes(std::vector<Inlet<D>>& inlets, const Stage<D>& stage, double time) {
+  for (const auto& [index, active] : stage.inlets) {
+    auto& in = inlets[index];
+    if (active && !in.active) in.next_time = time;
+    in.active = active;
+  }
+}
+
 std::string describe_critical_step(double seconds) {
   // Only fixed particles (or none free to move): nothing limits the step.
   if (std::isinf(seconds)) return "none (no particle is free to move)";
@@ -249,12 +268,12 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   if (scene.seepage_column) seepage.emplace(*scene.seepage_column, scene);
   // Where the run stands; a checkpoint stores it with the state.
   RunPosition pos;
-  const RunState<D> state{pos,    sim,          fluid,       seepage ? &*seepage : nullptr,
-                          series, fluid_series, wall_series, contact_series};
+  const RunState<D> state{pos,    sim,          scene.inlets, fluid,         seepage ? &*seepage : nullptr,
+                          series, fluid_series, wall_series,  contact_series};
   auto write_probes = [&] {
     probes << fmt::format("{:.10g}", sim.time);
     for (const auto& p : scene.output.probes)
-      probes << fmt::format(",{:.10g}", evaluate_probe(p, sim, scene.fluid.get()));
+      probes << fmt::format(",{:.10g}", evaluate_probe(p, sim, scene.fluid.get(), &scene.inlets));
     probes << "\n";
   };
   auto write_snapshot = [&] {
@@ -350,7 +369,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     *options.log << fmt::format(
         "darcydem {}: {} particles, {}D, time step {:.4g} s (critical {})\n", version_string,
         sim.particles.size(), D, dt,
-        describe_critical_step(fluid != nullptr
+        describe_critical_step(!scene.inlets.empty() ? scene.critical_time_step
+                               : fluid != nullptr
                                    ? fluid->critical_time_step(sim.particles, sim.critical_time_step())
                                    : sim.critical_time_step()));
     if (!sim.particles.radius.empty()) *options.log << describe_grading<D>(sim.particles.radius);
@@ -409,6 +429,30 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   // has something to do. Output times are crossed by accumulating dt, so the
   // count stops one step short of the predicted crossing and the last steps
   // go one at a time.
+  // The inlets' insertions due now (several if the interval is below a
+  // step); a first shortage of room is said once per inlet.
+  auto insert_due_grains = [&] {
+    for (auto& in : scene.inlets) {
+      while (in.active && !in.exhausted() && sim.time >= in.next_time - 0.5 * sim.time_step) {
+        const auto result = insert_due(in, sim);
+        if (result.short_of_room && in.short_events == 1 && options.log != nullptr) {
+          *options.log << fmt::format(
+              "inlet {}: at t = {:.6g} s its box has no room for all the grains due ({} random places tried "
+              "for a grain); the rest wait for the next insertion (said once; the run log counts them at "
+              "each stage's end)\n",
+              in.name, sim.time, in.max_attempts);
+        }
+      }
+    }
+  };
+  // The next insertion of an active inlet, s (1e300: none).
+  auto next_insertion = [&] {
+    double t = 1e300;
+    for (const auto& in : scene.inlets) {
+      if (in.active && !in.exhausted()) t = std::min(t, in.next_time);
+    }
+    return t;
+  };
   auto steps_to_next_event = [&](std::uint64_t s, std::uint64_t n_steps, std::uint64_t check_interval,
                                  double probe_time, double snapshot_time) {
     std::uint64_t run = n_steps - s;
@@ -417,7 +461,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     if (fluid != nullptr)
       run = std::min(run, static_cast<std::uint64_t>(fluid->steps_per_update) - since_update);
     if (seepage) run = 1;  // it samples the column after every step
-    for (double t : {probe_time, snapshot_time}) {
+    for (double t : {probe_time, snapshot_time, next_insertion()}) {
       const double ahead = std::floor((t - 0.5 * dt - sim.time) / dt) - 1.0;
       run =
           std::min(run, ahead >= 1.0 ? static_cast<std::uint64_t>(std::min(ahead, 1e18)) : std::uint64_t{1});
@@ -439,6 +483,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       if (!resumed_here) {
         if (starts_new_coupling_interval(fluid, stage) && since_update > 0) fluid_step();
         apply_stage(sim, fluid, stage);
+        apply_inlet_changes(scene.inlets, stage, sim.time);
         if (fluid != nullptr && options.log != nullptr &&
             (stage.fluid_steps_per_update || stage.fluid_hold_forces)) {
           *options.log << fmt::format("stage {}: fluid step every {} DEM steps{}\n", stage.name,
@@ -456,6 +501,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       const bool stops = stage.kinetic_energy_below.has_value() || stage.unbalanced_force_below.has_value() ||
                          stage.stop_probe.has_value();
       for (std::uint64_t s = first_step; s < n_steps; ++s) {
+        insert_due_grains();
         // Advance to the next step at which anything below may act (fluid
         // update, output, stop check, progress): the steps in between run
         // fused (Simulation::advance), with the same results as one by one.
@@ -512,6 +558,16 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       write_probes();
       write_snapshot();
       if (seepage) seepage->stage_ended(scene, stage.name, !summary.interrupted);
+      for (const auto& in : scene.inlets) {
+        if (options.log == nullptr) break;
+        *options.log << fmt::format("inlet {}: {} grains added so far ({:.6g} kg{}){}{}\n", in.name,
+                                    in.inserted, in.inserted_mass, D == 2 ? " per metre" : "",
+                                    in.exhausted() ? ", all it may add" : "",
+                                    in.short_events > 0 ? fmt::format("; {} insertions found no room for all "
+                                                                      "that was due",
+                                                                      in.short_events)
+                                                        : "");
+      }
       if (sim.has_domain && options.log != nullptr && sim.removed_count > 0) {
         *options.log << fmt::format(
             "{} particles have left the [domain] so far ({:.6g} kg, {:.6g} m^3 of grains): removed; {} "
@@ -692,6 +748,8 @@ template void fluid_step<2>(Simulation<2>&, PoreFluid<2>&, std::uint64_t);
 template void fluid_step<3>(Simulation<3>&, PoreFluid<3>&, std::uint64_t);
 template void apply_stage<2>(Simulation<2>&, PoreFluid<2>*, const Stage<2>&);
 template void apply_stage<3>(Simulation<3>&, PoreFluid<3>*, const Stage<3>&);
+template void apply_inlet_changes<2>(std::vector<Inlet<2>>&, const Stage<2>&, double);
+template void apply_inlet_changes<3>(std::vector<Inlet<3>>&, const Stage<3>&, double);
 template RunSummary run_scene<2>(Scene<2>&, const RunOptions&);
 template RunSummary run_scene<3>(Scene<3>&, const RunOptions&);
 

@@ -17,6 +17,8 @@
 #include "darcydem/neighbour/linked_cells.hpp"
 #include "darcydem/particles/grading.hpp"
 #include "darcydem/scene/scene_fluid.hpp"
+#include "darcydem/scene/scene_inlet.hpp"
+#include "darcydem/scene/scene_sizes.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 
 namespace darcydem {
@@ -37,9 +39,9 @@ void check_count_fits(const TableReader& r, std::string_view key, double count) 
   }
 }
 
-const std::vector<std::string> kTopLevel = {"simulation", "periodic",  "material", "contact",
-                                            "wall",       "particles", "output",   "probe",
-                                            "stage",      "fluid",     "analysis", "domain"};
+const std::vector<std::string> kTopLevel = {"simulation", "periodic", "material", "contact", "wall",
+                                            "particles",  "output",   "probe",    "stage",   "fluid",
+                                            "analysis",   "domain",   "inlet"};
 
 template <int D>
 Vec<D> to_vec(const std::vector<double>& v) {
@@ -80,48 +82,6 @@ struct MaterialRef {
   }
 };
 
-/// A `grading = { diameters, passing, by }` table: a grading curve by mass
-/// (the default, as a sieve analysis gives it) or by number.
-RadiusDistribution read_grading(TableReader& r, const toml::table& t, int dimension) {
-  TableReader g(t, r.where() + " grading", r.file());
-  const std::vector<double> diameters = g.number_list("diameters");
-  const std::vector<double> passing = g.number_list("passing");
-  const std::string by = g.optional_choice("by", {"mass", "number"}).value_or("mass");
-  g.finish();
-  if (diameters.size() < 2) g.fail("diameters", "needs at least two sieve diameters (m), smallest first");
-  if (passing.size() != diameters.size()) {
-    g.fail("passing", fmt::format("needs one fraction per diameter: {} diameters, {} fractions",
-                                  diameters.size(), passing.size()));
-  }
-  for (std::size_t i = 0; i < diameters.size(); ++i) {
-    g.check("diameters", diameters[i], is_positive, "> 0 m");
-    if (i > 0 && !(diameters[i] > diameters[i - 1])) {
-      g.fail("diameters",
-             fmt::format("must increase, smallest first; element {} ({}) is not above element {} ({})", i + 1,
-                         TableReader::format_number(diameters[i]), i,
-                         TableReader::format_number(diameters[i - 1])));
-    }
-    g.check(
-        "passing", passing[i], [](double v) { return v >= 0.0 && v <= 1.0; },
-        "fractions in [0, 1] (not percent)");
-    if (i > 0 && passing[i] < passing[i - 1]) {
-      g.fail("passing",
-             fmt::format("must never decrease (the fraction finer than each diameter); element {} ({}) "
-                         "is below element {} ({})",
-                         i + 1, TableReader::format_number(passing[i]), i,
-                         TableReader::format_number(passing[i - 1])));
-    }
-  }
-  if (passing.front() != 0.0 || passing.back() != 1.0) {
-    g.fail(
-        "passing",
-        fmt::format("must be 0 at the smallest diameter and 1 at the largest (nothing finer than the "
-                    "first sieve, everything finer than the last); got {} and {}",
-                    TableReader::format_number(passing.front()), TableReader::format_number(passing.back())));
-  }
-  return RadiusDistribution::grading(diameters, passing, by == "mass" ? dimension : 0);
-}
-
 /// A note when the grains drawn from a grading miss its D10, D50 or D60 by
 /// more than 10 %: a grading by mass over a wide range rests its mass on
 /// few coarse grains, which a small sample lacks.
@@ -143,56 +103,6 @@ std::optional<std::string> grading_followed_loosely(const RadiusDistribution& cu
       "closer{})",
       where, radius.size(), got[0] * 1e3, got[1] * 1e3, got[2] * 1e3, wanted[0] * 1e3, wanted[1] * 1e3,
       wanted[2] * 1e3, curve.weight_exponent > 0 ? "; by mass the few coarse grains carry much of it" : "");
-}
-
-RadiusDistribution read_radius(TableReader& r, int dimension) {
-  r.allow({"radius", "radius_min", "radius_max", "radii", "fractions", "grading"});
-  // Exactly one way of giving the sizes: a second one would be ignored.
-  const std::vector<std::pair<std::string_view, bool>> ways = {
-      {"radius", r.has("radius")},
-      {"radius_min", r.has("radius_min") || r.has("radius_max")},
-      {"radii", r.has("radii") || r.has("fractions")},
-      {"grading", r.has("grading")}};
-  std::string_view first;
-  for (const auto& [key, given] : ways) {
-    if (!given) continue;
-    if (!first.empty()) {
-      r.fail(key == "radius_min" && !r.has("radius_min") ? "radius_max" : key,
-             fmt::format("give the sizes one way only; '{}' is given too", first));
-    }
-    first = key;
-  }
-  RadiusDistribution d;
-  if (r.has("radius")) {
-    d.kind = RadiusDistribution::Kind::constant;
-    d.value = r.check("radius", r.number("radius"), is_positive, "> 0 m");
-  } else if (r.has("radius_min") || r.has("radius_max")) {
-    d.kind = RadiusDistribution::Kind::uniform;
-    d.min = r.check("radius_min", r.number("radius_min"), is_positive, "> 0 m");
-    d.max = r.number("radius_max");
-    r.check(
-        "radius_max", d.max, [&](double v) { return v >= d.min; }, ">= radius_min");
-  } else if (r.has("radii") || r.has("fractions")) {
-    d.kind = RadiusDistribution::Kind::table;
-    d.radii = r.number_list("radii");
-    d.fractions = r.number_list("fractions");
-    if (d.fractions.size() != d.radii.size()) {
-      r.fail("fractions", "must have as many entries as 'radii'");
-    }
-    double sum = 0.0;
-    for (double f : d.fractions) sum += r.check("fractions", f, is_non_negative, ">= 0");
-    for (double x : d.radii) r.check("radii", x, is_positive, "> 0 m");
-    if (std::abs(sum - 1.0) > 1e-9)
-      r.fail("fractions", fmt::format("must add up to 1, they add up to {}", sum));
-  } else if (const toml::table* t = r.optional_table("grading")) {
-    d = read_grading(r, *t, dimension);
-  } else {
-    r.fail_table(
-        "needs a size: 'radius' (constant), 'radius_min' and 'radius_max' (uniform), "
-        "'radii' with 'fractions' (a table of sizes by number), or 'grading' (a grading curve: "
-        "{ diameters = [...], passing = [...], by = \"mass\" or \"number\" })");
-  }
-  return d;
 }
 
 template <int D>
@@ -907,9 +817,15 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       origin.push_back(fmt::format("{} ([[particles]] #{})", r.here(), index));
     }
   });
-  if (sim.particles.size() == 0)
-    top.fail_table("needs at least one [[particles]] generator that makes particles");
-  if (periodic_reader) check_periods<D>(*periodic_reader, sim, origin);
+  if (sim.particles.size() == 0 && (!top.has("inlet") || top.has("fluid"))) {
+    top.fail_table(top.has("inlet")
+                       ? "needs at least one [[particles]] generator that makes particles: with a "
+                         "[fluid], grains must be there from the start (the permeability's grain "
+                         "size comes from them)"
+                       : "needs at least one [[particles]] generator that makes particles (or "
+                         "an [[inlet]] that adds them during the run)");
+  }
+  if (periodic_reader && sim.particles.size() > 0) check_periods<D>(*periodic_reader, sim, origin);
 
   // Every pair of materials that can meet needs a [[contact]].
   {
@@ -948,6 +864,53 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     read_domain<D>(r, sim, scene.fluid.get(), origin, scene.notes);
   } else if (top.has("domain")) {
     top.fail("domain", "must be a table ([domain] with min = [...], max = [...])");
+  }
+
+  // [[inlet]]: grains added during the run.
+  std::vector<std::string> inlet_names;
+  for_each_table(top, "inlet", "inlet", [&](TableReader& r, int) {
+    const auto mat = materials.lookup(r, "material", r.string("material"));
+    scene.inlets.push_back(read_inlet<D>(r, mat, sim, scene.fluid.get(), inlet_names));
+    inlet_names.push_back(scene.inlets.back().name);
+    const auto& in = scene.inlets.back();
+    std::string box;
+    for (int k = 0; k < D; ++k)
+      box += fmt::format("{}{} in [{:.6g}, {:.6g}]", k == 0 ? "" : ", ", "xyz"[k], in.lower[k], in.upper[k]);
+    std::string limit;
+    if (in.max_count != std::numeric_limits<std::uint64_t>::max())
+      limit += fmt::format(", at most {} grains", in.max_count);
+    if (std::isfinite(in.max_mass)) limit += fmt::format(", at most {:.6g} kg", in.max_mass);
+    scene.notes.push_back(
+        fmt::format("[[inlet]] {}: {} every {:.6g} s into {} m{}{}", in.name,
+                    in.rate > 0.0 ? fmt::format("{:.6g} grains/s", in.rate)
+                                  : fmt::format("{:.6g} kg/s{}", in.mass_rate, D == 2 ? " per metre" : ""),
+                    in.interval, box, limit, in.active ? "" : "; inactive until a stage sets it active"));
+    // The new grains meet the particles, the walls and each other.
+    std::vector<bool> meets(nm, false);
+    for (auto m : sim.particles.material) meets[m] = true;
+    for (const auto& w : sim.walls) meets[w.material] = true;
+    for (const auto& in : scene.inlets) meets[in.material] = true;
+    for (std::size_t b = 0; b < nm; ++b) {
+      if (meets[b] && !defined[mat * nm + b]) {
+        r.fail("material", fmt::format("no [[contact]] for materials \"{}\" and \"{}\", which can touch",
+                                       sim.materials[mat].name, sim.materials[b].name));
+      }
+    }
+  });
+  if (!scene.inlets.empty()) {
+    const auto [r_min, r_max] = radius_range(sim.particles, scene.inlets);
+    if (sim.skin == 0.0) sim.skin = 0.2 * r_min;  // the automatic skin, over the inlets' grains too
+    for (int k = 0; k < D; ++k) {
+      if (sim.periodic.periodic[k] &&
+          !(sim.periodic.length[k] > 2.0 * (2.0 * r_max + sim.skin_or_default()))) {
+        periodic_reader->fail(
+            std::string(1, "xyz"[k]),
+            fmt::format("the period {:.6g} m must exceed 2 x (2 x largest radius + skin) = {:.6g} m, "
+                        "the inlets' grains counted, so that a particle meets one image of each "
+                        "neighbour",
+                        sim.periodic.length[k], 2.0 * (2.0 * r_max + sim.skin_or_default())));
+      }
+    }
   }
 
   // [output] and [[probe]]
@@ -994,8 +957,36 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "removed_particles",
                                                 "removed_mass",
                                                 "particle_fluid_force",
-                                                "fluid_force"});
+                                                "fluid_force",
+                                                "inserted_particles",
+                                                "inserted_mass"});
     r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points", "min", "max"});
+    if (q == "inserted_particles" || q == "inserted_mass") {
+      if (scene.inlets.empty()) {
+        r.fail("quantity",
+               fmt::format("\"{}\" counts what an [[inlet]] adds: the scene has no [[inlet]]", q));
+      }
+      if (auto name = r.optional_string("inlet")) {
+        const auto it = std::find(inlet_names.begin(), inlet_names.end(), *name);
+        if (it == inlet_names.end()) {
+          std::string hint;
+          if (auto h = did_you_mean(*name, inlet_names); !h.empty())
+            hint = fmt::format(" (did you mean \"{}\"?)", h);
+          r.fail("inlet", fmt::format("no [[inlet]] named \"{}\"{}", *name, hint));
+        }
+        p.inlet = it - inlet_names.begin();
+      }
+      for (auto k :
+           {"particle", "component", "wall", "position", "side", "from", "to", "points", "min", "max"}) {
+        if (r.has(k)) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
+      }
+      p.quantity =
+          q == "inserted_particles" ? ProbeQuantity::inserted_particles : ProbeQuantity::inserted_mass;
+      r.finish();
+      scene.output.probes.push_back(p);
+      return;
+    }
+    if (r.has("inlet")) r.fail("inlet", fmt::format("does not apply to quantity \"{}\"", q));
     const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
                              q == "side_pressure" || q == "fluid_balance" || q == "fluid_iterations" ||
                              q == "wall_fluid_force" || q == "particle_fluid_force" || q == "fluid_force";
@@ -1101,7 +1092,12 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         p.particle = -1;
       } else if (n->is_integer()) {
         const auto idx = *n->value<std::int64_t>();
-        if (idx < 0 || static_cast<std::size_t>(idx) >= sim.particles.size()) {
+        // An inlet's grains are numbered on from the scene's; one not made
+        // yet reads nan.
+        if (!scene.inlets.empty()) {
+          if (idx < 0)
+            r.fail("particle", "must be a particle index >= 0 (0-based, in creation order) or \"top\"");
+        } else if (idx < 0 || static_cast<std::size_t>(idx) >= sim.particles.size()) {
           r.fail("particle", fmt::format("must be in 0..{} (the scene has {} particles)",
                                          sim.particles.size() - 1, sim.particles.size()));
         }
@@ -1225,6 +1221,28 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         s.walls.push_back(c);
       }
     }
+    if (const toml::table* it = r.optional_table("inlets")) {
+      for (const auto& [name, node] : *it) {
+        const auto found = std::find(inlet_names.begin(), inlet_names.end(), std::string(name.str()));
+        if (found == inlet_names.end()) {
+          std::string hint;
+          if (auto h = did_you_mean(name.str(), inlet_names); !h.empty())
+            hint = fmt::format(" (did you mean \"{}\"?)", h);
+          throw SceneError(fmt::format("{}:{}:{}: error: {} inlets: no [[inlet]] named \"{}\"{}", file,
+                                       node.source().begin.line, node.source().begin.column, r.where(),
+                                       name.str(), hint));
+        }
+        const toml::table* ct = node.as_table();
+        if (ct == nullptr)
+          r.fail("inlets", "each inlet entry must be a table, e.g. inlets.rain = { active = false }");
+        TableReader cr(*ct, fmt::format("{} inlets.{}", r.where(), name.str()), file);
+        if (!cr.has("active"))
+          cr.fail_table("needs 'active' (true: the inlet adds grains from this stage on; false: it stops)");
+        s.inlets.emplace_back(static_cast<std::size_t>(found - inlet_names.begin()),
+                              cr.boolean_or("active", true));
+        cr.finish();
+      }
+    }
     if (const toml::table* ft = r.optional_table("fluid")) {
       if (!scene.fluid) r.fail("fluid", "changes the pore fluid, but the scene has no [fluid] table");
       TableReader fr(*ft, r.where() + " fluid", file);
@@ -1300,9 +1318,22 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
 
   // Time step: the first stage's gravity does not matter for the critical
   // step; the pore fluid's undrained stiffness and drag do.
+  // An inlet's smallest grain counts too: added for this only (at its box's
+  // centre, outside any fluid grid), then taken out again.
+  const std::size_t scene_particles = sim.particles.size();
+  for (const auto& in : scene.inlets) {
+    sim.particles.add(0.5 * (in.lower + in.upper), in.radii.smallest(), sim.materials[in.material].density,
+                      in.material, false);
+  }
   const double critical = scene.fluid
                               ? scene.fluid->critical_time_step(sim.particles, sim.critical_time_step())
                               : sim.critical_time_step();
+  scene.critical_time_step = critical;
+  if (sim.particles.size() > scene_particles) {
+    std::vector<std::uint32_t> keep(scene_particles);
+    for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = static_cast<std::uint32_t>(i);
+    sim.particles.permute(keep);
+  }
   // Refusals of [simulation] time_step, at the key.
   auto refuse_time_step = [&](const std::string& message) {
     TableReader(*root["simulation"].as_table(), "[simulation]", file).fail("time_step", message);
@@ -1328,6 +1359,15 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                       scene.time_step.value, critical));
     }
     sim.time_step = scene.time_step.value;
+  }
+  // An inlet inserts at most once a step: a shorter interval would only
+  // pile insertions onto one step (and one below round-off never advance).
+  for (std::size_t i = 0; i < scene.inlets.size(); ++i) {
+    if (scene.inlets[i].interval < sim.time_step) {
+      TableReader r(*(*root["inlet"].as_array())[i].as_table(), fmt::format("[[inlet]] #{}", i + 1), file);
+      r.fail("interval", fmt::format("must be at least the time step, {:.4g} s, got {:.4g} s", sim.time_step,
+                                     scene.inlets[i].interval));
+    }
   }
   // Viscous damping is explicit: each half kick scales a velocity by
   // 1 - c dt/2, which reverses it from c dt = 2 on (and grows it beyond 4).

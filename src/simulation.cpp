@@ -68,6 +68,20 @@ void Simulation<D>::advance(std::uint64_t count) {
 }
 
 template <int D>
+std::size_t Simulation<D>::add_particle(const Vec<D>& x, double radius, std::uint16_t material,
+                                        const Vec<D>& velocity) {
+  const auto next_id = static_cast<std::uint32_t>(particles.size() + removed_count);
+  const double density = materials.at(material).density;
+  particles.add(x, radius, density, material, false, velocity);
+  particles.id.back() = next_id;
+  const double mass = ParticleData<D>::mass_of(density, radius);
+  particles.force.back() = mass * gravity;
+  ++inserted_count;
+  inserted_mass += mass;
+  return particles.size() - 1;
+}
+
+template <int D>
 double Simulation<D>::skin_or_default() const {
   if (skin > 0.0) return skin;
   if (particles.size() == 0) return 1e-3;
@@ -94,28 +108,41 @@ void Simulation<D>::check_periods() const {
 
 template <int D>
 void Simulation<D>::rebuild() {
-  const std::vector<std::uint32_t>* old_index = nullptr;
-  std::vector<std::uint32_t> order;
   if (periodic.any()) {
     for (auto& x : particles.position) x = periodic.wrap(x);
   }
-  // Each particle's index at the last build, for the lists' histories.
+  // Each particle's index at the last build, for the lists' histories
+  // (empty: the same index); no_old_index for a particle added since.
+  std::vector<std::uint32_t> old;
+  const std::size_t built = list_.reference().size();
+  if (prepared_ && particles.size() > built) {
+    old.resize(particles.size());
+    for (std::size_t i = 0; i < old.size(); ++i)
+      old[i] = i < built ? static_cast<std::uint32_t>(i) : no_old_index;
+  }
+  // Composes a new order (new particle k is particle order[k] before it)
+  // with the old indices.
+  auto compose = [&](std::vector<std::uint32_t>& order) {
+    if (!old.empty()) {
+      for (auto& k : order) k = old[k];
+    }
+    old.swap(order);
+  };
   std::vector<std::uint32_t> kept = remove_outside_domain();
-  if (!kept.empty()) old_index = &kept;
+  if (!kept.empty()) compose(kept);
   if (particles.size() > sort_threshold) {
-    order = list_.spatial_order(particles.position, particles.radius, skin, periodic);
+    std::vector<std::uint32_t> order =
+        list_.spatial_order(particles.position, particles.radius, skin, periodic);
     bool identity = true;
     for (std::size_t k = 0; k < order.size() && identity; ++k) identity = order[k] == k;
     if (!identity) {
       particles.permute(order);
       // Forces a field holds move with their particles.
       if (field_force_.size() == order.size()) ParticleData<D>::reorder(field_force_, order);
-      if (!kept.empty()) {
-        for (auto& k : order) k = kept[k];
-      }
-      old_index = &order;
+      compose(order);
     }
   }
+  const std::vector<std::uint32_t>* old_index = old.empty() ? nullptr : &old;
   list_.build(particles.position, particles.radius, skin, rolling_, old_index, periodic);
   wall_list_.build(particles.position, particles.radius, walls, skin, rolling_, old_index);
   block_sums_.assign(static_cast<std::size_t>(list_.block_count()), {0.0, 0.0});

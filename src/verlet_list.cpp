@@ -77,8 +77,10 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
     const bool old_rolling = keep_rolling && rolling.size() == neighbour.size();
     for_each_index_dynamic(n, [&](std::int64_t i) {
       const std::uint32_t oi = old_index != nullptr ? (*old_index)[i] : static_cast<std::uint32_t>(i);
+      if (oi == no_old_index) return;
       for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
         const std::uint32_t oj = old_index != nullptr ? (*old_index)[next[k]] : next[k];
+        if (oj == no_old_index) continue;
         const std::uint32_t lo = std::min(oi, oj);
         const std::uint32_t hi = std::max(oi, oj);
         const auto row_begin = neighbour.begin() + row_offset[lo];

@@ -20,8 +20,8 @@ void WallContactList<D>::build(const std::vector<Vec<D>>& position, const std::v
         next_wall.push_back(static_cast<std::uint16_t>(w));
         Vec<D> t = Vec<D>::Zero();
         AngVec<D> r = AngVec<D>::Zero();
-        if (have_old) {
-          const std::size_t o = old_index != nullptr ? (*old_index)[i] : i;
+        const std::size_t o = old_index != nullptr ? (*old_index)[i] : i;
+        if (have_old && o != no_old_index) {
           for (std::uint32_t k = offset[o]; k < offset[o + 1]; ++k) {
             if (wall[k] == w) {
               t = tangential[k];

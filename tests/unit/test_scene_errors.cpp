@@ -1247,5 +1247,132 @@ TEST(SceneErrors, DomainIsReadAndChecked) {
       << msg;
 }
 
+TEST(SceneErrors, InletIsReadAndChecked) {
+  const std::string inlet = R"(
+[[inlet]]
+name = "rain"
+material = "sand"
+min = [-0.002, 0.01]
+max = [0.002, 0.012]
+radius = 0.0004
+rate = 100.0
+count = 20
+)";
+  const std::string good = std::string(kGood) + inlet;
+  ASSERT_EQ(load_error(good), "");
+  {
+    const auto scene = built_scene<2>(good);
+    ASSERT_EQ(scene.inlets.size(), 1U);
+    EXPECT_EQ(scene.inlets[0].rate, 100.0);
+    EXPECT_EQ(scene.inlets[0].max_count, 20U);
+    EXPECT_EQ(scene.inlets[0].interval, 0.01);  // the documented default
+    ASSERT_FALSE(scene.notes.empty());
+    EXPECT_NE(scene.notes.back().find("[[inlet]] rain: 100 grains/s every 0.01 s into x in [-0.002, 0.002], "
+                                      "y in [0.01, 0.012] m, at most 20 grains"),
+              std::string::npos)
+        << scene.notes.back();
+    // The automatic skin and the critical step count the inlet's grains,
+    // smaller than the scene's (0.4 mm against 0.5 mm).
+    EXPECT_DOUBLE_EQ(scene.simulation.skin, 0.2 * 0.0004);
+    EXPECT_LT(scene.critical_time_step, built_scene<2>(kGood).simulation.critical_time_step());
+    EXPECT_EQ(scene.simulation.particles.size(), 3U);  // the grain added for the critical step is gone
+  }
+  // A scene may start empty when an inlet fills it, but not with a pore
+  // fluid, whose permeability needs grains.
+  const std::string particles =
+      "[[particles]]\ngenerator = \"column\"\nmaterial = \"sand\"\nbase = [0.0, 0.0]\n"
+      "count = 3\nradius = 0.0005\n";
+  EXPECT_EQ(load_error(replace(good, particles, "")), "");
+  auto msg = load_error(replace(std::string(kGood), particles, ""));
+  EXPECT_NE(msg.find("or an [[inlet]] that adds them during the run"), std::string::npos) << msg;
+
+  msg = load_error(replace(good, "rate = 100.0", "rate = 100.0\nmass_rate = 1.0"));
+  EXPECT_NE(
+      msg.find("[[inlet]] #1 key 'mass_rate': give 'rate' (grains per second) or 'mass_rate' (kg/s), not "
+               "both"),
+      std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, "rate = 100.0", ""));
+  EXPECT_NE(msg.find("key 'rate'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'mass_rate'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "rate = 100.0", "rate = -1.0"));
+  EXPECT_NE(msg.find("key 'rate': must be > 0 grains per second, got -1"), std::string::npos) << msg;
+  msg = load_error(replace(good, "count = 20", "count = 0"));
+  EXPECT_NE(msg.find("key 'count': must be >= 1"), std::string::npos) << msg;
+  msg = load_error(replace(good, "count = 20", "interval = 0.0"));
+  EXPECT_NE(msg.find("key 'interval': must be > 0 s, got 0"), std::string::npos) << msg;
+  msg = load_error(replace(good, "count = 20", "interval = 1e-9"));
+  EXPECT_NE(msg.find("key 'interval': must be at least the time step"), std::string::npos) << msg;
+  msg = load_error(replace(good, "count = 20", "max_attempts = 2000000"));
+  EXPECT_NE(msg.find("key 'max_attempts': must be in 1..1000000"), std::string::npos) << msg;
+  msg = load_error(replace(good, "max = [0.002, 0.012]", "max = [0.002, 0.0107]"));
+  EXPECT_NE(msg.find("key 'max': the box must be wider than the largest grain (0.0008 m across) along every "
+                     "axis; along y it is 0.0007 m"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "material = \"sand\"\nmin", "material = \"sandd\"\nmin"));
+  EXPECT_NE(msg.find("key 'material'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("did you mean \"sand\""), std::string::npos) << msg;
+  msg = load_error(good + inlet);
+  EXPECT_NE(msg.find("[[inlet]] #2 key 'name': inlet \"rain\" is defined twice"), std::string::npos) << msg;
+  msg = load_error(replace(good, "count = 20", "count = 20\nsize = 3"));
+  EXPECT_NE(msg.find("unknown key 'size'"), std::string::npos) << msg;
+
+  // Its grains need contacts with every material they can meet.
+  msg = load_error(replace(good, "material = \"sand\"\nmin", "material = \"glass\"\nmin") +
+                   "\n[[material]]\nname = \"glass\"\ndensity = 2500.0\n");
+  EXPECT_NE(msg.find("key 'material': no [[contact]] for materials \"glass\" and \"sand\", which can touch"),
+            std::string::npos)
+      << msg;
+
+  // With a pore fluid, the box lies outside the grid: a grain that appeared
+  // in a cell would compress its water at once.
+  EXPECT_EQ(load_error(with_fluid(inlet)), "");
+  msg = load_error(with_fluid(replace(inlet, "min = [-0.002, 0.01]", "min = [-0.002, 0.003]")));
+  EXPECT_NE(
+      msg.find("[[inlet]] #1 key 'min': the box must lie outside the fluid grid (x in [-0.0005, 0.0005], "
+               "y in [0, 0.004] m"),
+      std::string::npos)
+      << msg;
+  // And inside a [domain], which would remove its grains at once.
+  msg = load_error(good + "\n[domain]\nmin = [-0.01, -0.01]\nmax = [0.01, 0.011]\n");
+  EXPECT_NE(msg.find("[[inlet]] #1 key 'max': the box must lie in the [domain]"), std::string::npos) << msg;
+
+  // Probes of what it added, for one inlet or all.
+  const std::string probe = "\n[[probe]]\nname = \"added\"\nquantity = \"inserted_mass\"\ninlet = \"rain\"\n";
+  EXPECT_EQ(load_error(good + probe), "");
+  EXPECT_EQ(built_scene<2>(good + probe).output.probes.back().inlet, 0);
+  msg = load_error(good + replace(probe, "inlet = \"rain\"", "inlet = \"rian\""));
+  EXPECT_NE(msg.find("key 'inlet': no [[inlet]] named \"rian\" (did you mean \"rain\"?)"), std::string::npos)
+      << msg;
+  msg = load_error(std::string(kGood) + replace(probe, "inlet = \"rain\"\n", ""));
+  EXPECT_NE(msg.find("key 'quantity': \"inserted_mass\" counts what an [[inlet]] adds: the scene has no "
+                     "[[inlet]]"),
+            std::string::npos)
+      << msg;
+  msg = load_error(good + replace(probe, "inlet = \"rain\"", "component = \"x\""));
+  EXPECT_NE(msg.find("key 'component': does not apply to quantity \"inserted_mass\""), std::string::npos)
+      << msg;
+  msg = load_error(good + replace(probe, "quantity = \"inserted_mass\"", "quantity = \"kinetic_energy\""));
+  EXPECT_NE(msg.find("key 'inlet': does not apply to quantity \"kinetic_energy\""), std::string::npos) << msg;
+  // A particle probe may name a grain the inlet has not made yet.
+  EXPECT_EQ(load_error(good + "\n[[probe]]\nname = \"p\"\nquantity = \"particle_position\"\nparticle = 10\n"
+                              "component = \"y\"\n"),
+            "");
+
+  // A stage switches it on or off, by name.
+  EXPECT_EQ(load_error(replace(good, "gravity = [0.0, -9.81]",
+                               "gravity = [0.0, -9.81]\ninlets.rain = { active = false }")),
+            "");
+  msg = load_error(
+      replace(good, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\ninlets.rian = { active = false }"));
+  EXPECT_NE(msg.find("inlets: no [[inlet]] named \"rian\" (did you mean \"rain\"?)"), std::string::npos)
+      << msg;
+  msg = load_error(
+      replace(good, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\ninlets.rain = { rate = 3 }"));
+  EXPECT_NE(msg.find("inlets.rain: needs 'active'"), std::string::npos) << msg;
+}
+
 }  // namespace
 }  // namespace darcydem

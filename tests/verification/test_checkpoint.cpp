@@ -378,6 +378,18 @@ TEST(Checkpoint, ResumedSiloWritesTheSameFilesAfterGrainsLeftTheDomain) {
   expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, stop, 1);
 }
 
+TEST(Checkpoint, ResumedPluviationWritesTheSameFilesWhileGrainsAreAdded) {
+  // examples/dem_cases/pluviation.toml, stopped at step 20 000 of the rain's
+  // 37 518 (0.53 s, half the grains in): the inlet's counts, its budget,
+  // the next grain's size and its random numbers must come back, or the
+  // grains added after the resume differ; and the header's particle count
+  // is the scene's, the inlet's grains not counted.
+  const fs::path dir = fresh_dir("pluviation");
+  fs::create_directories(dir);
+  const std::string scene = std::string(DARCYDEM_SOURCE_DIR) + "/examples/dem_cases/pluviation.toml";
+  expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 20000, 0);
+}
+
 // What is refused, with the file and the reason: no checkpoint (the run
 // finished), a changed scene, a damaged file.
 TEST(Checkpoint, RefusesAMissingForeignOrDamagedCheckpoint) {

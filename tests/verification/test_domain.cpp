@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "darcydem/simulation/runner.hpp"
+#include "frictional_bed.hpp"
 #include "run_output.hpp"
 #include "scene_loading.hpp"
 
@@ -154,48 +155,11 @@ TEST(Domain, GrainsFallingOutAreRemovedWithinHalfTheSkinOfTheSide) {
 
 namespace {
 
-// A bed of 120 discs with friction settling into a box (floor and sides are
-// box walls), and 40 discs beside it that fall past it out of the domain.
+// The bed of frictional_bed.hpp, and 40 discs beside it that fall past it
+// out of the domain. They are made first, so that the bed's grains change
+// index when they go: the lists' histories must follow them.
 std::string bed_scene(bool with_falling) {
-  std::string text = R"(
-[simulation]
-dimension = 2
-time_step = "auto"
-
-[domain]
-min = [-0.05, -0.02]
-max = [0.1, 0.2]
-
-[[material]]
-name = "sand"
-density = 2650.0
-
-[[contact]]
-materials = ["sand", "sand"]
-law = "linear"
-normal_stiffness = 1e4
-restitution = 0.3
-friction = 0.5
-
-[[wall]]
-name = "floor"
-box = { min = [-0.002, -0.002], max = [0.022, 0.0] }
-material = "sand"
-
-[[wall]]
-name = "left"
-box = { min = [-0.002, 0.0], max = [0.0, 0.04] }
-material = "sand"
-
-[[wall]]
-name = "right"
-box = { min = [0.02, 0.0], max = [0.022, 0.04] }
-material = "sand"
-)";
-  // The falling grains first, so that the bed's grains change index when
-  // they go: the lists' histories must follow them.
-  if (with_falling) {
-    text += R"(
+  const std::string falling = R"(
 [[particles]]
 generator = "random"
 material = "sand"
@@ -205,24 +169,7 @@ radius = 0.0008
 count = 40
 seed = 5
 )";
-  }
-  text += R"(
-[[particles]]
-generator = "random"
-material = "sand"
-min = [0.0, 0.0]
-max = [0.02, 0.04]
-radius_min = 0.0006
-radius_max = 0.0009
-count = 120
-seed = 2
-
-[[stage]]
-name = "settle"
-duration = 0.25
-gravity = [0.0, -9.80665]
-)";
-  return text;
+  return darcydem::testing::frictional_bed_scene(with_falling ? falling : "", "");
 }
 
 /// The bed's final positions, in creation order of the bed's grains.

@@ -21,17 +21,22 @@
 
 namespace darcydem {
 
+/// old_index's entry for a particle added since the last build (an inlet's
+/// grain): it has no history to carry.
+inline constexpr std::uint32_t no_old_index = 0xFFFFFFFFU;
+
 /// Whether a list built for the particles of the last build (its offsets'
 /// length `old_offsets`, the particle count + 1) can hand its histories to a
 /// build for n particles: without old_index, when the count is the same;
-/// with it, when every old index is in the old list (particles may have been
-/// removed since, Simulation::has_domain, but none added).
+/// with it, when every old index is in the old list or no_old_index
+/// (particles may have been removed since, Simulation::has_domain, or
+/// added, Simulation::add_particle).
 inline bool old_list_fits(std::size_t old_offsets, std::size_t n,
                           const std::vector<std::uint32_t>* old_index) {
   if (old_offsets == 0) return false;
   if (old_index == nullptr) return old_offsets == n + 1;
   for (const std::uint32_t o : *old_index) {
-    if (o + 1 >= old_offsets) return false;
+    if (o != no_old_index && o + 1 >= old_offsets) return false;
   }
   return true;
 }

@@ -5,7 +5,8 @@
 namespace darcydem {
 
 template <int D>
-double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const PoreFluid<D>* fluid = nullptr);
+double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const PoreFluid<D>* fluid = nullptr,
+                      const std::vector<Inlet<D>>* inlets = nullptr);
 
 /// Porosity of the box [lo, hi]: 1 - the volume of the grains in it (each
 /// grain's exact overlap with the box, ball_overlap::in_box) / its volume;

@@ -12,6 +12,7 @@
 
 #include "darcydem/core/vec.hpp"
 #include "darcydem/fluid/pore_fluid.hpp"
+#include "darcydem/generation/inlet.hpp"
 #include "darcydem/simulation/simulation.hpp"
 
 namespace darcydem {
@@ -40,6 +41,8 @@ enum class ProbeQuantity {
   removed_mass,       ///< their mass, kg (2D: per metre)
   particle_fluid_force,  ///< the pore fluid's force on one particle, N (Simulation::field_forces)
   fluid_force,           ///< the pore fluid's force on the particles whose centres lie in a box, N
+  inserted_particles,    ///< how many grains an inlet (or all) has added so far
+  inserted_mass,         ///< their mass, kg (2D: per metre)
 };
 
 struct ProbeSpec {
@@ -51,6 +54,7 @@ struct ProbeSpec {
   /// wall_fluid_force: the wall's barrier in PoreFluid::barriers (an
   /// impermeable plate), or -1 (a wall that displaces the fluid)
   std::int64_t barrier = -1;
+  std::int64_t inlet = -1;       ///< inserted_particles, inserted_mass: the inlet's index, -1: all
   std::vector<double> position;  ///< pore_pressure: the point, m
   int side = 0;                  ///< fluid_inflow, side_pressure: x_min, x_max, y_min, ...
   /// particles_in_box, mean_particle_position, stress, porosity, fluid_force: the box, m
@@ -101,6 +105,7 @@ struct Stage {
   std::optional<bool> freeze_permeability;                   ///< hold (true) or resume updating k
   std::optional<int> fluid_steps_per_update;                 ///< a new coupling interval M
   std::optional<bool> fluid_hold_forces;                     ///< hold the grains' fluid forces, or not
+  std::vector<std::pair<std::size_t, bool>> inlets;          ///< inlets (index) switched on or off
 };
 
 /// [analysis] kind = "seepage_column": the paper's 1D upward seepage check.
@@ -124,6 +129,10 @@ struct Scene {
   std::vector<Stage<D>> stages;
   std::unique_ptr<PoreFluid<D>> fluid;  ///< optional pore fluid ([fluid])
   std::optional<SeepageColumnSpec> seepage_column;
+  std::vector<Inlet<D>> inlets;  ///< [[inlet]]: grains added during the run
+  /// s: the critical time step the scene's time step was set against, the
+  /// inlets' smallest grains counted.
+  double critical_time_step = 0.0;
   /// What the reader found worth saying about a scene it accepts (e.g. a
   /// grading the few grains drawn follow loosely): `darcydem check` and the
   /// run log print them.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "darcydem/analysis/seepage_column.hpp"
+#include "darcydem/generation/inlet.hpp"
 #include "darcydem/output/vtk.hpp"
 #include "darcydem/scene/scene.hpp"
 
@@ -42,6 +43,7 @@ template <int D>
 struct RunState {
   RunPosition& position;
   Simulation<D>& simulation;
+  std::vector<Inlet<D>>& inlets;       ///< the scene's, with their counts and random state
   PoreFluid<D>* fluid;                 ///< null without [fluid]
   SeepageColumnAnalysis<D>* analysis;  ///< null without the analysis
   PvdSeries& particle_series;

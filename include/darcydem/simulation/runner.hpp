@@ -53,6 +53,11 @@ struct RunSummary {
 template <int D>
 void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage);
 
+/// Switches the inlets a stage names on or off; one switched on inserts
+/// from `time` on.
+template <int D>
+void apply_inlet_changes(std::vector<Inlet<D>>& inlets, const Stage<D>& stage, double time);
+
 /// One fluid step covering the `steps` DEM steps since the last one: the
 /// pore fluid's update with the walls where they are now, then the water's
 /// thrust on each wall that displaces it (Wall::water_force, which a servo

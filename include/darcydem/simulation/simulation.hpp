@@ -87,6 +87,10 @@ class Simulation {
   std::uint64_t removed_count = 0;
   double removed_mass = 0.0;
   double removed_volume = 0.0;
+  /// What has been added during the run (add_particle, an inlet's grains):
+  /// how many and their mass (kg; 2D: per metre).
+  std::uint64_t inserted_count = 0;
+  double inserted_mass = 0.0;
   /// Optional body-force field (the pore fluid), evaluated every step; not owned.
   const ParticleForceField<D>* force_field = nullptr;
 
@@ -99,6 +103,15 @@ class Simulation {
   /// drift share one sweep over the particles. Nothing may look at or change
   /// the simulation in between, so callers advance to their next event.
   void advance(std::uint64_t count);
+
+  /// Adds a free particle during a run (an inlet's grain), numbered after
+  /// every particle created so far (ids are not reused after a removal);
+  /// returns its index. Its force is its weight under the current gravity,
+  /// the first evaluation's for a grain that touches nothing, so a free
+  /// fall from it is velocity Verlet's exactly; the neighbour lists are
+  /// rebuilt at the next step, the other particles keeping their contact
+  /// histories. Call between steps (not inside advance()).
+  std::size_t add_particle(const Vec<D>& x, double radius, std::uint16_t material, const Vec<D>& velocity);
 
   /// The skin prepare() uses: `skin`, or 0.2 x the smallest radius if it is 0.
   [[nodiscard]] double skin_or_default() const;
@@ -151,7 +164,7 @@ class Simulation {
   template <class Archive>
   void checkpoint(Archive& ar) {
     ar(particles, walls, gravity, damping, skin, time_step, time, steps, list_, wall_list_, field_force_,
-       block_sums_, removed_count, removed_mass, removed_volume);
+       block_sums_, removed_count, removed_mass, removed_volume, inserted_count, inserted_mass);
     bool from_field = field_forces_from_ != nullptr;
     ar(from_field);
     if constexpr (Archive::loading) field_forces_from_ = from_field ? force_field : nullptr;

@@ -1,0 +1,74 @@
+#pragma once
+// An inlet: grains added to a running simulation at a steady rate in a box
+// (LIGGGHTS's fix insert/rate/region, YADE's BoxFactory, PFC's ball
+// generation in a cycle loop): pluviating a specimen, feeding a hopper,
+// raining sediment. Every `interval` seconds while it is active the inlet
+// adds what its rate has made due since (a count, or a mass: sizes drawn
+// ahead so that a grain goes in once the mass budget covers it), each at a
+// random place in the box where it touches no grain and no wall; what does
+// not fit waits for the next insertion.
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "darcydem/core/vec.hpp"
+#include "darcydem/generation/generators.hpp"
+#include "darcydem/simulation/simulation.hpp"
+
+namespace darcydem {
+
+template <int D>
+struct Inlet {
+  // Settings (the scene's [[inlet]]).
+  std::string name;
+  std::uint16_t material = 0;
+  Vec<D> lower = Vec<D>::Zero();  ///< m: the box the grains are placed in, whole
+  Vec<D> upper = Vec<D>::Zero();  ///< m
+  RadiusDistribution radii;
+  Vec<D> velocity = Vec<D>::Zero();  ///< m/s, each new grain's
+  double rate = 0.0;                 ///< grains per second (0: by mass)
+  double mass_rate = 0.0;            ///< kg/s (2D: kg/(s m)); used when rate is 0
+  std::uint64_t max_count = std::numeric_limits<std::uint64_t>::max();  ///< the most it adds in all
+  double max_mass = std::numeric_limits<double>::infinity();            ///< kg (2D: kg/m)
+  double interval = 0.0;                                                ///< s between insertions
+  std::int64_t max_attempts = 1000;  ///< random places tried per grain at each insertion
+  bool active = true;
+
+  // State (checkpointed).
+  std::mt19937_64 rng;
+  double next_time = 0.0;    ///< s: the next insertion (while active)
+  double budget = 0.0;       ///< grains (by count) or kg (by mass) due and not yet added
+  double next_radius = 0.0;  ///< m: the next grain's size, drawn ahead
+  std::uint64_t inserted = 0;
+  double inserted_mass = 0.0;      ///< kg (2D: kg/m)
+  std::uint64_t short_events = 0;  ///< insertions that left grains due for want of room
+
+  /// Whether it has added all it may.
+  [[nodiscard]] bool exhausted() const { return inserted >= max_count || inserted_mass >= max_mass; }
+
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(active, rng, next_time, budget, next_radius, inserted, inserted_mass, short_events);
+  }
+};
+
+/// What one insertion did.
+struct InsertionResult {
+  std::uint64_t added = 0;
+  bool short_of_room = false;  ///< grains were due that found no place
+};
+
+/// The inlet's insertion at the simulation's time: adds the grains due
+/// (Simulation::add_particle), each at the first of up to max_attempts
+/// random places in the box where it overlaps no particle (nearest image
+/// across periodic axes) and no wall, and moves next_time on by the
+/// interval. The grains' forces are their weight under the current gravity.
+template <int D>
+InsertionResult insert_due(Inlet<D>& inlet, Simulation<D>& sim);
+
+/// The mass of a grain of the inlet's material, kg (2D: kg/m).
+template <int D>
+double inlet_grain_mass(const Inlet<D>& inlet, const Simulation<D>& sim, double radius);
+
+}  // namespace darcydem

@@ -1,0 +1,87 @@
+#include "darcydem/generation/inlet.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace darcydem {
+
+template <int D>
+double inlet_grain_mass(const Inlet<D>& inlet, const Simulation<D>& sim, double radius) {
+  return ParticleData<D>::mass_of(sim.materials[inlet.material].density, radius);
+}
+
+template <int D>
+InsertionResult insert_due(Inlet<D>& inlet, Simulation<D>& sim) {
+  InsertionResult result;
+  const bool by_count = inlet.rate > 0.0;
+  inlet.budget += (by_count ? inlet.rate : inlet.mass_rate) * inlet.interval;
+  inlet.next_time += inlet.interval;
+  if (inlet.next_radius <= 0.0) inlet.next_radius = inlet.radii.sample(inlet.rng);
+  // The particles that can touch a grain in the box: their centres within
+  // their radius plus the largest new grain's of it (nearest image).
+  const double reach = inlet.radii.largest();
+  const Vec<D> centre = 0.5 * (inlet.lower + inlet.upper);
+  const Vec<D> half = 0.5 * (inlet.upper - inlet.lower);
+  const auto& cell = sim.periodic;
+  auto separation = [&](const Vec<D>& d) { return cell.any() ? cell.shortest(d) : d; };
+  std::vector<Vec<D>> near_x;
+  std::vector<double> near_r;
+  const auto& p = sim.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec<D> d = separation(p.position[i] - centre);
+    double outside2 = 0.0;
+    for (int k = 0; k < D; ++k) {
+      const double e = std::max(0.0, std::abs(d[k]) - half[k]);
+      outside2 += e * e;
+    }
+    const double r = p.radius[i] + reach;
+    if (outside2 < r * r) {
+      near_x.push_back(p.position[i]);
+      near_r.push_back(p.radius[i]);
+    }
+  }
+  auto fits = [&](const Vec<D>& x, double r) {
+    for (std::size_t j = 0; j < near_x.size(); ++j) {
+      const double reach_j = r + near_r[j];
+      if (separation(near_x[j] - x).squaredNorm() < reach_j * reach_j) return false;
+    }
+    return std::all_of(sim.walls.begin(), sim.walls.end(), [&](const Wall<D>& w) { return w.gap(x) >= r; });
+  };
+  // Due: a whole grain (by count), or the next grain's mass (by mass), to
+  // a relative 1e-9 (a rate x interval of 10 may sum to 9.999999999).
+  constexpr double slack = 1e-9;
+  while (!inlet.exhausted()) {
+    const double r = inlet.next_radius;
+    const double m = inlet_grain_mass(inlet, sim, r);
+    if (inlet.budget < (by_count ? 1.0 : m) * (1.0 - slack)) break;
+    Vec<D> x = Vec<D>::Zero();
+    bool placed = false;
+    for (std::int64_t a = 0; a < inlet.max_attempts && !placed; ++a) {
+      for (int k = 0; k < D; ++k) {
+        x[k] = inlet.lower[k] + r + unit_random(inlet.rng) * (inlet.upper[k] - inlet.lower[k] - 2.0 * r);
+      }
+      placed = fits(x, r);
+    }
+    if (!placed) {
+      result.short_of_room = true;
+      ++inlet.short_events;
+      break;
+    }
+    sim.add_particle(x, r, inlet.material, inlet.velocity);
+    near_x.push_back(x);
+    near_r.push_back(r);
+    inlet.budget -= by_count ? 1.0 : m;
+    ++inlet.inserted;
+    inlet.inserted_mass += m;
+    ++result.added;
+    inlet.next_radius = inlet.radii.sample(inlet.rng);
+  }
+  return result;
+}
+
+template double inlet_grain_mass<2>(const Inlet<2>&, const Simulation<2>&, double);
+template double inlet_grain_mass<3>(const Inlet<3>&, const Simulation<3>&, double);
+template InsertionResult insert_due<2>(Inlet<2>&, Simulation<2>&);
+template InsertionResult insert_due<3>(Inlet<3>&, Simulation<3>&);
+
+}  // namespace darcydem
