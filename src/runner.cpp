@@ -116,10 +116,18 @@ class Progress {
 template <int D>
 void write_final_particles(const fs::path& out, const Scene<D>& scene, bool interrupted) {
   const auto& sim = scene.simulation;
+  const std::string path = (out / "particles_final.csv").string();
+  if (sim.particles.size() == 0) {  // all removed by a [domain], or an inlet that has added none yet
+    write_packing_csv<D>(
+        path, sim.particles,
+        fmt::format("darcydem {}: no particles in {} at t = {:.17g} s (step {}, {})", version_string,
+                    scene.file, sim.time, sim.steps, interrupted ? "interrupted" : "completed"));
+    return;
+  }
   const double r_min = *std::min_element(sim.particles.radius.begin(), sim.particles.radius.end());
   const double overlap = sim.max_overlap();
   write_packing_csv<D>(
-      (out / "particles_final.csv").string(), sim.particles,
+      path, sim.particles,
       fmt::format(
           "darcydem {}: the particles of {} at t = {:.17g} s (step {}, {})\n"
           "a scene starts from them with [[particles]] generator = \"csv\"; centres and radii only (no "

@@ -304,3 +304,104 @@ TEST(Inlet, AddingGrainsLeavesTheOthersContactHistories) {
   EXPECT_LT(worst, 1e-9);
   std::filesystem::remove_all(dir);
 }
+
+namespace {
+
+// An empty box and an inlet that waits for the second stage: 100 grains/s,
+// one at each insertion 10 ms apart, once a stage sets it active.
+std::string waiting_scene(bool with_rain) {
+  std::string text = R"(
+[simulation]
+dimension = 2
+time_step = 1e-4
+
+[[material]]
+name = "glass"
+density = 2500.0
+
+[[contact]]
+materials = ["glass", "glass"]
+law = "linear"
+normal_stiffness = 1e4
+restitution = 0.5
+
+[[wall]]
+name = "floor"
+point = [0.0, 0.0]
+normal = [0.0, 1.0]
+material = "glass"
+
+[[inlet]]
+name = "rain"
+material = "glass"
+min = [0.0, 0.1]
+max = [0.05, 0.11]
+radius = 0.001
+rate = 100.0
+active = false
+
+[output]
+probe_interval = 0.005
+
+[[probe]]
+name = "added"
+quantity = "inserted_particles"
+
+[[probe]]
+name = "first_y"
+quantity = "particle_position"
+particle = 0
+component = "y"
+
+[[stage]]
+name = "wait"
+duration = 0.05
+gravity = [0.0, -9.80665]
+)";
+  if (with_rain) text += "\n[[stage]]\nname = \"rain\"\nduration = 0.05\ninlets.rain = { active = true }\n";
+  return text;
+}
+
+}  // namespace
+
+TEST(Inlet, WaitsForTheStageThatSetsItActive) {
+  const std::string dir = temp_dir("inlet_waiting");
+  {
+    // The first stage alone: no grain at all, and the output still written
+    // (the end-of-run packing used to take the smallest radius of none).
+    Scene<2> scene = scene_from_text<2>(dir, "wait.toml", waiting_scene(false));
+    RunOptions options;
+    options.out_dir = dir + "/wait";
+    ASSERT_FALSE(run_scene<2>(scene, options).interrupted);
+    EXPECT_EQ(scene.simulation.particles.size(), 0U);
+    const std::string csv = darcydem::testing::file_contents(dir + "/wait/particles_final.csv");
+    EXPECT_NE(csv.find("\nx,y,radius\n"), std::string::npos) << csv;
+    EXPECT_EQ(csv.substr(csv.find("x,y,radius\n")), "x,y,radius\n") << "no rows";
+    const std::string json = darcydem::testing::file_contents(dir + "/wait/run.json");
+    EXPECT_NE(json.find("\"inserted\": {\"particles\": 0,"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"status\": \"completed\""), std::string::npos) << json;
+  }
+  Scene<2> scene = scene_from_text<2>(dir, "rain.toml", waiting_scene(true));
+  RunOptions options;
+  options.out_dir = dir + "/rain";
+  ASSERT_FALSE(run_scene<2>(scene, options).interrupted);
+  // Insertions at 0.05, 0.06, ..., 0.09 s (the one due at 0.10 s, the run's
+  // end, never comes): a row at t has those before it, the one due at t
+  // itself coming after the row. Particle 0 is nowhere (nan) until placed.
+  const auto probes = read_probes(dir + "/rain/probes.csv");
+  const auto& t = probes.at("time");
+  const auto& added = probes.at("added");
+  const auto& first_y = probes.at("first_y");
+  // Every 5 ms from 0 to 0.1 s, and a row at each stage's end (0.05 and
+  // 0.1 s again).
+  ASSERT_EQ(t.size(), 23U);
+  for (std::size_t row = 0; row < t.size(); ++row) {
+    // The ticks k = 5 ... 9 with 0.01 k < t.
+    const double ticks = std::clamp(std::ceil((t[row] - 1e-9) / 0.01) - 5.0, 0.0, 5.0);
+    EXPECT_EQ(added[row], ticks) << "t = " << t[row];
+    EXPECT_EQ(std::isnan(first_y[row]), added[row] == 0.0) << "t = " << t[row];
+  }
+  EXPECT_EQ(added.back(), 5.0);
+  EXPECT_EQ(scene.simulation.particles.size(), 5U);
+  std::filesystem::remove_all(dir);
+}
