@@ -104,6 +104,23 @@ Inlet<D> read_inlet(TableReader& r, std::uint16_t material, const Simulation<D>&
     const Vec<D> g_hi = fluid->grid.upper();
     bool apart = false;
     for (int k = 0; k < D && !apart; ++k) apart = !cell.periodic[k] && (hi[k] <= g_lo[k] || lo[k] >= g_hi[k]);
+    // A grain removed by the [domain] must have left the grid, as the
+    // scene's grains must (read_domain): the margin holds this inlet's too.
+    for (int k = 0; k < D && sim.has_domain; ++k) {
+      if (cell.periodic[k]) continue;
+      if (g_lo[k] - largest < sim.domain_lower[k] || g_hi[k] + largest > sim.domain_upper[k]) {
+        const char* size_key = r.has("radius")       ? "radius"
+                               : r.has("radius_max") ? "radius_max"
+                               : r.has("radii")      ? "radii"
+                                                     : "grading";
+        r.fail(size_key,
+               fmt::format(
+                   "its largest grain's radius ({:.6g} m) must fit between the fluid grid, [{:.6g}, "
+                   "{:.6g}] along {}, and the [domain]'s side, [{:.6g}, {:.6g}]: a grain removed while it "
+                   "overlaps the grid would take its volume out of the pore water's balance",
+                   largest, g_lo[k], g_hi[k], "xyz"[k], sim.domain_lower[k], sim.domain_upper[k]));
+      }
+    }
     if (!apart) {
       std::string grid;
       for (int k = 0; k < D; ++k)

@@ -1335,6 +1335,17 @@ count = 20
                "y in [0, 0.004] m"),
       std::string::npos)
       << msg;
+  // With both, the domain leaves the inlet's largest grain room around the
+  // grid, as it must the scene's (0.9 mm here, against their 0.5 mm).
+  const std::string domain = "\n[domain]\nmin = [-0.0012, -0.002]\nmax = [0.01, 0.02]\n";
+  const std::string narrow = replace(inlet, "min = [-0.002, 0.01]\nmax = [0.002, 0.012]",
+                                     "min = [-0.001, 0.01]\nmax = [0.001, 0.012]");
+  EXPECT_EQ(load_error(with_fluid(domain + narrow)), "");
+  msg = load_error(with_fluid(domain + replace(narrow, "radius = 0.0004", "radius = 0.0009")));
+  EXPECT_NE(msg.find("[[inlet]] #1 key 'radius': its largest grain's radius (0.0009 m) must fit between the "
+                     "fluid grid, [-0.0005, 0.0005] along x, and the [domain]'s side"),
+            std::string::npos)
+      << msg;
   // And inside a [domain], which would remove its grains at once.
   msg = load_error(good + "\n[domain]\nmin = [-0.01, -0.01]\nmax = [0.01, 0.011]\n");
   EXPECT_NE(msg.find("[[inlet]] #1 key 'max': the box must lie in the [domain]"), std::string::npos) << msg;
