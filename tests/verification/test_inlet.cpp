@@ -405,3 +405,74 @@ TEST(Inlet, WaitsForTheStageThatSetsItActive) {
   EXPECT_EQ(scene.simulation.particles.size(), 5U);
   std::filesystem::remove_all(dir);
 }
+
+// In 3D, by mass: spheres of 1-2 mm at 0.05 kg/s, inserted every 20 ms into
+// a box 40 mm on a side above a floor.
+TEST(Inlet, AddsSpheresByMassIn3D) {
+  const std::string dir = temp_dir("inlet_3d");
+  Scene<3> scene = scene_from_text<3>(dir, "rain3d.toml", R"(
+[simulation]
+dimension = 3
+time_step = "auto"
+
+[[material]]
+name = "sand"
+density = 2650.0
+youngs_modulus = 1e8
+poisson_ratio = 0.25
+
+[[contact]]
+materials = ["sand", "sand"]
+law = "hertz_mindlin"
+restitution = 0.5
+friction = 0.5
+
+[[wall]]
+name = "floor"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+material = "sand"
+
+[[inlet]]
+name = "rain"
+material = "sand"
+min = [0.0, 0.0, 0.05]
+max = [0.04, 0.04, 0.09]
+radius_min = 0.001
+radius_max = 0.002
+mass_rate = 0.05
+interval = 0.02
+seed = 4
+
+[[stage]]
+duration = 0.06
+gravity = [0.0, 0.0, -9.80665]
+)");
+  auto& sim = scene.simulation;
+  auto& rain = scene.inlets.at(0);
+  sim.gravity = *scene.stages.at(0).gravity;
+  sim.prepare();
+  const double heaviest = 2650.0 * 4.0 / 3.0 * std::numbers::pi * 0.008e-6;
+  for (int event = 1; event <= 3; ++event) {
+    const std::size_t before = sim.particles.size();
+    insert_due(rain, sim);
+    // 1 g due at each insertion: added short of the total due by less than
+    // the next grain (at most the heaviest), never over it.
+    const double due = 1e-3 * event;
+    EXPECT_LE(rain.inserted_mass, due * (1.0 + 1e-12));
+    EXPECT_GT(rain.inserted_mass, due - heaviest);
+    const auto& p = sim.particles;
+    for (std::size_t i = before; i < p.size(); ++i) {
+      const double r = p.radius[i];
+      EXPECT_NEAR(1.0 / p.inv_mass[i], 2650.0 * 4.0 / 3.0 * std::numbers::pi * r * r * r, 1e-15);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_GE(p.position[i][k] - r, rain.lower[k]);
+        EXPECT_LE(p.position[i][k] + r, rain.upper[k]);
+      }
+      for (std::size_t j = 0; j < i; ++j) EXPECT_GE((p.position[j] - p.position[i]).norm(), r + p.radius[j]);
+    }
+    sim.advance(static_cast<std::uint64_t>(std::round(0.02 / sim.time_step)));
+  }
+  EXPECT_GT(sim.particles.size(), 30U) << "3 g of 1-2 mm spheres: about 50";
+  std::filesystem::remove_all(dir);
+}
