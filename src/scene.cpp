@@ -879,7 +879,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     std::string limit;
     if (in.max_count != std::numeric_limits<std::uint64_t>::max())
       limit += fmt::format(", at most {} grains", in.max_count);
-    if (std::isfinite(in.max_mass)) limit += fmt::format(", at most {:.6g} kg", in.max_mass);
+    if (std::isfinite(in.max_mass))
+      limit += fmt::format(", at most {:.6g} kg{}", in.max_mass, D == 2 ? " per metre" : "");
     scene.notes.push_back(
         fmt::format("[[inlet]] {}: {} every {:.6g} s into {} m{}{}", in.name,
                     in.rate > 0.0 ? fmt::format("{:.6g} grains/s", in.rate)
