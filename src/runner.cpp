@@ -430,15 +430,9 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);
   };
 
-  // A failure in a step (a blown-up simulation, a solver that does not
-  // converge) ends the run, but what was computed is kept: probes, the last
-  // snapshot, the analysis and run.json with the reason; then it is rethrown.
-  // Steps from step s of a stage to the next one after which the loop below
-  // has something to do. Output times are crossed by accumulating dt, so the
-  // count stops one step short of the predicted crossing and the last steps
-  // go one at a time.
-  // The inlets' insertions due now (several if the interval is below a
-  // step); a first shortage of room is said once per inlet.
+  // The inlets' insertions due now (one each, unless rounding of the clock
+  // puts two within half a step); a first shortage of room is said once per
+  // inlet.
   auto insert_due_grains = [&] {
     for (auto& in : scene.inlets) {
       while (in.active && !in.exhausted() && sim.time >= in.next_time - 0.5 * sim.time_step) {
@@ -461,6 +455,13 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     }
     return t;
   };
+  // A failure in a step (a blown-up simulation, a solver that does not
+  // converge) ends the run, but what was computed is kept: probes, the last
+  // snapshot, the analysis and run.json with the reason; then it is rethrown.
+  // Steps from step s of a stage to the next one after which the loop below
+  // has something to do. Output times are crossed by accumulating dt, so the
+  // count stops one step short of the predicted crossing and the last steps
+  // go one at a time.
   auto steps_to_next_event = [&](std::uint64_t s, std::uint64_t n_steps, std::uint64_t check_interval,
                                  double probe_time, double snapshot_time) {
     std::uint64_t run = n_steps - s;
