@@ -890,7 +890,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     std::vector<bool> meets(nm, false);
     for (auto m : sim.particles.material) meets[m] = true;
     for (const auto& w : sim.walls) meets[w.material] = true;
-    for (const auto& in : scene.inlets) meets[in.material] = true;
+    for (const auto& other : scene.inlets) meets[other.material] = true;
     for (std::size_t b = 0; b < nm; ++b) {
       if (meets[b] && !defined[mat * nm + b]) {
         r.fail("material", fmt::format("no [[contact]] for materials \"{}\" and \"{}\", which can touch",
