@@ -158,6 +158,77 @@ class Model {
     }
   }
 
+  /// A free particle added between steps (YADE's O.bodies.append, PFC's
+  /// ball create), checked as an inlet's grains are; returns its id.
+  std::uint32_t add_particle(const std::vector<double>& position, double radius, const std::string& material,
+                             const std::vector<double>& velocity) {
+    auto& s = sim();
+    const Vec<D> x = as_vec<D>(position, "position");
+    const Vec<D> v = velocity.empty() ? Vec<D>::Zero() : as_vec<D>(velocity, "velocity");
+    if (!x.allFinite() || !v.allFinite())
+      throw py::value_error("add_particle: position and velocity must be finite");
+    if (!(radius > 0.0 && std::isfinite(radius)))
+      throw py::value_error(fmt::format("add_particle: radius must be > 0 m, got {}", radius));
+    // A material the scene's grains use: their contacts with everything
+    // they can meet were checked when it loaded.
+    std::vector<bool> used(s.materials.size(), false);
+    for (auto m : s.particles.material) used[m] = true;
+    for (const auto& in : scene_.inlets) used[in.material] = true;
+    std::string allowed;
+    std::size_t mat = s.materials.size();
+    for (std::size_t m = 0; m < s.materials.size(); ++m) {
+      if (!used[m]) continue;
+      allowed += (allowed.empty() ? "'" : ", '") + s.materials[m].name + "'";
+      if (s.materials[m].name == material) mat = m;
+    }
+    if (mat == s.materials.size())
+      throw py::value_error(fmt::format("add_particle: material '{}' is not one the scene's grains use ({})",
+                                        material, allowed.empty() ? "none" : allowed));
+    for (int k = 0; k < D; ++k) {
+      if (s.has_domain && (x[k] < s.domain_lower[k] || x[k] > s.domain_upper[k]))
+        throw py::value_error(
+            fmt::format("add_particle: the centre is outside the [domain] along {}", "xyz"[k]));
+      const auto& cell = s.periodic;
+      if (cell.periodic[k] && (x[k] < cell.lower[k] || x[k] >= cell.lower[k] + cell.length[k]))
+        throw py::value_error(
+            fmt::format("add_particle: the centre is outside the period along {}", "xyz"[k]));
+      if (cell.periodic[k] && !(cell.length[k] > 2.0 * (2.0 * radius + s.skin)))
+        throw py::value_error(
+            fmt::format("add_particle: the period along {} must exceed 2 x (2 x radius + skin)", "xyz"[k]));
+    }
+    if (fluid() != nullptr) {
+      // As an inlet's box: outside the grid, or its water would be
+      // compressed at once by the grain's volume.
+      const Vec<D> lo = fluid()->grid.origin;
+      const Vec<D> hi = fluid()->grid.upper();
+      bool apart = false;
+      for (int k = 0; k < D; ++k)
+        apart = apart || (!s.periodic.periodic[k] && (x[k] + radius <= lo[k] || x[k] - radius >= hi[k]));
+      if (!apart)
+        throw py::value_error(
+            "add_particle: the grain must lie outside the fluid grid (a grain that appeared in a cell would "
+            "compress its pore water at once); place it above the grid and let it fall in");
+    }
+    const std::size_t before = s.particles.size();
+    const double mass = ParticleData<D>::mass_of(s.materials[mat].density, radius);
+    s.add_particle(x, radius, static_cast<std::uint16_t>(mat), v);
+    const double critical = fluid() != nullptr
+                                ? fluid()->critical_time_step(s.particles, s.critical_time_step())
+                                : s.critical_time_step();
+    if (s.time_step > critical) {
+      std::vector<std::uint32_t> keep(before);
+      for (std::size_t i = 0; i < before; ++i) keep[i] = static_cast<std::uint32_t>(i);
+      s.particles.permute(keep);
+      --s.inserted_count;
+      s.inserted_mass -= mass;
+      throw py::value_error(
+          fmt::format("add_particle: a grain of radius {} m would need a time step of at most "
+                      "{:.4g} s; the scene's is {:.4g} s",
+                      radius, critical, s.time_step));
+    }
+    return s.particles.id.back();
+  }
+
  private:
   /// The inlets' insertions due now, as a run makes them; returns the
   /// steps to the next one (as many as there may be when none is coming).
@@ -399,6 +470,11 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "mean unbalanced force / mean contact force of the last step")
       .def("apply_stage", &M::apply_stage, py::arg("name"),
            "applies a stage's settings (gravity, damping, walls, fluid conditions), as a run starts it")
+      .def("add_particle", &M::add_particle, py::arg("position"), py::arg("radius"), py::arg("material"),
+           py::arg("velocity") = std::vector<double>{},
+           "adds a free particle between steps (its weight as its force, the others' contact histories kept) "
+           "and returns its id; the material one the scene's grains use, the centre inside the [domain] and "
+           "period, the grain outside the fluid grid, its critical time step above the scene's")
       .def("step", &M::step, py::arg("count") = 1,
            "advances count DEM steps, with the pore fluid's steps among them as in a run")
       .def_property_readonly(

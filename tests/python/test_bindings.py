@@ -107,6 +107,35 @@ class FreeFall(unittest.TestCase):
         with self.assertRaises(ValueError):
             m.gravity = (0.0, -1.0)
 
+    def test_a_sphere_added_between_steps_falls_freely(self):
+        # YADE's O.bodies.append: a second sphere placed after 500 steps,
+        # thrown sideways; its weight is its first force, so its path is
+        # velocity Verlet's exact free fall from there (1e-12 m).
+        m = self.model
+        m.step(500)
+        new_id = m.add_particle((0.05, 0.02, 0.9), 0.0005, "sand", velocity=(0.1, 0.0, 0.0))
+        self.assertEqual(new_id, 1)
+        self.assertEqual(m.particle_count, 2)
+        self.assertEqual(m.inserted_count, 1)
+        m.step(1000)
+        t = 1000 * 1e-5
+        x = m.positions[1]
+        self.assertAlmostEqual(x[0], 0.05 + 0.1 * t, delta=1e-12)
+        self.assertAlmostEqual(x[2], 0.9 - 0.5 * G * t * t, delta=1e-12)
+        # The first one fell on undisturbed: 1500 steps from rest.
+        t1 = 1500 * 1e-5
+        self.assertAlmostEqual(m.positions[0][2], 1.0 - 0.5 * G * t1 * t1, delta=1e-12)
+        # Refused, saying why: an unknown material, a bad radius, a grain too
+        # small for the time step (its critical step below 1e-5 s).
+        with self.assertRaisesRegex(ValueError, "material 'glass' is not one the scene's grains use \\('sand'\\)"):
+            m.add_particle((0.0, 0.0, 0.5), 0.0005, "glass")
+        with self.assertRaisesRegex(ValueError, "radius must be > 0 m"):
+            m.add_particle((0.0, 0.0, 0.5), -1.0, "sand")
+        with self.assertRaisesRegex(ValueError, "would need a time step of at most"):
+            m.add_particle((0.0, 0.0, 0.5), 1e-7, "sand")
+        self.assertEqual(m.particle_count, 2)
+        self.assertEqual(m.inserted_count, 1)
+
     def test_an_unknown_stage_names_those_there_are(self):
         with self.assertRaises(ValueError) as caught:
             self.model.apply_stage("settle")
@@ -222,6 +251,14 @@ class HydrostaticBed(unittest.TestCase):
         self.assertEqual(final.shape, (self.model.particle_count, 4))
         np.testing.assert_array_equal(self.model.positions, final[:, :3])
         np.testing.assert_array_equal(self.model.radii, final[:, 3])
+
+    def test_a_grain_is_not_added_inside_the_water_grid(self):
+        # It would compress its cell's water at once; refused, the model
+        # unchanged (the other tests share it).
+        count = self.model.particle_count
+        with self.assertRaisesRegex(ValueError, "must lie outside the fluid grid"):
+            self.model.add_particle((0.003, 0.003, 0.004), 0.00049, "sand")
+        self.assertEqual(self.model.particle_count, count)
 
     def test_the_floor_carries_the_submerged_weight(self):
         with open(self.scene, "rb") as f:
