@@ -199,12 +199,8 @@ class Model {
     if (fluid() != nullptr) {
       // As an inlet's box: outside the grid, or its water would be
       // compressed at once by the grain's volume.
-      const Vec<D> lo = fluid()->grid.origin;
-      const Vec<D> hi = fluid()->grid.upper();
-      bool apart = false;
-      for (int k = 0; k < D; ++k)
-        apart = apart || (!s.periodic.periodic[k] && (x[k] + radius <= lo[k] || x[k] - radius >= hi[k]));
-      if (!apart)
+      const Vec<D> reach = Vec<D>::Constant(radius);
+      if (!box_beside<D>(x - reach, x + reach, fluid()->grid.origin, fluid()->grid.upper(), s.periodic))
         throw py::value_error(
             "add_particle: the grain must lie outside the fluid grid (a grain that appeared in a cell would "
             "compress its pore water at once); place it above the grid and let it fall in");
@@ -234,17 +230,12 @@ class Model {
   /// steps to the next one (as many as there may be when none is coming).
   std::uint64_t insert_due_grains() {
     auto& sim = this->sim();
+    insert_all_due(scene_.inlets, sim);
+    // As the run counts: one step short of the predicted crossing, then
+    // step by step, so that rounding in the clock cannot skip it.
     const double dt = sim.time_step;
-    std::uint64_t until = ~std::uint64_t{0};
-    for (auto& in : scene_.inlets) {
-      while (in.active && !in.exhausted() && sim.time >= in.next_time - 0.5 * dt) insert_due(in, sim);
-      if (!in.active || in.exhausted()) continue;
-      // As the run counts: one step short of the predicted crossing, then
-      // step by step, so that rounding in the clock cannot skip it.
-      const double ahead = std::floor((in.next_time - 0.5 * dt - sim.time) / dt) - 1.0;
-      until = std::min(until, ahead >= 1.0 ? static_cast<std::uint64_t>(std::min(ahead, 1e18)) : 1);
-    }
-    return until;
+    const double ahead = std::floor((next_insertion_time(scene_.inlets) - 0.5 * dt - sim.time) / dt) - 1.0;
+    return ahead >= 1.0 ? static_cast<std::uint64_t>(std::min(ahead, 1e18)) : 1;
   }
 
   void fluid_step() {

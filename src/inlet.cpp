@@ -79,9 +79,43 @@ InsertionResult insert_due(Inlet<D>& inlet, Simulation<D>& sim) {
   return result;
 }
 
+template <int D>
+void insert_all_due(std::vector<Inlet<D>>& inlets, Simulation<D>& sim) {
+  for (auto& in : inlets) {
+    while (in.active && !in.exhausted() && sim.time >= in.next_time - 0.5 * sim.time_step)
+      insert_due(in, sim);
+  }
+}
+
+template <int D>
+double next_insertion_time(const std::vector<Inlet<D>>& inlets) {
+  double t = 1e300;
+  for (const auto& in : inlets) {
+    if (in.active && !in.exhausted()) t = std::min(t, in.next_time);
+  }
+  return t;
+}
+
+template <int D>
+bool box_beside(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& grid_lo, const Vec<D>& grid_hi,
+                const PeriodicCell<D>& cell) {
+  for (int k = 0; k < D; ++k) {
+    if (!cell.periodic[k] && (hi[k] <= grid_lo[k] || lo[k] >= grid_hi[k])) return true;
+  }
+  return false;
+}
+
 template double inlet_grain_mass<2>(const Inlet<2>&, const Simulation<2>&, double);
 template double inlet_grain_mass<3>(const Inlet<3>&, const Simulation<3>&, double);
 template InsertionResult insert_due<2>(Inlet<2>&, Simulation<2>&);
 template InsertionResult insert_due<3>(Inlet<3>&, Simulation<3>&);
+template void insert_all_due<2>(std::vector<Inlet<2>>&, Simulation<2>&);
+template void insert_all_due<3>(std::vector<Inlet<3>>&, Simulation<3>&);
+template double next_insertion_time<2>(const std::vector<Inlet<2>>&);
+template double next_insertion_time<3>(const std::vector<Inlet<3>>&);
+template bool box_beside<2>(const Vec<2>&, const Vec<2>&, const Vec<2>&, const Vec<2>&,
+                            const PeriodicCell<2>&);
+template bool box_beside<3>(const Vec<3>&, const Vec<3>&, const Vec<3>&, const Vec<3>&,
+                            const PeriodicCell<3>&);
 
 }  // namespace darcydem

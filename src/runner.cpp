@@ -430,30 +430,22 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     fluid_residual = std::max(fluid_residual, fluid->last_solve().residual);
   };
 
-  // The inlets' insertions due now (one each, unless rounding of the clock
-  // puts two within half a step); a first shortage of room is said once per
-  // inlet.
+  // The inlets' insertions due now; an inlet's first shortage of room is
+  // said once.
   auto insert_due_grains = [&] {
-    for (auto& in : scene.inlets) {
-      while (in.active && !in.exhausted() && sim.time >= in.next_time - 0.5 * sim.time_step) {
-        const auto result = insert_due(in, sim);
-        if (result.short_of_room && in.short_events == 1 && options.log != nullptr) {
-          *options.log << fmt::format(
-              "inlet {}: at t = {:.6g} s its box has no room for all the grains due ({} random places tried "
-              "for a grain); the rest wait for the next insertion (said once; the run log counts them at "
-              "each stage's end)\n",
-              in.name, sim.time, in.max_attempts);
-        }
+    std::vector<std::uint64_t> short_before;
+    for (const auto& in : scene.inlets) short_before.push_back(in.short_events);
+    insert_all_due(scene.inlets, sim);
+    for (std::size_t k = 0; k < scene.inlets.size() && options.log != nullptr; ++k) {
+      const auto& in = scene.inlets[k];
+      if (short_before[k] == 0 && in.short_events > 0) {
+        *options.log << fmt::format(
+            "inlet {}: at t = {:.6g} s its box has no room for all the grains due ({} random places tried "
+            "for a grain); the rest wait for the next insertion (said once; the run log counts them at "
+            "each stage's end)\n",
+            in.name, sim.time, in.max_attempts);
       }
     }
-  };
-  // The next insertion of an active inlet, s (1e300: none).
-  auto next_insertion = [&] {
-    double t = 1e300;
-    for (const auto& in : scene.inlets) {
-      if (in.active && !in.exhausted()) t = std::min(t, in.next_time);
-    }
-    return t;
   };
   // A failure in a step (a blown-up simulation, a solver that does not
   // converge) ends the run, but what was computed is kept: probes, the last
@@ -470,7 +462,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     if (fluid != nullptr)
       run = std::min(run, static_cast<std::uint64_t>(fluid->steps_per_update) - since_update);
     if (seepage) run = 1;  // it samples the column after every step
-    for (double t : {probe_time, snapshot_time, next_insertion()}) {
+    for (double t : {probe_time, snapshot_time, next_insertion_time(scene.inlets)}) {
       const double ahead = std::floor((t - 0.5 * dt - sim.time) / dt) - 1.0;
       run =
           std::min(run, ahead >= 1.0 ? static_cast<std::uint64_t>(std::min(ahead, 1e18)) : std::uint64_t{1});

@@ -102,8 +102,7 @@ Inlet<D> read_inlet(TableReader& r, std::uint16_t material, const Simulation<D>&
     // would be a sudden compression of its pore water.
     const Vec<D> g_lo = fluid->grid.origin;
     const Vec<D> g_hi = fluid->grid.upper();
-    bool apart = false;
-    for (int k = 0; k < D && !apart; ++k) apart = !cell.periodic[k] && (hi[k] <= g_lo[k] || lo[k] >= g_hi[k]);
+    const bool apart = box_beside<D>(in.lower, in.upper, g_lo, g_hi, cell);
     // A grain removed by the [domain] must have left the grid, as the
     // scene's grains must (read_domain): the margin holds this inlet's too.
     for (int k = 0; k < D && sim.has_domain; ++k) {

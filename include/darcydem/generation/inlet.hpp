@@ -11,6 +11,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "darcydem/core/vec.hpp"
 #include "darcydem/generation/generators.hpp"
@@ -66,6 +67,23 @@ struct InsertionResult {
 /// interval. The grains' forces are their weight under the current gravity.
 template <int D>
 InsertionResult insert_due(Inlet<D>& inlet, Simulation<D>& sim);
+
+/// Every insertion due at the simulation's time, of each active inlet that
+/// may still add (one each, unless rounding of the clock puts two within
+/// half a step): the runner and the Python module insert alike through it.
+template <int D>
+void insert_all_due(std::vector<Inlet<D>>& inlets, Simulation<D>& sim);
+
+/// The next insertion of an active inlet that may still add, s (1e300: none).
+template <int D>
+double next_insertion_time(const std::vector<Inlet<D>>& inlets);
+
+/// Whether the box [lo, hi] lies outside the box [grid_lo, grid_hi] beside
+/// it along an axis that is not periodic (an inlet's box or a new grain
+/// against the pore fluid's grid).
+template <int D>
+bool box_beside(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& grid_lo, const Vec<D>& grid_hi,
+                const PeriodicCell<D>& cell);
 
 /// The mass of a grain of the inlet's material, kg (2D: kg/m).
 template <int D>
