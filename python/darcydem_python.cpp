@@ -109,6 +109,8 @@ class Model {
     }
     sim().measure_contact_forces = true;
     sim().prepare();
+    if (!scene_.stages.empty() && scene_.stages.front().make_bonds)
+      sim().make_bonds(scene_.stages.front().bond_gap);
   }
 
   [[nodiscard]] Simulation<D>& sim() { return scene_.simulation; }
@@ -128,6 +130,7 @@ class Model {
         if (starts_new_coupling_interval(fluid(), s) && since_update_ > 0) fluid_step();
         darcydem::apply_stage(sim(), fluid(), s);
         apply_inlet_changes(scene_.inlets, s, sim().time);
+        if (s.make_bonds) sim().make_bonds(s.bond_gap);
         return;
       }
     }
@@ -435,6 +438,15 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "particles the [[inlet]]s have added so far")
       .def_property_readonly(
           "inserted_mass", [](const M& s) { return s.sim().inserted_mass; }, "their mass, kg (2D: per metre)")
+      .def(
+          "make_bonds", [](M& s, double gap) { return s.sim().make_bonds(gap); }, py::arg("gap") = 0.0,
+          "bonds every pair that touches or is less than gap (m, below the skin) apart whose [[contact]] has "
+          "a "
+          "'bond' (as a stage's make_bonds = true, bond_gap); returns how many were bonded now")
+      .def_property_readonly(
+          "bond_count", [](const M& s) { return s.sim().bond_count(); }, "contact bonds intact now")
+      .def_property_readonly(
+          "broken_bonds", [](const M& s) { return s.sim().broken_bonds; }, "contact bonds broken so far")
       .def_property(
           "gravity", [](const M& s) { return as_tuple<D>(s.sim().gravity); },
           [](M& s, const std::vector<double>& g) { s.sim().gravity = as_vec<D>(g, "gravity"); }, "m/s^2")

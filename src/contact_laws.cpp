@@ -9,6 +9,9 @@ PairParameters make_pair_parameters(const Material& a, const Material& b, const 
   p.law = spec.law;
   p.friction = spec.friction;
   p.rolling_friction = spec.rolling_friction;
+  p.bond_tensile = spec.bond_tensile_strength;
+  p.bond_shear = spec.bond_shear_strength;
+  p.bondable = spec.law == NormalLaw::linear && (p.bond_tensile > 0.0 || p.bond_shear > 0.0);
   p.normal_stiffness = spec.normal_stiffness;
   p.tangential_ratio = spec.tangential_stiffness_ratio;
   if (spec.law == NormalLaw::hertz_mindlin) {

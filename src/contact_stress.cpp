@@ -29,7 +29,8 @@ void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) con
       const double reach = p.radius[i] + p.radius[j];
       const double inv_m = p.inv_mass[i] + p.inv_mass[j];
       const double dist = d.norm();
-      if (dist >= reach || inv_m == 0.0) continue;
+      const bool bonded = !L.bonded.empty() && L.bonded[k] != 0;
+      if ((dist >= reach && !bonded) || inv_m == 0.0) continue;
       const Vec<D> nrm = d / dist;
       const double overlap = reach - dist;
       const double arm_i = p.radius[i] - 0.5 * overlap;
@@ -51,8 +52,13 @@ void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) con
         const NormalResponse nr =
             MixedNormalLaw::evaluate(pp, overlap, vn, sqrt_m, p.radius[i] * p.radius[j] / reach);
         const Vec<D> vt = v_rel - vn * nrm;
-        Vec<D> f = -nr.force * nrm;
-        if (pp.friction > 0.0) {
+        // A bond's normal force may pull (evaluate_bond), its tangential
+        // spring acts whatever the friction.
+        const double fn = bonded ? pp.normal_stiffness * overlap +
+                                       pp.normal_damping * sqrt_m * pp.sqrt_normal_stiffness * vn
+                                 : nr.force;
+        Vec<D> f = -fn * nrm;
+        if (pp.friction > 0.0 || bonded) {
           f += -nr.tangential_stiffness * L.tangential[k] -
                pp.tangential_damping * sqrt_m * nr.sqrt_tangential_stiffness * vt;
         }

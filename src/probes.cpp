@@ -133,6 +133,10 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       if (inlets != nullptr && probe.inlet >= 0)
         return (*inlets)[static_cast<std::size_t>(probe.inlet)].inserted_mass;
       return sim.inserted_mass;
+    case ProbeQuantity::bonds:
+      return static_cast<double>(sim.bond_count());
+    case ProbeQuantity::broken_bonds:
+      return static_cast<double>(sim.broken_bonds);
     case ProbeQuantity::contact_count:
       return static_cast<double>(sim.contact_count());
     case ProbeQuantity::coordination:

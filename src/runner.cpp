@@ -166,6 +166,10 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
     json << fmt::format("  \"removed\": {{\"particles\": {}, \"mass\": {:.17g}, \"volume\": {:.17g}}},\n",
                         sim.removed_count, sim.removed_mass, sim.removed_volume);
   }
+  if (sim.contact_table.any_bondable()) {
+    json << fmt::format("  \"bonds\": {{\"intact\": {}, \"broken\": {}}},\n", sim.bond_count(),
+                        sim.broken_bonds);
+  }
   if (!scene.inlets.empty()) {
     std::string inlets;
     for (const auto& in : scene.inlets) {
@@ -485,6 +489,13 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         if (starts_new_coupling_interval(fluid, stage) && since_update > 0) fluid_step();
         apply_stage(sim, fluid, stage);
         apply_inlet_changes(scene.inlets, stage, sim.time);
+        if (stage.make_bonds) {
+          const std::size_t made = sim.make_bonds(stage.bond_gap);
+          if (options.log != nullptr) {
+            *options.log << fmt::format("stage {}: {} pairs bonded ({} bonds intact)\n", stage.name, made,
+                                        sim.bond_count());
+          }
+        }
         if (fluid != nullptr && options.log != nullptr &&
             (stage.fluid_steps_per_update || stage.fluid_hold_forces)) {
           *options.log << fmt::format("stage {}: fluid step every {} DEM steps{}\n", stage.name,
@@ -568,6 +579,10 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
                                                                       "that was due",
                                                                       in.short_events)
                                                         : "");
+      }
+      if (sim.contact_table.any_bondable() && options.log != nullptr) {
+        *options.log << fmt::format("contact bonds: {} intact, {} broken so far\n", sim.bond_count(),
+                                    sim.broken_bonds);
       }
       if (sim.has_domain && options.log != nullptr && sim.removed_count > 0) {
         *options.log << fmt::format(

@@ -578,6 +578,23 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     spec.friction = r.check("friction", r.number_or("friction", 0.0), is_non_negative, ">= 0");
     spec.rolling_friction =
         r.check("rolling_friction", r.number_or("rolling_friction", 0.0), is_non_negative, ">= 0");
+    if (const toml::table* bt = r.optional_table("bond")) {
+      // A contact bond (PFC's linear contact bond): made by a stage's
+      // make_bonds between the pairs touching then.
+      if (spec.law != NormalLaw::linear)
+        r.fail("bond", "a contact bond needs law = \"linear\" (its spring also pulls, which Hertz's cannot)");
+      TableReader br(*bt, r.where() + " bond", r.file());
+      const char* unit = D == 2 ? ">= 0 N per metre of thickness" : ">= 0 N";
+      spec.bond_tensile_strength =
+          br.check("tensile_strength", br.number("tensile_strength"), is_non_negative, unit);
+      spec.bond_shear_strength =
+          br.check("shear_strength", br.number("shear_strength"), is_non_negative, unit);
+      if (spec.bond_tensile_strength == 0.0 && spec.bond_shear_strength == 0.0)
+        br.fail("tensile_strength",
+                "a bond with both strengths 0 would break at once: give one > 0, or remove "
+                "'bond'");
+      br.finish();
+    }
     sim.contact_table.set(a, b, make_pair_parameters(sim.materials[a], sim.materials[b], spec));
     defined[a * nm + b] = defined[b * nm + a] = true;
   });
@@ -960,7 +977,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "particle_fluid_force",
                                                 "fluid_force",
                                                 "inserted_particles",
-                                                "inserted_mass"});
+                                                "inserted_mass",
+                                                "bonds",
+                                                "broken_bonds"});
     r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points", "min", "max"});
     if (q == "inserted_particles" || q == "inserted_mass") {
       if (scene.inlets.empty()) {
@@ -993,6 +1012,11 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                              q == "wall_fluid_force" || q == "particle_fluid_force" || q == "fluid_force";
     if (fluid_probe && !scene.fluid) {
       r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
+    }
+    if ((q == "bonds" || q == "broken_bonds") && !sim.contact_table.any_bondable()) {
+      r.fail("quantity", fmt::format("\"{}\" counts contact bonds: no [[contact]] of the scene has a 'bond' "
+                                     "(bond = {{ tensile_strength = ..., shear_strength = ... }})",
+                                     q));
     }
     if ((q == "removed_particles" || q == "removed_mass") && !sim.has_domain) {
       r.fail("quantity",
@@ -1133,6 +1157,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                    : q == "max_overlap"       ? ProbeQuantity::max_overlap
                    : q == "removed_particles" ? ProbeQuantity::removed_particles
                    : q == "removed_mass"      ? ProbeQuantity::removed_mass
+                   : q == "bonds"             ? ProbeQuantity::bonds
+                   : q == "broken_bonds"      ? ProbeQuantity::broken_bonds
                                               : ProbeQuantity::unbalanced_force;
     }
     scene.output.probes.push_back(p);
@@ -1221,6 +1247,22 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         cr.finish();
         s.walls.push_back(c);
       }
+    }
+    if (r.has("make_bonds")) {
+      s.make_bonds = r.boolean_or("make_bonds", false);
+      if (s.make_bonds && !sim.contact_table.any_bondable()) {
+        r.fail("make_bonds",
+               "bonds pairs whose [[contact]] has a 'bond' (bond = { tensile_strength = ..., "
+               "shear_strength = ... }), and no [[contact]] of the scene has one");
+      }
+    }
+    if (auto gap = r.optional_number("bond_gap")) {
+      if (!s.make_bonds) r.fail("bond_gap", "applies with make_bonds = true");
+      const double skin = sim.skin_or_default();
+      s.bond_gap = r.check(
+          "bond_gap", *gap, [skin](double v) { return v >= 0.0 && v < skin; },
+          fmt::format(">= 0 m and below the neighbour lists' skin ({} m; [simulation] skin)",
+                      TableReader::format_number(skin)));
     }
     if (const toml::table* it = r.optional_table("inlets")) {
       for (const auto& [name, node] : *it) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 #include <type_traits>
 
 #include <fmt/format.h>
@@ -82,6 +83,45 @@ std::size_t Simulation<D>::add_particle(const Vec<D>& x, double radius, std::uin
 }
 
 template <int D>
+std::size_t Simulation<D>::make_bonds(double gap) {
+  if (!prepared_) throw std::logic_error("Simulation: make_bonds before prepare");
+  if (!(gap >= 0.0 && gap < skin)) {
+    throw std::invalid_argument(
+        fmt::format("make_bonds: the gap {:.6g} m must be >= 0 and below the skin {:.6g} m", gap, skin));
+  }
+  if (!contact_table.any_bondable()) return 0;
+  // The lists hold every pair that touches now (no grain has moved half
+  // the skin since they were built); a pair up to `gap` apart may have come
+  // that close from beyond their reach, so they are built afresh for it (as
+  // a step would, histories kept; the recorded pair forces no longer match).
+  if (gap > 0.0) {
+    rebuild();
+    pair_force_step_ = ~std::uint64_t{0};
+  }
+  auto& L = list_;
+  if (L.bonded.size() != L.pair_count()) L.bonded.assign(L.pair_count(), 0);
+  const auto& p = particles;
+  std::size_t made = 0;
+  for (std::size_t i = 0; i < L.row_offset.size() - 1; ++i) {
+    for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
+      const std::uint32_t j = L.neighbour[k];
+      if (L.bonded[k] != 0 || !contact_table(p.material[i], p.material[j]).bondable) continue;
+      if (p.inv_mass[i] + p.inv_mass[j] == 0.0) continue;
+      const double reach = p.radius[i] + p.radius[j] + gap;
+      if (periodic.shortest(p.position[j] - p.position[i]).squaredNorm() >= reach * reach) continue;
+      L.bonded[k] = 1;
+      ++made;
+    }
+  }
+  return made;
+}
+
+template <int D>
+std::size_t Simulation<D>::bond_count() const {
+  return static_cast<std::size_t>(std::count(list_.bonded.begin(), list_.bonded.end(), std::uint8_t{1}));
+}
+
+template <int D>
 double Simulation<D>::skin_or_default() const {
   if (skin > 0.0) return skin;
   if (particles.size() == 0) return 1e-3;
@@ -143,8 +183,12 @@ void Simulation<D>::rebuild() {
     }
   }
   const std::vector<std::uint32_t>* old_index = old.empty() ? nullptr : &old;
+  // Bonds the build does not carry over (a removed grain's; a pair no
+  // longer listed) are lost: counted as broken.
+  const std::size_t bonds_before = list_.bonded.empty() ? 0 : bond_count();
   list_.build(particles.position, particles.radius, skin, rolling_, old_index, periodic);
   wall_list_.build(particles.position, particles.radius, walls, skin, rolling_, old_index);
+  if (bonds_before > 0) broken_bonds += bonds_before - bond_count();
   block_sums_.assign(static_cast<std::size_t>(list_.block_count()), {0.0, 0.0});
 }
 
@@ -275,6 +319,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
   const double dt = time_step;
   const bool measure = measure_contact_forces;
   const bool recording = recording_;
+  const bool bonds = !L.bonded.empty();
   // One material: every pair has the same parameters.
   const PairParameters* uniform = materials.size() == 1 ? &contact_table(0, 0) : nullptr;
   // x_j - x_i, at j's nearest image across periodic boundaries.
@@ -352,6 +397,47 @@ double Simulation<D>::compute_forces_with(Finish finish) {
         const double reach = ri + rj;
         const double dist2 = d.squaredNorm();
         const double inv_m = inv_mi + p.inv_mass[j];
+        auto apply = [&](const ContactForce<D>& c) {
+          f += c.force_on_i;
+          t += c.torque_i;
+          if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
+          touching += 1.0;
+          if (recording) pair_force_[k] = c.force_on_i;
+          if (is_cross) {
+            L.cross_force[slot] = -c.force_on_i;
+            L.cross_torque[slot] = c.torque_j;
+            ++slot;
+          } else {
+            p.force[j] -= c.force_on_i;
+            p.torque[j] += c.torque_j;
+          }
+        };
+        // Pair geometry for a contact (bonded or touching).
+        auto contact_at = [&] {
+          const double inv_dist = 1.0 / std::sqrt(dist2);
+          const Vec<D> nrm = d * inv_dist;
+          const double overlap = reach - dist2 * inv_dist;
+          const double arm_i = ri - 0.5 * overlap;
+          const double arm_j = rj - 0.5 * overlap;
+          const AngVec<D> wj = p.angular_velocity[j];
+          const Vec<D> v_rel = vi - p.velocity[j] + cross(AngVec<D>(wi * arm_i + wj * arm_j), nrm);
+          return std::tuple{nrm, overlap, arm_i, arm_j, v_rel, wj};
+        };
+        if (bonds && L.bonded[k] != 0 && inv_m != 0.0) {
+          const auto [nrm, overlap, arm_i, arm_j, v_rel, wj] = contact_at();
+          bool held = false;
+          const auto c = evaluate_bond<D>(contact_table(mat_i, p.material[j]), nrm, overlap, arm_i, arm_j,
+                                          v_rel, std::sqrt(1.0 / inv_m), dt, L.tangential[k], held);
+          if (held) {
+            if constexpr (Rolling) L.rolling[k].setZero();
+            apply(c);
+            continue;
+          }
+          // Broken: from here on an unbonded pair, this step included.
+          L.bonded[k] = 0;
+#pragma omp atomic
+          ++broken_bonds;
+        }
         if (dist2 >= reach * reach || inv_m == 0.0) {
           L.tangential[k].setZero();
           if constexpr (Rolling) L.rolling[k].setZero();
@@ -362,31 +448,12 @@ double Simulation<D>::compute_forces_with(Finish finish) {
           }
           continue;
         }
-        const double inv_dist = 1.0 / std::sqrt(dist2);
-        const Vec<D> nrm = d * inv_dist;
-        const double overlap = reach - dist2 * inv_dist;
-        const double arm_i = ri - 0.5 * overlap;
-        const double arm_j = rj - 0.5 * overlap;
-        const AngVec<D> wj = p.angular_velocity[j];
-        const Vec<D> v_rel = vi - p.velocity[j] + cross(AngVec<D>(wi * arm_i + wj * arm_j), nrm);
+        const auto [nrm, overlap, arm_i, arm_j, v_rel, wj] = contact_at();
         const double sqrt_m_eff = std::sqrt(1.0 / inv_m);
         const double r_eff = ri * rj / reach;
-        const auto c = evaluate_contact<D, Law>(contact_table(mat_i, p.material[j]), nrm, overlap, arm_i,
-                                                arm_j, v_rel, wi - wj, sqrt_m_eff, r_eff, dt, L.tangential[k],
-                                                Rolling ? &L.rolling[k] : nullptr);
-        f += c.force_on_i;
-        t += c.torque_i;
-        if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
-        touching += 1.0;
-        if (recording) pair_force_[k] = c.force_on_i;
-        if (is_cross) {
-          L.cross_force[slot] = -c.force_on_i;
-          L.cross_torque[slot] = c.torque_j;
-          ++slot;
-        } else {
-          p.force[j] -= c.force_on_i;
-          p.torque[j] += c.torque_j;
-        }
+        apply(evaluate_contact<D, Law>(contact_table(mat_i, p.material[j]), nrm, overlap, arm_i, arm_j, v_rel,
+                                       wi - wj, sqrt_m_eff, r_eff, dt, L.tangential[k],
+                                       Rolling ? &L.rolling[k] : nullptr));
       }
       wall_contacts(i, xi, vi, wi, f, t, magnitude_sum, touching);
       p.force[i] = f;
@@ -548,7 +615,12 @@ double Simulation<D>::compute_forces_with(Finish finish) {
   const std::int64_t blocks = L.block_count();
   auto pass = [&](std::int64_t b) {
     if constexpr (batched) {
-      batched_block_pass(b);
+      // Bonded pairs need the general pass (the batch has no bonds).
+      if (bonds) {
+        block_pass(b);
+      } else {
+        batched_block_pass(b);
+      }
     } else {
       block_pass(b);
     }
@@ -661,7 +733,8 @@ namespace {
 template <int D>
 double linear_mode_factor(const PairParameters& pp) {
   double turning = 0.0;
-  if (pp.friction > 0.0) turning += pp.tangential_ratio * (1.0 + 1.0 / inertia_factor<D>);
+  // A bond's tangential spring acts without friction too.
+  if (pp.friction > 0.0 || pp.bondable) turning += pp.tangential_ratio * (1.0 + 1.0 / inertia_factor<D>);
   if (pp.rolling_friction > 0.0)
     turning += 2.25 * pp.rolling_friction * pp.rolling_friction / inertia_factor<D>;
   return std::max(1.0, turning);
@@ -813,7 +886,9 @@ double Simulation<D>::elastic_energy() const {
       const std::uint32_t j = list_.neighbour[k];
       const double reach = p.radius[i] + p.radius[j];
       const double overlap = reach - periodic.shortest(p.position[j] - p.position[i]).norm();
-      if (overlap <= 0.0) continue;
+      // A bonded pair (linear) stores 1/2 k_n d^2 in tension too.
+      const bool bonded = !list_.bonded.empty() && list_.bonded[k] != 0;
+      if (overlap <= 0.0 && !bonded) continue;
       const auto& pp = contact_table(p.material[i], p.material[j]);
       e += normal_energy(pp, overlap, p.radius[i] * p.radius[j] / reach);
       if (pp.law == NormalLaw::linear) {

@@ -73,6 +73,8 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
   // the first particle against the second, so it changes sign if they swapped.
   std::vector<Vec<D>> next_tangential(pairs, Vec<D>::Zero());
   std::vector<AngVec<D>> next_rolling(keep_rolling ? pairs : 0, AngVec<D>::Zero());
+  const bool old_bonds = !bonded.empty() && bonded.size() == neighbour.size();
+  std::vector<std::uint8_t> next_bonded(old_bonds ? pairs : 0, 0);
   if (old_list_fits(row_offset.size(), static_cast<std::size_t>(n), old_index)) {
     const bool old_rolling = keep_rolling && rolling.size() == neighbour.size();
     for_each_index_dynamic(n, [&](std::int64_t i) {
@@ -91,6 +93,7 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
         const double sign = oi < oj ? 1.0 : -1.0;
         next_tangential[k] = sign * tangential[a];
         if (old_rolling) next_rolling[k] = sign * rolling[a];
+        if (old_bonds) next_bonded[k] = bonded[a];
       }
     });
   }
@@ -98,6 +101,7 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
   neighbour = std::move(next);
   tangential = std::move(next_tangential);
   rolling = std::move(next_rolling);
+  bonded = std::move(next_bonded);
 
   // Cross pairs, block by block in row order, and their reverse index.
   cross_begin.assign(static_cast<std::size_t>(block_count_) + 1, 0);
@@ -145,9 +149,9 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
 template <int D>
 std::size_t VerletList<D>::memory_bytes() const {
   auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return bytes(row_offset) + bytes(neighbour) + bytes(tangential) + bytes(rolling) + bytes(cross_begin) +
-         bytes(cross_force) + bytes(cross_torque) + bytes(cross_offset) + bytes(cross_slot) +
-         bytes(reference_) + bytes(earliest_source_) + cells_.memory_bytes();
+  return bytes(row_offset) + bytes(neighbour) + bytes(tangential) + bytes(rolling) + bytes(bonded) +
+         bytes(cross_begin) + bytes(cross_force) + bytes(cross_torque) + bytes(cross_offset) +
+         bytes(cross_slot) + bytes(reference_) + bytes(earliest_source_) + cells_.memory_bytes();
 }
 
 template class VerletList<2>;

@@ -531,5 +531,30 @@ class Pluviation(unittest.TestCase):
         np.testing.assert_array_equal(model.radii, final[:, 2])
 
 
+class CementedChain(unittest.TestCase):
+    """examples/dem_cases/cemented_chain.toml stepped from Python: the first
+    stage's make_bonds bonds the chain as the model is loaded, the run's
+    statics follow, and an overload breaks the top bond."""
+
+    def test_bonds_hold_the_chain_and_break_when_overloaded(self):
+        model = darcydem.load(os.path.join(SOURCE, "examples", "dem_cases", "cemented_chain.toml"))
+        self.assertEqual(model.bond_count, 10)
+        self.assertEqual(model.broken_bonds, 0)
+        self.assertEqual(model.make_bonds(), 0)  # all bonded already
+        model.step(round(0.3 / model.time_step))
+        # Every bond stretched by the weight below it: the lowest disc sunk
+        # by 55 m g / k_n (as the program's run; bound as in test_bonds.cpp).
+        m = 2500.0 * math.pi * 1e-6
+        sink = 55.0 * m * 9.81 / 1e4
+        self.assertAlmostEqual(model.positions[10, 1], -0.021 - sink, delta=1e-6 * sink)
+        model.apply_stage("overload")
+        model.step(round(0.05 / model.time_step))
+        self.assertEqual(model.broken_bonds, 1)
+        self.assertEqual(model.bond_count, 9)
+        # A gap must lie below the skin (0.2 mm here).
+        with self.assertRaisesRegex(ValueError, "below the skin"):
+            model.make_bonds(gap=1e-3)
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

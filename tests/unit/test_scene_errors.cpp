@@ -1385,5 +1385,62 @@ count = 20
   EXPECT_NE(msg.find("inlets.rain: needs 'active'"), std::string::npos) << msg;
 }
 
+TEST(SceneErrors, BondIsReadAndChecked) {
+  const std::string bond = "friction = 0.5\nbond = { tensile_strength = 2.0, shear_strength = 3.0 }";
+  const std::string good = replace(replace(std::string(kGood), "friction = 0.5", bond),
+                                   "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmake_bonds = true") +
+                           "\n[[probe]]\nname = \"b\"\nquantity = \"bonds\"\n"
+                           "\n[[probe]]\nname = \"broken\"\nquantity = \"broken_bonds\"\n";
+  ASSERT_EQ(load_error(good), "");
+  {
+    const auto scene = built_scene<2>(good);
+    const auto& pp = scene.simulation.contact_table(0, 0);
+    EXPECT_TRUE(pp.bondable);
+    EXPECT_EQ(pp.bond_tensile, 2.0);
+    EXPECT_EQ(pp.bond_shear, 3.0);
+    EXPECT_TRUE(scene.stages[0].make_bonds);
+    // A bond's tangential spring acts without friction: the critical step
+    // counts it as friction's does.
+    const auto no_friction = built_scene<2>(replace(good, "friction = 0.5\n", ""));
+    const auto plain = built_scene<2>(replace(std::string(kGood), "friction = 0.5\n", ""));
+    EXPECT_LT(no_friction.simulation.critical_time_step(), plain.simulation.critical_time_step());
+  }
+  auto msg = load_error(replace(good, "shear_strength = 3.0", "shear_strength = -3.0"));
+  EXPECT_NE(
+      msg.find("[[contact]] #1 bond key 'shear_strength': must be >= 0 N per metre of thickness, got -3"),
+      std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, ", shear_strength = 3.0", ""));
+  EXPECT_NE(msg.find("key 'shear_strength'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "tensile_strength = 2.0, shear_strength = 3.0",
+                           "tensile_strength = 0.0, shear_strength = 0.0"));
+  EXPECT_NE(msg.find("a bond with both strengths 0 would break at once"), std::string::npos) << msg;
+  msg = load_error(replace(good, "shear_strength = 3.0", "shear_strength = 3.0, moment = 1.0"));
+  EXPECT_NE(msg.find("unknown key 'moment'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "bond = {", "bond = 5\nx = {"));
+  EXPECT_NE(msg.find("key 'bond'"), std::string::npos) << msg;
+  // Hertz's spring cannot pull.
+  const std::string hertz =
+      replace(replace(good, "law = \"linear\"\nnormal_stiffness = 1e5", "law = \"hertz_mindlin\""),
+              "density = 2650.0", "density = 2650.0\nyoungs_modulus = 1e8\npoisson_ratio = 0.3");
+  msg = load_error(hertz);
+  EXPECT_NE(msg.find("key 'bond': a contact bond needs law = \"linear\""), std::string::npos) << msg;
+  // Without a bond in any contact, make_bonds and the bond probes are refused.
+  const std::string no_bond = replace(good, "\nbond = { tensile_strength = 2.0, shear_strength = 3.0 }", "");
+  msg = load_error(
+      replace(std::string(kGood), "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmake_bonds = true"));
+  EXPECT_NE(msg.find("[[stage]] #1 key 'make_bonds': bonds pairs whose [[contact]] has a 'bond'"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(no_bond, "make_bonds = true", "make_bonds = false"));
+  EXPECT_NE(
+      msg.find("key 'quantity': \"bonds\" counts contact bonds: no [[contact]] of the scene has a 'bond'"),
+      std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "make_bonds = true", "make_bonds = 1"));
+  EXPECT_NE(msg.find("key 'make_bonds'"), std::string::npos) << msg;
+}
+
 }  // namespace
 }  // namespace darcydem

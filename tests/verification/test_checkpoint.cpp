@@ -390,6 +390,17 @@ TEST(Checkpoint, ResumedPluviationWritesTheSameFilesWhileGrainsAreAdded) {
   expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 20000, 0);
 }
 
+TEST(Checkpoint, ResumedCementedChainKeepsItsBonds) {
+  // examples/dem_cases/cemented_chain.toml, stopped at step 3000 of stage
+  // "hang" (bonds made, the chain still settling): the bonds and the count
+  // of broken ones must come back, or the overload stage breaks a different
+  // number (an unbonded chain simply falls apart).
+  const fs::path dir = fresh_dir("cemented_chain");
+  fs::create_directories(dir);
+  const std::string scene = std::string(DARCYDEM_SOURCE_DIR) + "/examples/dem_cases/cemented_chain.toml";
+  expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 3000, 0);
+}
+
 // What is refused, with the file and the reason: no checkpoint (the run
 // finished), a changed scene, a damaged file.
 TEST(Checkpoint, RefusesAMissingForeignOrDamagedCheckpoint) {

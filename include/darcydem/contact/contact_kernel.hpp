@@ -117,4 +117,37 @@ template <int D, class Law>
   return out;
 }
 
+/// A bonded pair (PFC's linear contact bond; the pair's law is linear): the
+/// normal spring-dashpot F_n = k_n d + c_n v_n also in tension (d < 0, the
+/// grains apart), the tangential spring-dashpot without the Coulomb limit,
+/// and no moment (the bond turns freely, a pin). The bond holds while the
+/// tension -F_n is at most the tensile strength and |F_t| at most the shear
+/// strength: then the new history is written to xi and `held` is true.
+/// Otherwise xi is left as it was and `held` false: the caller breaks the
+/// bond and evaluates the pair as an unbonded contact of this step.
+template <int D>
+[[gnu::always_inline]] inline ContactForce<D> evaluate_bond(const PairParameters& p, const Vec<D>& n,
+                                                            double overlap, double arm_i, double arm_j,
+                                                            const Vec<D>& v_rel, double sqrt_m_eff, double dt,
+                                                            Vec<D>& xi, bool& held) {
+  const double vn = v_rel.dot(n);
+  const double fn =
+      p.normal_stiffness * overlap + p.normal_damping * sqrt_m_eff * p.sqrt_normal_stiffness * vn;
+  const Vec<D> vt = v_rel - vn * n;
+  Vec<D> h = xi;
+  rotate_into_plane<D, D>(h, n);
+  h += vt * dt;
+  const Vec<D> ft = -p.tangential_ratio * p.normal_stiffness * h -
+                    p.tangential_damping * sqrt_m_eff * p.sqrt_tangential_stiffness * vt;
+  held = -fn <= p.bond_tensile && ft.squaredNorm() <= p.bond_shear * p.bond_shear;
+  ContactForce<D> out;
+  out.force_on_i = -fn * n + ft;
+  out.normal_force = fn;
+  const AngVec<D> n_cross_ft = cross(n, ft);
+  out.torque_i = arm_i * n_cross_ft;
+  out.torque_j = arm_j * n_cross_ft;
+  if (held) xi = h;
+  return out;
+}
+
 }  // namespace darcydem

@@ -23,6 +23,11 @@ struct PairParameters {
   double tangential_damping = 0.0;  ///< dimensionless, c_t = gamma_t sqrt(m k_t)
   double friction = 0.0;            ///< Coulomb mu
   double rolling_friction = 0.0;    ///< mu_r (0: no rolling resistance)
+  /// Contact bond (linear law only): the largest tension and tangential
+  /// force a bonded pair carries before the bond breaks, N.
+  bool bondable = false;
+  double bond_tensile = 0.0;
+  double bond_shear = 0.0;
   // Derived (ContactTable::set fills them): square roots the dashpots need.
   double sqrt_normal_stiffness = 0.0;      ///< sqrt(k_n), sqrt(N/m) (linear)
   double sqrt_tangential_stiffness = 0.0;  ///< sqrt(k_t), sqrt(N/m) (linear)
@@ -97,6 +102,12 @@ class ContactTable {
   }
   [[nodiscard]] std::size_t materials() const { return n_; }
   [[nodiscard]] const std::vector<PairParameters>& all() const { return pairs_; }
+  [[nodiscard]] bool any_bondable() const {
+    for (const auto& p : pairs_) {
+      if (p.bondable) return true;
+    }
+    return false;
+  }
   [[nodiscard]] bool any_rolling() const {
     for (const auto& p : pairs_) {
       if (p.rolling_friction > 0.0) return true;

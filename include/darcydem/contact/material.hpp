@@ -22,6 +22,11 @@ struct ContactSpec {
   double restitution = 1.0;                 ///< normal coefficient of restitution
   double friction = 0.0;                    ///< Coulomb coefficient
   double rolling_friction = 0.0;            ///< mu_r, dimensionless (0: off)
+  /// Contact bond (PFC's linear contact bond, YADE's cohesive contact), made
+  /// by Simulation::make_bonds: the strengths in tension and in shear, N
+  /// (2D: per metre of thickness). Both 0: the pair is never bonded.
+  double bond_tensile_strength = 0.0;
+  double bond_shear_strength = 0.0;
 };
 
 }  // namespace darcydem

@@ -78,8 +78,9 @@ class VerletList {
   /// linked cells are rebuilt at every build and are not kept).
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(row_offset, neighbour, tangential, rolling, cross_begin, cross_force, cross_torque, cross_offset,
-       cross_slot, reference_, builds_, cell_size_, block_size_, block_count_, earliest_source_);
+    ar(row_offset, neighbour, tangential, rolling, bonded, cross_begin, cross_force, cross_torque,
+       cross_offset, cross_slot, reference_, builds_, cell_size_, block_size_, block_count_,
+       earliest_source_);
   }
   /// Bytes held by the list's arrays (capacity), for memory reports.
   [[nodiscard]] std::size_t memory_bytes() const;
@@ -89,6 +90,10 @@ class VerletList {
   std::vector<std::uint32_t> neighbour;  ///< j of each pair
   std::vector<Vec<D>> tangential;        ///< tangential spring history of each pair
   std::vector<AngVec<D>> rolling;        ///< rolling history (empty when unused)
+  /// 1 for a pair held by a contact bond (empty until bonds are made,
+  /// Simulation::make_bonds). A bonded pair that a build no longer lists
+  /// (its grains more than the skin apart) loses its bond.
+  std::vector<std::uint8_t> bonded;
   // Cross pairs: block b's are slots cross_begin[b] .. cross_begin[b+1]-1, in
   // the order its rows meet them.
   std::vector<std::uint32_t> cross_begin;

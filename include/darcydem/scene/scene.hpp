@@ -43,6 +43,8 @@ enum class ProbeQuantity {
   fluid_force,           ///< the pore fluid's force on the particles whose centres lie in a box, N
   inserted_particles,    ///< how many grains an inlet (or all) has added so far
   inserted_mass,         ///< their mass, kg (2D: per metre)
+  bonds,                 ///< contact bonds intact now
+  broken_bonds,          ///< contact bonds broken so far
 };
 
 struct ProbeSpec {
@@ -106,6 +108,8 @@ struct Stage {
   std::optional<int> fluid_steps_per_update;                 ///< a new coupling interval M
   std::optional<bool> fluid_hold_forces;                     ///< hold the grains' fluid forces, or not
   std::vector<std::pair<std::size_t, bool>> inlets;          ///< inlets (index) switched on or off
+  bool make_bonds = false;  ///< bond the pairs that can be bonded at the stage's start
+  double bond_gap = 0.0;    ///< m: and those less than this apart
 };
 
 /// [analysis] kind = "seepage_column": the paper's 1D upward seepage check.

@@ -91,6 +91,11 @@ class Simulation {
   /// how many and their mass (kg; 2D: per metre).
   std::uint64_t inserted_count = 0;
   double inserted_mass = 0.0;
+  /// Contact bonds that have broken so far (their tension or tangential
+  /// force above the pair's strength; also a bond whose grain left the
+  /// domain, or whose grains came more than the skin apart between two
+  /// list builds).
+  std::uint64_t broken_bonds = 0;
   /// Optional body-force field (the pore fluid), evaluated every step; not owned.
   const ParticleForceField<D>* force_field = nullptr;
 
@@ -112,6 +117,17 @@ class Simulation {
   /// rebuilt at the next step, the other particles keeping their contact
   /// histories. Call between steps (not inside advance()).
   std::size_t add_particle(const Vec<D>& x, double radius, std::uint16_t material, const Vec<D>& velocity);
+
+  /// Bonds every pair of particles that touch or are less than `gap` apart
+  /// (m, below the skin) whose materials' contact has a bond strength
+  /// (PFC's `contact method bond gap`, YADE's setCohesionNow): from now on
+  /// the pair also carries tension and its tangential spring has no
+  /// Coulomb limit, until a force exceeds the bond's strength (evaluate_bond
+  /// in contact_kernel.hpp). Returns how many pairs were bonded now. Call
+  /// between steps, after prepare().
+  std::size_t make_bonds(double gap = 0.0);
+  /// Bonds intact now.
+  [[nodiscard]] std::size_t bond_count() const;
 
   /// The skin prepare() uses: `skin`, or 0.2 x the smallest radius if it is 0.
   [[nodiscard]] double skin_or_default() const;
@@ -164,7 +180,7 @@ class Simulation {
   template <class Archive>
   void checkpoint(Archive& ar) {
     ar(particles, walls, gravity, damping, skin, time_step, time, steps, list_, wall_list_, field_force_,
-       block_sums_, removed_count, removed_mass, removed_volume, inserted_count, inserted_mass);
+       block_sums_, removed_count, removed_mass, removed_volume, inserted_count, inserted_mass, broken_bonds);
     bool from_field = field_forces_from_ != nullptr;
     ar(from_field);
     if constexpr (Archive::loading) field_forces_from_ = from_field ? force_field : nullptr;
