@@ -66,9 +66,9 @@ void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) con
       };
       // The contact point is arm_i from i along n and arm_j from j against
       // it; the force on j is -f_on_i.
-      visit(
-          ContactRecord<D>{i, j, -1, d, nrm, overlap, arm_i, arm_j, recorded ? pair_force_[k] : recomputed()},
-          i_in, j_in);
+      visit(ContactRecord<D>{i, j, -1, d, nrm, overlap, arm_i, arm_j,
+                             recorded ? pair_force_[k] : recomputed(), bonded},
+            i_in, j_in);
     }
     if (!i_in) continue;
     for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {

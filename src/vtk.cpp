@@ -287,6 +287,8 @@ void write_contacts_vtu(const std::string& path, const ParticleData<D>& p,
       return contacts[c].wall < 0 ? static_cast<std::int64_t>(p.id[contacts[c].second]) : std::int64_t{-1};
     });
     write_scalar_array(out, "Int32", "wall_id", n, [&](std::size_t c) { return contacts[c].wall; });
+    write_scalar_array(out, "UInt8", "bonded", n,
+                       [&](std::size_t c) { return static_cast<unsigned>(contacts[c].bonded ? 1 : 0); });
     out.print("      </CellData>\n      <Cells>\n");
     write_scalar_array(out, "Int64", "connectivity", 2 * n, [](std::size_t e) { return e; });
     write_scalar_array(out, "Int64", "offsets", n, [](std::size_t c) { return 2 * (c + 1); });

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <string>
 
+#include "../common/vtk_text.hpp"
 #include "darcydem/simulation/runner.hpp"
 #include "dem_setup.hpp"
 #include "run_output.hpp"
@@ -86,6 +87,20 @@ void chain_hangs_from_its_bonds() {
     EXPECT_GT(gap(sim, k), 0.0);
     EXPECT_NEAR(gap(sim, k), static_gap(sim, k), 1e-6 * static_gap(sim, k)) << "bond above grain " << k;
   }
+  // The contacts as the stress probes and contacts.vtu see them: each bond
+  // listed, apart as it is, its normal force the pull of the weight below
+  // (negative: tension), within the same bound.
+  std::size_t bonded = 0;
+  for (const auto& c : sim.contact_forces()) {
+    if (!c.bonded) continue;
+    ++bonded;
+    const auto k = static_cast<int>(c.second);
+    ASSERT_EQ(c.first + 1, c.second);
+    const double pull = (chain - k + 1) * grain_mass<D>() * g;
+    EXPECT_NEAR(-c.force.dot(c.normal), -pull, 1e-6 * pull) << "bond above grain " << k;
+    EXPECT_LT(c.overlap, 0.0);
+  }
+  EXPECT_EQ(bonded, static_cast<std::size_t>(chain));
 }
 
 TEST(Bonds, ChainOfDiscsHangsFromItsBondsStretchedByTheWeightBelow) { chain_hangs_from_its_bonds<2>(); }
@@ -245,6 +260,18 @@ TEST(Bonds, CementedChainExampleSinksByTheBondsStretchAndDropsWhenOverloaded) {
   EXPECT_EQ(bonds.back(), 9.0);
   EXPECT_EQ(broken.back(), 1.0);
   EXPECT_LT(y.back(), y[hang_end] - 0.01);  // it has fallen
+  // The contact network at the end of stage "hang" (snapshot 1): the ten
+  // bonds marked, each pulling with the weight below it, (11 - k) m g.
+  const std::string vtu = testing::file_contents(dir + "/contacts_00001.vtu");
+  const auto marked = testing::vtk_array(vtu, "bonded");
+  const auto normal = testing::vtk_array(vtu, "normal_force");
+  ASSERT_EQ(marked.size(), 10U);
+  ASSERT_EQ(normal.size(), 10U);
+  for (std::size_t c = 0; c < 10; ++c) {
+    EXPECT_EQ(marked[c], 1.0);
+    const double pull = static_cast<double>(10 - c) * m * 9.81;
+    EXPECT_NEAR(normal[c], -pull, 1e-6 * pull) << "contact " << c;
+  }
   const std::string json = testing::file_contents(dir + "/run.json");
   EXPECT_NE(json.find("\"bonds\": {\"intact\": 9, \"broken\": 1}"), std::string::npos) << json;
 }

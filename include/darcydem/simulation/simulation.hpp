@@ -39,6 +39,7 @@ struct ContactRecord {
   double arm_first = 0.0;   ///< m: from first's centre to the contact point, along normal
   double arm_second = 0.0;  ///< m: from the other's centre to it, against normal (0 for a wall)
   Vec<D> force;             ///< N, on first (on the other: -force)
+  bool bonded = false;      ///< held by a contact bond (may pull: the grains may be apart)
 };
 
 template <int D>
