@@ -931,6 +931,30 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     }
   }
 
+  // Contact bonds: how far one stretches before it breaks, against the
+  // skin (a pair further apart than the skin at a list build is no longer
+  // listed, and its bond is lost).
+  for (std::size_t a = 0; a < nm; ++a) {
+    for (std::size_t b = a; b < nm; ++b) {
+      const PairParameters& pp = sim.contact_table(a, b);
+      if (!pp.bondable) continue;
+      const double stretch = pp.bond_tensile / pp.normal_stiffness;
+      const double skin = sim.skin_or_default();
+      scene.notes.push_back(fmt::format(
+          "[[contact]] {} / {}: contact bonds (tensile strength {:.6g} N{}, shear {:.6g} N{}) stretch by up "
+          "to {:.6g} m before they break{}",
+          sim.materials[a].name, sim.materials[b].name, pp.bond_tensile, D == 2 ? "/m" : "", pp.bond_shear,
+          D == 2 ? "/m" : "", stretch,
+          stretch < 0.5 * skin
+              ? ""
+              : fmt::format(
+                    "; more than half the skin ({:.6g} m): a bond may be stretched so far between list "
+                    "builds that a build no longer lists its pair and drops it (counted as broken). "
+                    "Set [simulation] skin above {:.6g} m",
+                    skin, 2.0 * stretch)));
+    }
+  }
+
   // [output] and [[probe]]
   if (const toml::table* t = top.optional_table("output")) {
     TableReader r(*t, "[output]", file);

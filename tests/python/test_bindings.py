@@ -551,7 +551,7 @@ class CementedChain(unittest.TestCase):
         model.step(round(0.05 / model.time_step))
         self.assertEqual(model.broken_bonds, 1)
         self.assertEqual(model.bond_count, 9)
-        # A gap must lie below the skin (0.2 mm here).
+        # A gap must lie below the skin (0.5 mm here).
         with self.assertRaisesRegex(ValueError, "below the skin"):
             model.make_bonds(gap=1e-3)
 

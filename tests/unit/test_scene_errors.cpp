@@ -1399,6 +1399,22 @@ TEST(SceneErrors, BondIsReadAndChecked) {
     EXPECT_EQ(pp.bond_tensile, 2.0);
     EXPECT_EQ(pp.bond_shear, 3.0);
     EXPECT_TRUE(scene.stages[0].make_bonds);
+    // The note: 2 N/m on k_n = 1e5 N/m stretches 2e-5 m, below half the
+    // automatic skin (0.2 x 0.5 mm = 1e-4 m).
+    ASSERT_FALSE(scene.notes.empty());
+    EXPECT_NE(scene.notes.back().find(
+                  "[[contact]] sand / sand: contact bonds (tensile strength 2 N/m, shear 3 N/m) "
+                  "stretch by up to 2e-05 m before they break"),
+              std::string::npos)
+        << scene.notes.back();
+    EXPECT_EQ(scene.notes.back().find("skin"), std::string::npos) << scene.notes.back();
+    // A strength of 20 N/m stretches 2e-4 m, more than half the skin.
+    const auto weak_skin = built_scene<2>(replace(good, "tensile_strength = 2.0", "tensile_strength = 20.0"));
+    EXPECT_NE(
+        weak_skin.notes.back().find("more than half the skin (0.0001 m): a bond may be stretched so far"),
+        std::string::npos)
+        << weak_skin.notes.back();
+    EXPECT_NE(weak_skin.notes.back().find("Set [simulation] skin above 0.0004 m"), std::string::npos);
     // A bond's tangential spring acts without friction: the critical step
     // counts it as friction's does.
     const auto no_friction = built_scene<2>(replace(good, "friction = 0.5\n", ""));
