@@ -29,7 +29,7 @@ void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) con
       const double reach = p.radius[i] + p.radius[j];
       const double inv_m = p.inv_mass[i] + p.inv_mass[j];
       const double dist = d.norm();
-      const bool bonded = !L.bonded.empty() && L.bonded[k] != 0;
+      const bool bonded = L.is_bonded(k);
       if ((dist >= reach && !bonded) || inv_m == 0.0) continue;
       const Vec<D> nrm = d / dist;
       const double overlap = reach - dist;
@@ -54,9 +54,7 @@ void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) con
         const Vec<D> vt = v_rel - vn * nrm;
         // A bond's normal force may pull (evaluate_bond), its tangential
         // spring acts whatever the friction.
-        const double fn = bonded ? pp.normal_stiffness * overlap +
-                                       pp.normal_damping * sqrt_m * pp.sqrt_normal_stiffness * vn
-                                 : nr.force;
+        const double fn = bonded ? bond_normal_force(pp, overlap, vn, sqrt_m) : nr.force;
         Vec<D> f = -fn * nrm;
         if (pp.friction > 0.0 || bonded) {
           f += -nr.tangential_stiffness * L.tangential[k] -

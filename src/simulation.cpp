@@ -887,8 +887,7 @@ double Simulation<D>::elastic_energy() const {
       const double reach = p.radius[i] + p.radius[j];
       const double overlap = reach - periodic.shortest(p.position[j] - p.position[i]).norm();
       // A bonded pair (linear) stores 1/2 k_n d^2 in tension too.
-      const bool bonded = !list_.bonded.empty() && list_.bonded[k] != 0;
-      if (overlap <= 0.0 && !bonded) continue;
+      if (overlap <= 0.0 && !list_.is_bonded(k)) continue;
       const auto& pp = contact_table(p.material[i], p.material[j]);
       e += normal_energy(pp, overlap, p.radius[i] * p.radius[j] / reach);
       if (pp.law == NormalLaw::linear) {

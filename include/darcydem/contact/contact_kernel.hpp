@@ -117,6 +117,12 @@ template <int D, class Law>
   return out;
 }
 
+/// A bond's normal force (linear spring-dashpot, in tension too: d < 0).
+[[gnu::always_inline]] inline double bond_normal_force(const PairParameters& p, double overlap, double vn,
+                                                       double sqrt_m_eff) {
+  return p.normal_stiffness * overlap + p.normal_damping * sqrt_m_eff * p.sqrt_normal_stiffness * vn;
+}
+
 /// A bonded pair (PFC's linear contact bond; the pair's law is linear): the
 /// normal spring-dashpot F_n = k_n d + c_n v_n also in tension (d < 0, the
 /// grains apart), the tangential spring-dashpot without the Coulomb limit,
@@ -131,8 +137,7 @@ template <int D>
                                                             const Vec<D>& v_rel, double sqrt_m_eff, double dt,
                                                             Vec<D>& xi, bool& held) {
   const double vn = v_rel.dot(n);
-  const double fn =
-      p.normal_stiffness * overlap + p.normal_damping * sqrt_m_eff * p.sqrt_normal_stiffness * vn;
+  const double fn = bond_normal_force(p, overlap, vn, sqrt_m_eff);
   const Vec<D> vt = v_rel - vn * n;
   Vec<D> h = xi;
   rotate_into_plane<D, D>(h, n);

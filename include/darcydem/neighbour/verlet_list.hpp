@@ -62,6 +62,8 @@ class VerletList {
   [[nodiscard]] const std::vector<Vec<D>>& reference() const { return reference_; }
 
   [[nodiscard]] std::size_t pair_count() const { return neighbour.size(); }
+  /// Whether pair k is held by a contact bond.
+  [[nodiscard]] bool is_bonded(std::size_t k) const { return !bonded.empty() && bonded[k] != 0; }
   [[nodiscard]] std::size_t cross_count() const { return cross_force.size(); }
   [[nodiscard]] std::size_t builds() const { return builds_; }
   [[nodiscard]] double cell_size() const { return cell_size_; }
