@@ -12,6 +12,10 @@ PairParameters make_pair_parameters(const Material& a, const Material& b, const 
   p.bond_tensile = spec.bond_tensile_strength;
   p.bond_shear = spec.bond_shear_strength;
   p.bondable = spec.law == NormalLaw::linear && (p.bond_tensile > 0.0 || p.bond_shear > 0.0);
+  p.bond_bending_ratio = spec.bond_bending_stiffness_ratio;
+  p.bond_bending_strength = spec.bond_bending_strength;
+  p.bond_twisting_ratio = spec.bond_twisting_stiffness_ratio;
+  p.bond_twisting_strength = spec.bond_twisting_strength;
   p.normal_stiffness = spec.normal_stiffness;
   p.tangential_ratio = spec.tangential_stiffness_ratio;
   if (spec.law == NormalLaw::hertz_mindlin) {

@@ -593,6 +593,39 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         br.fail("tensile_strength",
                 "a bond with both strengths 0 would break at once: give one > 0, or remove "
                 "'bond'");
+      // A bond that also carries a moment (YADE's cohesive moment law): a
+      // stiffness ratio and its strength, given together.
+      const char* moment_unit = D == 2 ? "> 0 N m per metre of thickness" : "> 0 N m";
+      auto moment_part = [&](const char* ratio_key, const char* strength_key, double& ratio,
+                             double& strength) {
+        if (auto v = br.optional_number(ratio_key)) {
+          ratio = br.check(
+              ratio_key, *v, [](double x) { return x > 0.0; },
+              "> 0 (k = ratio x k_n x R*^2, R* = r_i r_j / (r_i + r_j)); leave it out for none");
+          if (!br.has(strength_key))
+            br.fail(ratio_key, fmt::format("needs '{}' too (the moment at which the bond breaks, {})",
+                                           strength_key, moment_unit));
+          strength = br.check(
+              strength_key, br.number(strength_key), [](double x) { return x > 0.0; }, moment_unit);
+        } else if (br.has(strength_key)) {
+          br.fail(strength_key, fmt::format("applies with '{}' (> 0), the bond's stiffness in that sense: "
+                                            "without it the bond carries no such moment",
+                                            ratio_key));
+        }
+      };
+      moment_part("bending_stiffness_ratio", "bending_strength", spec.bond_bending_stiffness_ratio,
+                  spec.bond_bending_strength);
+      if constexpr (D == 3) {
+        moment_part("twisting_stiffness_ratio", "twisting_strength", spec.bond_twisting_stiffness_ratio,
+                    spec.bond_twisting_strength);
+      } else {
+        for (const char* key : {"twisting_stiffness_ratio", "twisting_strength"}) {
+          if (br.has(key))
+            br.fail(key,
+                    "a 2D bond does not twist (discs turn in the plane only): bending_stiffness_ratio "
+                    "and bending_strength give its moment");
+        }
+      }
       br.finish();
     }
     sim.contact_table.set(a, b, make_pair_parameters(sim.materials[a], sim.materials[b], spec));

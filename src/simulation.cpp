@@ -100,6 +100,8 @@ std::size_t Simulation<D>::make_bonds(double gap) {
   }
   auto& L = list_;
   if (L.bonded.size() != L.pair_count()) L.bonded.assign(L.pair_count(), 0);
+  const bool moments = contact_table.any_bond_moment();
+  if (moments && L.bond_rotation.size() != L.pair_count()) L.bond_rotation.assign(L.pair_count(), {});
   const auto& p = particles;
   std::size_t made = 0;
   for (std::size_t i = 0; i < L.row_offset.size() - 1; ++i) {
@@ -110,6 +112,7 @@ std::size_t Simulation<D>::make_bonds(double gap) {
       const double reach = p.radius[i] + p.radius[j] + gap;
       if (periodic.shortest(p.position[j] - p.position[i]).squaredNorm() >= reach * reach) continue;
       L.bonded[k] = 1;
+      if (moments) L.bond_rotation[k] = {};  // a new bond starts unbent
       ++made;
     }
   }
@@ -426,8 +429,10 @@ double Simulation<D>::compute_forces_with(Finish finish) {
         if (bonds && L.bonded[k] != 0 && inv_m != 0.0) {
           const auto [nrm, overlap, arm_i, arm_j, v_rel, wj] = contact_at();
           bool held = false;
-          const auto c = evaluate_bond<D>(contact_table(mat_i, p.material[j]), nrm, overlap, arm_i, arm_j,
-                                          v_rel, std::sqrt(1.0 / inv_m), dt, L.tangential[k], held);
+          const PairParameters& pp = contact_table(mat_i, p.material[j]);
+          const auto c = evaluate_bond<D>(pp, nrm, overlap, arm_i, arm_j, v_rel, wi - wj,
+                                          std::sqrt(1.0 / inv_m), ri * rj / reach, dt, L.tangential[k],
+                                          pp.bond_has_moment() ? &L.bond_rotation[k] : nullptr, held);
           if (held) {
             if constexpr (Rolling) L.rolling[k].setZero();
             apply(c);
@@ -737,6 +742,9 @@ double linear_mode_factor(const PairParameters& pp) {
   if (pp.friction > 0.0 || pp.bondable) turning += pp.tangential_ratio * (1.0 + 1.0 / inertia_factor<D>);
   if (pp.rolling_friction > 0.0)
     turning += 2.25 * pp.rolling_friction * pp.rolling_friction / inertia_factor<D>;
+  // A bond's bending and twisting springs, ratio k_n R*^2 with R* <= r, on I
+  // alone (R* = r bounds a small grain bonded to a much larger one).
+  if (pp.bond_has_moment()) turning += (pp.bond_bending_ratio + pp.bond_twisting_ratio) / inertia_factor<D>;
   return std::max(1.0, turning);
 }
 }  // namespace
@@ -892,6 +900,15 @@ double Simulation<D>::elastic_energy() const {
       e += normal_energy(pp, overlap, p.radius[i] * p.radius[j] / reach);
       if (pp.law == NormalLaw::linear) {
         e += 0.5 * pp.tangential_ratio * pp.normal_stiffness * list_.tangential[k].squaredNorm();
+      }
+      if (pp.bond_has_moment() && list_.is_bonded(k)) {
+        // 1/2 k theta^2 of the bond's bending and twisting springs.
+        const double r_eff = p.radius[i] * p.radius[j] / reach;
+        const double k_r2 = pp.normal_stiffness * r_eff * r_eff;
+        const auto& rot = list_.bond_rotation[k];
+        e += 0.5 * k_r2 *
+             (pp.bond_bending_ratio * rot.bending.squaredNorm() +
+              pp.bond_twisting_ratio * rot.twist * rot.twist);
       }
     }
     for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {

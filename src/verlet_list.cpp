@@ -75,6 +75,8 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
   std::vector<AngVec<D>> next_rolling(keep_rolling ? pairs : 0, AngVec<D>::Zero());
   const bool old_bonds = !bonded.empty() && bonded.size() == neighbour.size();
   std::vector<std::uint8_t> next_bonded(old_bonds ? pairs : 0, 0);
+  const bool old_rotation = old_bonds && bond_rotation.size() == neighbour.size();
+  std::vector<BondRotation<D>> next_rotation(old_rotation ? pairs : 0);
   if (old_list_fits(row_offset.size(), static_cast<std::size_t>(n), old_index)) {
     const bool old_rolling = keep_rolling && rolling.size() == neighbour.size();
     for_each_index_dynamic(n, [&](std::int64_t i) {
@@ -94,6 +96,12 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
         next_tangential[k] = sign * tangential[a];
         if (old_rolling) next_rolling[k] = sign * rolling[a];
         if (old_bonds) next_bonded[k] = bonded[a];
+        if (old_rotation) {
+          // The bending turns with the pair's order; the twist about the
+          // normal does not (both the rotation and the normal change sign).
+          next_rotation[k].bending = sign * bond_rotation[a].bending;
+          next_rotation[k].twist = bond_rotation[a].twist;
+        }
       }
     });
   }
@@ -102,6 +110,7 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
   tangential = std::move(next_tangential);
   rolling = std::move(next_rolling);
   bonded = std::move(next_bonded);
+  bond_rotation = std::move(next_rotation);
 
   // Cross pairs, block by block in row order, and their reverse index.
   cross_begin.assign(static_cast<std::size_t>(block_count_) + 1, 0);
@@ -150,8 +159,9 @@ template <int D>
 std::size_t VerletList<D>::memory_bytes() const {
   auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return bytes(row_offset) + bytes(neighbour) + bytes(tangential) + bytes(rolling) + bytes(bonded) +
-         bytes(cross_begin) + bytes(cross_force) + bytes(cross_torque) + bytes(cross_offset) +
-         bytes(cross_slot) + bytes(reference_) + bytes(earliest_source_) + cells_.memory_bytes();
+         bytes(bond_rotation) + bytes(cross_begin) + bytes(cross_force) + bytes(cross_torque) +
+         bytes(cross_offset) + bytes(cross_slot) + bytes(reference_) + bytes(earliest_source_) +
+         cells_.memory_bytes();
 }
 
 template class VerletList<2>;

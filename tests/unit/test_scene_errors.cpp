@@ -96,6 +96,16 @@ std::string replace(std::string s, const std::string& from, const std::string& t
   return s.replace(at, from.size(), to);
 }
 
+/// kGood (or a variant of it) as a 3D scene: its floor, column and gravity
+/// along z.
+std::string in_3d(const std::string& scene) {
+  std::string text = replace(scene, "dimension = 2", "dimension = 3");
+  text = replace(text, "point = [0.0, 0.0]", "point = [0.0, 0.0, 0.0]");
+  text = replace(text, "normal = [0.0, 1.0]", "normal = [0.0, 0.0, 1.0]");
+  text = replace(text, "base = [0.0, 0.0]", "base = [0.0, 0.0, 0.0]");
+  return replace(text, "gravity = [0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]");
+}
+
 TEST(SceneErrors, GoodSceneLoads) { EXPECT_EQ(load_error(kGood), ""); }
 
 TEST(SceneErrors, UnknownKeySuggestsTheNearOne) {
@@ -299,11 +309,7 @@ TEST(SceneErrors, BoxWallRotationsAreReadAndChecked) {
   auto msg = load_error(replace(good, "rotation = 30.0", "rotation = \"30\""));
   EXPECT_NE(msg.find("key 'rotation'"), std::string::npos) << msg;
   // 3D: { axis, angle }; 90 degrees about z turns x into y.
-  std::string good3 = replace(kGood, "dimension = 2", "dimension = 3");
-  good3 = replace(good3, "point = [0.0, 0.0]", "point = [0.0, 0.0, 0.0]");
-  good3 = replace(good3, "normal = [0.0, 1.0]", "normal = [0.0, 0.0, 1.0]");
-  good3 = replace(good3, "base = [0.0, 0.0]", "base = [0.0, 0.0, 0.0]");
-  good3 = replace(good3, "gravity = [0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]");
+  std::string good3 = in_3d(kGood);
   good3 = replace(
       good3, "[[particles]]",
       "[[wall]]\nname = \"baffle\"\nmaterial = \"sand\"\nbox = { min = [0.002, 0.0, 0.0], max = "
@@ -1456,6 +1462,63 @@ TEST(SceneErrors, BondIsReadAndChecked) {
       << msg;
   msg = load_error(replace(good, "make_bonds = true", "make_bonds = 1"));
   EXPECT_NE(msg.find("key 'make_bonds'"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, BondMomentIsReadAndChecked) {
+  const std::string plain_bond = "friction = 0.5\nbond = { tensile_strength = 2.0, shear_strength = 3.0 }";
+  const std::string bond =
+      "friction = 0.5\nbond = { tensile_strength = 2.0, shear_strength = 3.0, bending_stiffness_ratio = 0.5, "
+      "bending_strength = 1e-4 }";
+  const std::string with_stage =
+      replace(std::string(kGood), "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmake_bonds = true");
+  const std::string good = replace(with_stage, "friction = 0.5", bond);
+  ASSERT_EQ(load_error(good), "");
+  {
+    const auto scene = built_scene<2>(good);
+    const auto& pp = scene.simulation.contact_table(0, 0);
+    EXPECT_TRUE(pp.bond_has_moment());
+    EXPECT_EQ(pp.bond_bending_ratio, 0.5);
+    EXPECT_EQ(pp.bond_bending_strength, 1e-4);
+    EXPECT_EQ(pp.bond_twisting_ratio, 0.0);
+    // The bending spring turns a grain: the critical step counts it, beside
+    // the bond's tangential spring (the time step is the smaller for it).
+    const auto pin = built_scene<2>(replace(with_stage, "friction = 0.5", plain_bond));
+    EXPECT_FALSE(pin.simulation.contact_table(0, 0).bond_has_moment());
+    EXPECT_LT(scene.simulation.critical_time_step(), pin.simulation.critical_time_step());
+  }
+  auto msg = load_error(replace(good, ", bending_strength = 1e-4", ""));
+  EXPECT_NE(msg.find("[[contact]] #1 bond key 'bending_stiffness_ratio': needs 'bending_strength' too"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, "bending_stiffness_ratio = 0.5, ", ""));
+  EXPECT_NE(msg.find("key 'bending_strength': applies with 'bending_stiffness_ratio'"), std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "bending_stiffness_ratio = 0.5", "bending_stiffness_ratio = 0.0"));
+  EXPECT_NE(msg.find("key 'bending_stiffness_ratio': must be > 0"), std::string::npos) << msg;
+  msg = load_error(replace(good, "bending_strength = 1e-4", "bending_strength = -1e-4"));
+  EXPECT_NE(msg.find("key 'bending_strength': must be > 0 N m per metre of thickness"), std::string::npos)
+      << msg;
+  msg = load_error(
+      replace(good, "bending_strength = 1e-4", "bending_strength = 1e-4, twisting_strength = 1.0"));
+  EXPECT_NE(msg.find("key 'twisting_strength': a 2D bond does not twist"), std::string::npos) << msg;
+
+  // 3D: twisting too.
+  std::string good3 = in_3d(good);
+  good3 = replace(good3, "bending_strength = 1e-4",
+                  "bending_strength = 1e-4, twisting_stiffness_ratio = 0.25, twisting_strength = 2e-4");
+  ASSERT_EQ(load_error(good3), "");
+  {
+    const auto scene = built_scene<3>(good3);
+    const auto& pp = scene.simulation.contact_table(0, 0);
+    EXPECT_EQ(pp.bond_twisting_ratio, 0.25);
+    EXPECT_EQ(pp.bond_twisting_strength, 2e-4);
+  }
+  msg = load_error(replace(good3, ", twisting_strength = 2e-4", ""));
+  EXPECT_NE(msg.find("key 'twisting_stiffness_ratio': needs 'twisting_strength' too (the moment at which the "
+                     "bond breaks, > 0 N m)"),
+            std::string::npos)
+      << msg;
 }
 
 }  // namespace

@@ -401,6 +401,16 @@ TEST(Checkpoint, ResumedCementedChainKeepsItsBonds) {
   expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 3000, 0);
 }
 
+TEST(Checkpoint, ResumedBondedCantileverKeepsItsBondsBending) {
+  // examples/dem_cases/bonded_cantilever.toml, stopped at step 3000 of stage
+  // "sag" (the cantilever still bending): each bond's turn must come back,
+  // or its spring would start unbent and the cantilever sag further.
+  const fs::path dir = fresh_dir("bonded_cantilever");
+  fs::create_directories(dir);
+  const std::string scene = std::string(DARCYDEM_SOURCE_DIR) + "/examples/dem_cases/bonded_cantilever.toml";
+  expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 3000, 0);
+}
+
 // What is refused, with the file and the reason: no checkpoint (the run
 // finished), a changed scene, a damaged file.
 TEST(Checkpoint, RefusesAMissingForeignOrDamagedCheckpoint) {

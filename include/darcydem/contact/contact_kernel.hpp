@@ -20,6 +20,19 @@ struct ContactHistory {
   Vec<D> tangential = Vec<D>::Zero();  ///< elastic tangential displacement, m
 };
 
+/// A moment-carrying bond's relative rotation of i against j since it was
+/// made, rad: its bending part (in the contact plane; 2D the whole rotation)
+/// and, in 3D, its twist about the normal.
+template <int D>
+struct BondRotation {
+  AngVec<D> bending = AngVec<D>::Zero();
+  double twist = 0.0;
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(bending, twist);
+  }
+};
+
 template <int D>
 struct ContactForce {
   Vec<D> force_on_i;    ///< N
@@ -126,16 +139,22 @@ template <int D, class Law>
 /// A bonded pair (PFC's linear contact bond; the pair's law is linear): the
 /// normal spring-dashpot F_n = k_n d + c_n v_n also in tension (d < 0, the
 /// grains apart), the tangential spring-dashpot without the Coulomb limit,
-/// and no moment (the bond turns freely, a pin). The bond holds while the
-/// tension -F_n is at most the tensile strength and |F_t| at most the shear
-/// strength: then the new history is written to xi and `held` is true.
-/// Otherwise xi is left as it was and `held` false: the caller breaks the
-/// bond and evaluates the pair as an unbonded contact of this step.
+/// and, when the pair's bond has a moment (rotation != nullptr), a bending
+/// spring M_b = -k_b theta_b on the relative rotation in the contact plane
+/// and in 3D a twisting one M_tw = -k_tw theta_tw n about the normal
+/// (k = ratio k_n R*^2); without, no moment (the bond turns freely, a pin).
+/// The bond holds while the tension -F_n is at most the tensile strength,
+/// |F_t| at most the shear strength and |M_b|, |M_tw| at most theirs: then
+/// the new histories are written to xi (and *rotation) and `held` is true.
+/// Otherwise they are left as they were and `held` false: the caller breaks
+/// the bond and evaluates the pair as an unbonded contact of this step.
 template <int D>
 [[gnu::always_inline]] inline ContactForce<D> evaluate_bond(const PairParameters& p, const Vec<D>& n,
                                                             double overlap, double arm_i, double arm_j,
-                                                            const Vec<D>& v_rel, double sqrt_m_eff, double dt,
-                                                            Vec<D>& xi, bool& held) {
+                                                            const Vec<D>& v_rel, const AngVec<D>& omega_rel,
+                                                            double sqrt_m_eff, double r_eff, double dt,
+                                                            Vec<D>& xi, BondRotation<D>* rotation,
+                                                            bool& held) {
   const double vn = v_rel.dot(n);
   const double fn = bond_normal_force(p, overlap, vn, sqrt_m_eff);
   const Vec<D> vt = v_rel - vn * n;
@@ -151,6 +170,32 @@ template <int D>
   const AngVec<D> n_cross_ft = cross(n, ft);
   out.torque_i = arm_i * n_cross_ft;
   out.torque_j = arm_j * n_cross_ft;
+  if (rotation != nullptr) {
+    // Bending: the relative rotation in the contact plane (its history turned
+    // with the plane, as the tangential one); twist: about the normal.
+    BondRotation<D> r = *rotation;
+    AngVec<D> w_bend = omega_rel;
+    AngVec<D> moment;
+    const double k_r2 = p.normal_stiffness * r_eff * r_eff;
+    if constexpr (D == 3) {
+      const double w_twist = omega_rel.dot(n);
+      w_bend -= w_twist * n;
+      rotate_into_plane<D, 3>(r.bending, n);
+      r.twist += w_twist * dt;
+      const double m_twist = -p.bond_twisting_ratio * k_r2 * r.twist;
+      held = held && std::abs(m_twist) <= p.bond_twisting_strength;
+      moment = m_twist * n;
+    } else {
+      moment.setZero();
+    }
+    r.bending += w_bend * dt;
+    const AngVec<D> m_bend = -p.bond_bending_ratio * k_r2 * r.bending;
+    held = held && m_bend.squaredNorm() <= p.bond_bending_strength * p.bond_bending_strength;
+    moment += m_bend;
+    out.torque_i += moment;
+    out.torque_j -= moment;
+    if (held) *rotation = r;
+  }
   if (held) xi = h;
   return out;
 }

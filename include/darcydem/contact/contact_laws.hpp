@@ -28,6 +28,15 @@ struct PairParameters {
   bool bondable = false;
   double bond_tensile = 0.0;
   double bond_shear = 0.0;
+  /// A bond's moment (0: a pin): stiffness ratios (k = ratio k_n R*^2) and
+  /// strengths, N m; twisting in 3D only.
+  double bond_bending_ratio = 0.0;
+  double bond_bending_strength = 0.0;
+  double bond_twisting_ratio = 0.0;
+  double bond_twisting_strength = 0.0;
+  [[nodiscard]] bool bond_has_moment() const {
+    return bondable && (bond_bending_ratio > 0.0 || bond_twisting_ratio > 0.0);
+  }
   // Derived (ContactTable::set fills them): square roots the dashpots need.
   double sqrt_normal_stiffness = 0.0;      ///< sqrt(k_n), sqrt(N/m) (linear)
   double sqrt_tangential_stiffness = 0.0;  ///< sqrt(k_t), sqrt(N/m) (linear)
@@ -105,6 +114,12 @@ class ContactTable {
   [[nodiscard]] bool any_bondable() const {
     for (const auto& p : pairs_) {
       if (p.bondable) return true;
+    }
+    return false;
+  }
+  [[nodiscard]] bool any_bond_moment() const {
+    for (const auto& p : pairs_) {
+      if (p.bond_has_moment()) return true;
     }
     return false;
   }

@@ -27,6 +27,15 @@ struct ContactSpec {
   /// (2D: per metre of thickness). Both 0: the pair is never bonded.
   double bond_tensile_strength = 0.0;
   double bond_shear_strength = 0.0;
+  /// A bond that also carries a moment (YADE's cohesive moment law, PFC's
+  /// parallel bond): the relative rotation of the grains bends it, with
+  /// k_b = ratio x k_n x R*^2 (R* = r_i r_j / (r_i + r_j)), and in 3D twists it
+  /// (about the normal), with k_tw = ratio x k_n x R*^2; it breaks when the
+  /// moment passes the strength, N m (2D: per metre). Ratio 0: a pin.
+  double bond_bending_stiffness_ratio = 0.0;
+  double bond_bending_strength = 0.0;
+  double bond_twisting_stiffness_ratio = 0.0;
+  double bond_twisting_strength = 0.0;
 };
 
 }  // namespace darcydem

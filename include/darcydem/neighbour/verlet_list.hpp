@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "darcydem/contact/contact_kernel.hpp"
 #include "darcydem/core/vec.hpp"
 #include "darcydem/neighbour/linked_cells.hpp"
 
@@ -80,8 +81,8 @@ class VerletList {
   /// linked cells are rebuilt at every build and are not kept).
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(row_offset, neighbour, tangential, rolling, bonded, cross_begin, cross_force, cross_torque,
-       cross_offset, cross_slot, reference_, builds_, cell_size_, block_size_, block_count_,
+    ar(row_offset, neighbour, tangential, rolling, bonded, bond_rotation, cross_begin, cross_force,
+       cross_torque, cross_offset, cross_slot, reference_, builds_, cell_size_, block_size_, block_count_,
        earliest_source_);
   }
   /// Bytes held by the list's arrays (capacity), for memory reports.
@@ -96,6 +97,9 @@ class VerletList {
   /// Simulation::make_bonds). A bonded pair that a build no longer lists
   /// (its grains more than the skin apart) loses its bond.
   std::vector<std::uint8_t> bonded;
+  /// The relative rotation each bonded pair's bond has taken since it was
+  /// made (empty unless a bond carries a moment, PairParameters::bond_has_moment).
+  std::vector<BondRotation<D>> bond_rotation;
   // Cross pairs: block b's are slots cross_begin[b] .. cross_begin[b+1]-1, in
   // the order its rows meet them.
   std::vector<std::uint32_t> cross_begin;
