@@ -10,6 +10,7 @@
 
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
+#include "darcydem/simulation/runner.hpp"
 
 namespace darcydem::testing {
 
@@ -81,6 +82,16 @@ void run_stages(Scene<D>& scene) {
       }
     }
   }
+}
+
+/// Runs a scene file of the source tree (path relative to it) as `darcydem
+/// run` does, its output in `out_dir`.
+template <int D>
+RunSummary run_example(const std::string& relative, const std::string& out_dir) {
+  Scene<D> scene = load_scene<D>(relative);
+  RunOptions options;
+  options.out_dir = out_dir;
+  return run_scene<D>(scene, options);
 }
 
 }  // namespace darcydem::testing

@@ -270,10 +270,7 @@ TEST(BondMoments, SphereSpinsFreeOnceItsTwistPassesTheBondsStrength) {
 // Stage "overload" (1.5 g) breaks the root bond alone.
 TEST(BondMoments, BondedCantileverExampleSagsAndBreaksAtItsRootWhenOverloaded) {
   const std::string dir = testing::temp_dir("bonded_cantilever");
-  Scene<2> scene = testing::load_scene<2>("examples/dem_cases/bonded_cantilever.toml");
-  RunOptions options;
-  options.out_dir = dir;
-  const RunSummary summary = run_scene<2>(scene, options);
+  const RunSummary summary = testing::run_example<2>("examples/dem_cases/bonded_cantilever.toml", dir);
   ASSERT_FALSE(summary.interrupted);
   ASSERT_EQ(summary.stages_completed.size(), 2U);
   const auto probes = testing::read_probes(dir + "/probes.csv");

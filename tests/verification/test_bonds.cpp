@@ -235,10 +235,7 @@ TEST(Bonds, BondsOfASphereBreakInShearAboveTheirStrength) { bonds_break_in_shear
 // bond has gone, which unloads them: one bond breaks.
 TEST(Bonds, CementedChainExampleSinksByTheBondsStretchAndDropsWhenOverloaded) {
   const std::string dir = testing::temp_dir("bonds_chain");
-  Scene<2> scene = testing::load_scene<2>("examples/dem_cases/cemented_chain.toml");
-  RunOptions options;
-  options.out_dir = dir;
-  const RunSummary summary = run_scene<2>(scene, options);
+  const RunSummary summary = testing::run_example<2>("examples/dem_cases/cemented_chain.toml", dir);
   ASSERT_FALSE(summary.interrupted);
   ASSERT_EQ(summary.stages_completed.size(), 2U);
   const auto probes = testing::read_probes(dir + "/probes.csv");

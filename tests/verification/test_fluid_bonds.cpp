@@ -27,10 +27,7 @@ namespace {
 //   u_c = (W' + 5 T) / (0.9 W),  W' = 45 m (1 - rho_f / rho_s) g.
 TEST(FluidBonds, CementedBedHeavesWhenTheUpliftPassesItsWeightAndTheBondsStrength) {
   const std::string dir = testing::temp_dir("cemented_bed_heave");
-  Scene<2> scene = testing::load_scene<2>("examples/fluid_cases/cemented_bed_heave.toml");
-  RunOptions options;
-  options.out_dir = dir;
-  const RunSummary summary = run_scene<2>(scene, options);
+  const RunSummary summary = testing::run_example<2>("examples/fluid_cases/cemented_bed_heave.toml", dir);
   ASSERT_FALSE(summary.interrupted);
   ASSERT_EQ(summary.stages_completed.size(), 2U);
 
