@@ -64,9 +64,17 @@ void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) con
       };
       // The contact point is arm_i from i along n and arm_j from j against
       // it; the force on j is -f_on_i.
-      visit(ContactRecord<D>{i, j, -1, d, nrm, overlap, arm_i, arm_j,
-                             recorded ? pair_force_[k] : recomputed(), bonded},
-            i_in, j_in);
+      ContactRecord<D> record{
+          i, j, -1, d, nrm, overlap, arm_i, arm_j, recorded ? pair_force_[k] : recomputed(), bonded};
+      const PairParameters& pp = contact_table(p.material[i], p.material[j]);
+      if (bonded && pp.bond_has_moment()) {
+        // The moments the bond's springs hold (evaluate_bond).
+        const double r_eff = p.radius[i] * p.radius[j] / reach;
+        const double k_r2 = pp.normal_stiffness * r_eff * r_eff;
+        record.bending_moment = pp.bond_bending_ratio * k_r2 * L.bond_rotation[k].bending.norm();
+        record.twisting_moment = pp.bond_twisting_ratio * k_r2 * std::abs(L.bond_rotation[k].twist);
+      }
+      visit(record, i_in, j_in);
     }
     if (!i_in) continue;
     for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {

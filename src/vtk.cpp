@@ -289,6 +289,12 @@ void write_contacts_vtu(const std::string& path, const ParticleData<D>& p,
     write_scalar_array(out, "Int32", "wall_id", n, [&](std::size_t c) { return contacts[c].wall; });
     write_scalar_array(out, "UInt8", "bonded", n,
                        [&](std::size_t c) { return static_cast<unsigned>(contacts[c].bonded ? 1 : 0); });
+    write_scalar_array(out, "Float64", "bending_moment", n,
+                       [&](std::size_t c) { return contacts[c].bending_moment; });
+    if constexpr (D == 3) {
+      write_scalar_array(out, "Float64", "twisting_moment", n,
+                         [&](std::size_t c) { return contacts[c].twisting_moment; });
+    }
     out.print("      </CellData>\n      <Cells>\n");
     write_scalar_array(out, "Int64", "connectivity", 2 * n, [](std::size_t e) { return e; });
     write_scalar_array(out, "Int64", "offsets", n, [](std::size_t c) { return 2 * (c + 1); });

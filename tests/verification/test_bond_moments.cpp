@@ -295,6 +295,21 @@ TEST(BondMoments, BondedCantileverExampleSagsAndBreaksAtItsRootWhenOverloaded) {
   EXPECT_LT(y.back(), -5.0 * sag[10]);  // swinging down about its root
   const std::string json = testing::file_contents(dir + "/run.json");
   EXPECT_NE(json.find("\"bonds\": {\"intact\": 9, \"broken\": 1}"), std::string::npos) << json;
+  // The contact network at the end of stage "sag" (snapshot 1): the ten
+  // bonds, joint k bending with the moment of the weight beyond it,
+  // m g r (11 - k)^2; bound 1e-3 (the sag shortens the lever arms by about
+  // phi^2 / 2 < 1e-4).
+  const std::string vtu = testing::file_contents(dir + "/contacts_00001.vtu");
+  const auto marked = testing::vtk_array(vtu, "bonded");
+  const auto bending = testing::vtk_array(vtu, "bending_moment");
+  ASSERT_EQ(marked.size(), 10U);
+  ASSERT_EQ(bending.size(), 10U);
+  for (std::size_t c = 0; c < 10; ++c) {
+    EXPECT_EQ(marked[c], 1.0);
+    const double beyond = static_cast<double>(10 - c);
+    const double moment = m * 9.81 * 1e-3 * beyond * beyond;
+    EXPECT_NEAR(bending[c], moment, 1e-3 * moment) << "joint " << c + 1;
+  }
 }
 
 }  // namespace

@@ -40,6 +40,10 @@ struct ContactRecord {
   double arm_second = 0.0;  ///< m: from the other's centre to it, against normal (0 for a wall)
   Vec<D> force;             ///< N, on first (on the other: -force)
   bool bonded = false;      ///< held by a contact bond (may pull: the grains may be apart)
+  /// A bond with a moment: the magnitudes of its bending and (3D) twisting
+  /// moments, N m (2D: per metre); 0 otherwise.
+  double bending_moment = 0.0;
+  double twisting_moment = 0.0;
 };
 
 template <int D>
