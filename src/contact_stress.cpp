@@ -70,9 +70,8 @@ void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) con
       if (bonded && pp.bond_has_moment()) {
         // The moments the bond's springs hold (evaluate_bond).
         const double r_eff = p.radius[i] * p.radius[j] / reach;
-        const double k_r2 = pp.normal_stiffness * r_eff * r_eff;
-        record.bending_moment = pp.bond_bending_ratio * k_r2 * L.bond_rotation[k].bending.norm();
-        record.twisting_moment = pp.bond_twisting_ratio * k_r2 * std::abs(L.bond_rotation[k].twist);
+        record.bending_moment = pp.bond_bending_stiffness(r_eff) * L.bond_rotation[k].bending.norm();
+        record.twisting_moment = pp.bond_twisting_stiffness(r_eff) * std::abs(L.bond_rotation[k].twist);
       }
       visit(record, i_in, j_in);
     }

@@ -904,11 +904,9 @@ double Simulation<D>::elastic_energy() const {
       if (pp.bond_has_moment() && list_.is_bonded(k)) {
         // 1/2 k theta^2 of the bond's bending and twisting springs.
         const double r_eff = p.radius[i] * p.radius[j] / reach;
-        const double k_r2 = pp.normal_stiffness * r_eff * r_eff;
         const auto& rot = list_.bond_rotation[k];
-        e += 0.5 * k_r2 *
-             (pp.bond_bending_ratio * rot.bending.squaredNorm() +
-              pp.bond_twisting_ratio * rot.twist * rot.twist);
+        e += 0.5 * (pp.bond_bending_stiffness(r_eff) * rot.bending.squaredNorm() +
+                    pp.bond_twisting_stiffness(r_eff) * rot.twist * rot.twist);
       }
     }
     for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {

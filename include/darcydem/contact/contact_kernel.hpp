@@ -176,20 +176,19 @@ template <int D>
     BondRotation<D> r = *rotation;
     AngVec<D> w_bend = omega_rel;
     AngVec<D> moment;
-    const double k_r2 = p.normal_stiffness * r_eff * r_eff;
     if constexpr (D == 3) {
       const double w_twist = omega_rel.dot(n);
       w_bend -= w_twist * n;
       rotate_into_plane<D, 3>(r.bending, n);
       r.twist += w_twist * dt;
-      const double m_twist = -p.bond_twisting_ratio * k_r2 * r.twist;
+      const double m_twist = -p.bond_twisting_stiffness(r_eff) * r.twist;
       held = held && std::abs(m_twist) <= p.bond_twisting_strength;
       moment = m_twist * n;
     } else {
       moment.setZero();
     }
     r.bending += w_bend * dt;
-    const AngVec<D> m_bend = -p.bond_bending_ratio * k_r2 * r.bending;
+    const AngVec<D> m_bend = -p.bond_bending_stiffness(r_eff) * r.bending;
     held = held && m_bend.squaredNorm() <= p.bond_bending_strength * p.bond_bending_strength;
     moment += m_bend;
     out.torque_i += moment;

@@ -37,6 +37,14 @@ struct PairParameters {
   [[nodiscard]] bool bond_has_moment() const {
     return bondable && (bond_bending_ratio > 0.0 || bond_twisting_ratio > 0.0);
   }
+  /// The bond's bending and twisting spring stiffnesses, ratio k_n R*^2,
+  /// N m/rad, for a pair of effective radius r_eff = R_i R_j / (R_i + R_j).
+  [[nodiscard]] double bond_bending_stiffness(double r_eff) const {
+    return bond_bending_ratio * normal_stiffness * r_eff * r_eff;
+  }
+  [[nodiscard]] double bond_twisting_stiffness(double r_eff) const {
+    return bond_twisting_ratio * normal_stiffness * r_eff * r_eff;
+  }
   // Derived (ContactTable::set fills them): square roots the dashpots need.
   double sqrt_normal_stiffness = 0.0;      ///< sqrt(k_n), sqrt(N/m) (linear)
   double sqrt_tangential_stiffness = 0.0;  ///< sqrt(k_t), sqrt(N/m) (linear)
