@@ -1,5 +1,7 @@
 #include "darcydem/contact/contact_laws.hpp"
 
+#include <cmath>
+
 #include "darcydem/contact/restitution.hpp"
 
 namespace darcydem {
@@ -16,6 +18,10 @@ PairParameters make_pair_parameters(const Material& a, const Material& b, const 
   p.bond_bending_strength = spec.bond_bending_strength;
   p.bond_twisting_ratio = spec.bond_twisting_stiffness_ratio;
   p.bond_twisting_strength = spec.bond_twisting_strength;
+  p.bond_weibull_modulus = spec.bond_strength_weibull_modulus;
+  if (p.bond_weibull_modulus > 0.0)
+    p.bond_weibull_scale = 1.0 / std::tgamma(1.0 + 1.0 / p.bond_weibull_modulus);
+  p.bond_seed = spec.bond_strength_seed;
   p.normal_stiffness = spec.normal_stiffness;
   p.tangential_ratio = spec.tangential_stiffness_ratio;
   if (spec.law == NormalLaw::hertz_mindlin) {

@@ -626,6 +626,22 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                     "and bending_strength give its moment");
         }
       }
+      // Strengths that vary from bond to bond: Weibull's modulus of a factor
+      // of mean 1 on all of a bond's strengths.
+      if (auto v = br.optional_number("strength_weibull_modulus")) {
+        spec.bond_strength_weibull_modulus = br.check(
+            "strength_weibull_modulus", *v, [](double m) { return m >= 0.5 && m <= 1000.0; },
+            "in [0.5, 1000] (Weibull's modulus: about 3-10 for cemented sand and rock, larger for less "
+            "scatter); leave it out for equal strengths");
+        if (auto seed = br.optional_integer("strength_seed")) {
+          if (*seed < 0) br.fail("strength_seed", "must be an integer >= 0");
+          spec.bond_strength_seed = static_cast<std::uint64_t>(*seed);
+        }
+      } else if (br.has("strength_seed")) {
+        br.fail("strength_seed",
+                "applies with 'strength_weibull_modulus' (the scatter of the bonds' strengths), which is "
+                "not given");
+      }
       br.finish();
     }
     sim.contact_table.set(a, b, make_pair_parameters(sim.materials[a], sim.materials[b], spec));
@@ -971,13 +987,26 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     for (std::size_t b = a; b < nm; ++b) {
       const PairParameters& pp = sim.contact_table(a, b);
       if (!pp.bondable) continue;
-      const double stretch = pp.bond_tensile / pp.normal_stiffness;
+      // With strengths that vary, the strongest bond in a thousand: the
+      // factor whose Weibull exceedance is 1e-3.
+      const double strongest =
+          pp.bond_strength_varies()
+              ? pp.bond_weibull_scale * std::pow(std::log(1000.0), 1.0 / pp.bond_weibull_modulus)
+              : 1.0;
+      const double stretch = strongest * pp.bond_tensile / pp.normal_stiffness;
       const double skin = sim.skin_or_default();
       scene.notes.push_back(fmt::format(
-          "[[contact]] {} / {}: contact bonds (tensile strength {:.6g} N{}, shear {:.6g} N{}) stretch by up "
+          "[[contact]] {} / {}: contact bonds (tensile strength {:.6g} N{}, shear {:.6g} N{}{}) stretch by "
+          "up "
           "to {:.6g} m before they break{}",
           sim.materials[a].name, sim.materials[b].name, pp.bond_tensile, D == 2 ? "/m" : "", pp.bond_shear,
-          D == 2 ? "/m" : "", stretch,
+          D == 2 ? "/m" : "",
+          pp.bond_strength_varies()
+              ? fmt::format("; the means of strengths scattered with Weibull's modulus {:.6g}, the strongest "
+                            "bond in a thousand {:.4g} times as strong",
+                            pp.bond_weibull_modulus, strongest)
+              : "",
+          stretch,
           stretch < 0.5 * skin
               ? ""
               : fmt::format(

@@ -102,17 +102,21 @@ std::size_t Simulation<D>::make_bonds(double gap) {
   if (L.bonded.size() != L.pair_count()) L.bonded.assign(L.pair_count(), 0);
   const bool moments = contact_table.any_bond_moment();
   if (moments && L.bond_rotation.size() != L.pair_count()) L.bond_rotation.assign(L.pair_count(), {});
+  const bool varies = contact_table.any_bond_strength_variation();
+  if (varies && L.bond_strength.size() != L.pair_count()) L.bond_strength.assign(L.pair_count(), 1.0);
   const auto& p = particles;
   std::size_t made = 0;
   for (std::size_t i = 0; i < L.row_offset.size() - 1; ++i) {
     for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
       const std::uint32_t j = L.neighbour[k];
-      if (L.bonded[k] != 0 || !contact_table(p.material[i], p.material[j]).bondable) continue;
+      const PairParameters& pp = contact_table(p.material[i], p.material[j]);
+      if (L.bonded[k] != 0 || !pp.bondable) continue;
       if (p.inv_mass[i] + p.inv_mass[j] == 0.0) continue;
       const double reach = p.radius[i] + p.radius[j] + gap;
       if (periodic.shortest(p.position[j] - p.position[i]).squaredNorm() >= reach * reach) continue;
       L.bonded[k] = 1;
       if (moments) L.bond_rotation[k] = {};  // a new bond starts unbent
+      if (varies) L.bond_strength[k] = pp.bond_strength_factor(p.id[i], p.id[j]);
       ++made;
     }
   }
@@ -432,7 +436,8 @@ double Simulation<D>::compute_forces_with(Finish finish) {
           const PairParameters& pp = contact_table(mat_i, p.material[j]);
           const auto c = evaluate_bond<D>(pp, nrm, overlap, arm_i, arm_j, v_rel, wi - wj,
                                           std::sqrt(1.0 / inv_m), ri * rj / reach, dt, L.tangential[k],
-                                          pp.bond_has_moment() ? &L.bond_rotation[k] : nullptr, held);
+                                          pp.bond_has_moment() ? &L.bond_rotation[k] : nullptr,
+                                          pp.bond_strength_varies() ? L.bond_strength[k] : 1.0, held);
           if (held) {
             if constexpr (Rolling) L.rolling[k].setZero();
             apply(c);

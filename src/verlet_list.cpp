@@ -77,6 +77,8 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
   std::vector<std::uint8_t> next_bonded(old_bonds ? pairs : 0, 0);
   const bool old_rotation = old_bonds && bond_rotation.size() == neighbour.size();
   std::vector<BondRotation<D>> next_rotation(old_rotation ? pairs : 0);
+  const bool old_strength = old_bonds && bond_strength.size() == neighbour.size();
+  std::vector<double> next_strength(old_strength ? pairs : 0, 1.0);
   if (old_list_fits(row_offset.size(), static_cast<std::size_t>(n), old_index)) {
     const bool old_rolling = keep_rolling && rolling.size() == neighbour.size();
     for_each_index_dynamic(n, [&](std::int64_t i) {
@@ -96,6 +98,7 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
         next_tangential[k] = sign * tangential[a];
         if (old_rolling) next_rolling[k] = sign * rolling[a];
         if (old_bonds) next_bonded[k] = bonded[a];
+        if (old_strength) next_strength[k] = bond_strength[a];
         if (old_rotation) {
           // The bending turns with the pair's order; the twist about the
           // normal does not (both the rotation and the normal change sign).
@@ -111,6 +114,7 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
   rolling = std::move(next_rolling);
   bonded = std::move(next_bonded);
   bond_rotation = std::move(next_rotation);
+  bond_strength = std::move(next_strength);
 
   // Cross pairs, block by block in row order, and their reverse index.
   cross_begin.assign(static_cast<std::size_t>(block_count_) + 1, 0);
@@ -159,9 +163,9 @@ template <int D>
 std::size_t VerletList<D>::memory_bytes() const {
   auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return bytes(row_offset) + bytes(neighbour) + bytes(tangential) + bytes(rolling) + bytes(bonded) +
-         bytes(bond_rotation) + bytes(cross_begin) + bytes(cross_force) + bytes(cross_torque) +
-         bytes(cross_offset) + bytes(cross_slot) + bytes(reference_) + bytes(earliest_source_) +
-         cells_.memory_bytes();
+         bytes(bond_rotation) + bytes(bond_strength) + bytes(cross_begin) + bytes(cross_force) +
+         bytes(cross_torque) + bytes(cross_offset) + bytes(cross_slot) + bytes(reference_) +
+         bytes(earliest_source_) + cells_.memory_bytes();
 }
 
 template class VerletList<2>;

@@ -1521,5 +1521,43 @@ TEST(SceneErrors, BondMomentIsReadAndChecked) {
       << msg;
 }
 
+TEST(SceneErrors, BondStrengthScatterIsReadAndChecked) {
+  const std::string bond =
+      "friction = 0.5\nbond = { tensile_strength = 2.0, shear_strength = 3.0, strength_weibull_modulus = "
+      "5.0, "
+      "strength_seed = 9 }";
+  const std::string with_stage =
+      replace(std::string(kGood), "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmake_bonds = true");
+  const std::string good = replace(with_stage, "friction = 0.5", bond);
+  ASSERT_EQ(load_error(good), "");
+  {
+    const auto scene = built_scene<2>(good);
+    const auto& pp = scene.simulation.contact_table(0, 0);
+    EXPECT_TRUE(pp.bond_strength_varies());
+    EXPECT_EQ(pp.bond_seed, 9U);
+    // The mean factor 1: scale = 1 / Gamma(1.2) = 1.0891 (tables).
+    EXPECT_NEAR(pp.bond_weibull_scale, 1.0 / 0.9181687424, 1e-9);
+    // The note gives the strongest bond in a thousand: scale ln(1000)^(1/5)
+    // = 1.0891 x 1.4716 = 1.603 times the mean.
+    bool noted = false;
+    for (const auto& note : scene.notes)
+      noted = noted || note.find("1.603 times as strong") != std::string::npos;
+    EXPECT_TRUE(noted);
+    // Without a seed, the default 1.
+    const auto unseeded = built_scene<2>(replace(good, ", strength_seed = 9", ""));
+    EXPECT_EQ(unseeded.simulation.contact_table(0, 0).bond_seed, 1U);
+  }
+  auto msg = load_error(replace(good, "strength_weibull_modulus = 5.0", "strength_weibull_modulus = 0.1"));
+  EXPECT_NE(msg.find("[[contact]] #1 bond key 'strength_weibull_modulus': must be in [0.5, 1000]"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, "strength_seed = 9", "strength_seed = -2"));
+  EXPECT_NE(msg.find("key 'strength_seed': must be an integer >= 0"), std::string::npos) << msg;
+  msg = load_error(replace(good, "strength_weibull_modulus = 5.0, ", ""));
+  EXPECT_NE(msg.find("key 'strength_seed': applies with 'strength_weibull_modulus'"), std::string::npos)
+      << msg;
+}
+
 }  // namespace
 }  // namespace darcydem

@@ -411,6 +411,23 @@ TEST(Checkpoint, ResumedBondedCantileverKeepsItsBondsBending) {
   expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 3000, 0);
 }
 
+TEST(Checkpoint, ResumedCantileverKeepsItsBondsScatteredStrengths) {
+  // The same cantilever with strengths scattered from bond to bond
+  // (strength_weibull_modulus), stopped in stage "sag": each bond's factor
+  // must come back with it, or the overload would break other bonds.
+  const fs::path dir = fresh_dir("scattered_cantilever");
+  fs::create_directories(dir);
+  const std::string text = darcydem::testing::scene_variant(
+      "examples/dem_cases/bonded_cantilever.toml",
+      {{"bending_strength = 0.011",
+        "bending_strength = 0.011, strength_weibull_modulus = 4.0, strength_seed = 5"}});
+  const fs::path scene = dir / "scattered.toml";
+  std::ofstream(scene) << text;
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  expect_resumed_run_writes_the_same_files<2>(scene.string(), out, 2, 3000, 0);
+}
+
 // What is refused, with the file and the reason: no checkpoint (the run
 // finished), a changed scene, a damaged file.
 TEST(Checkpoint, RefusesAMissingForeignOrDamagedCheckpoint) {

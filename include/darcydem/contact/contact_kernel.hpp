@@ -144,7 +144,9 @@ template <int D, class Law>
 /// and in 3D a twisting one M_tw = -k_tw theta_tw n about the normal
 /// (k = ratio k_n R*^2); without, no moment (the bond turns freely, a pin).
 /// The bond holds while the tension -F_n is at most the tensile strength,
-/// |F_t| at most the shear strength and |M_b|, |M_tw| at most theirs: then
+/// |F_t| at most the shear strength and |M_b|, |M_tw| at most theirs, each
+/// strength times this bond's factor `strength` (1 unless the strengths
+/// vary, PairParameters::bond_strength_factor): then
 /// the new histories are written to xi (and *rotation) and `held` is true.
 /// Otherwise they are left as they were and `held` false: the caller breaks
 /// the bond and evaluates the pair as an unbonded contact of this step.
@@ -154,7 +156,7 @@ template <int D>
                                                             const Vec<D>& v_rel, const AngVec<D>& omega_rel,
                                                             double sqrt_m_eff, double r_eff, double dt,
                                                             Vec<D>& xi, BondRotation<D>* rotation,
-                                                            bool& held) {
+                                                            double strength, bool& held) {
   const double vn = v_rel.dot(n);
   const double fn = bond_normal_force(p, overlap, vn, sqrt_m_eff);
   const Vec<D> vt = v_rel - vn * n;
@@ -163,7 +165,8 @@ template <int D>
   h += vt * dt;
   const Vec<D> ft = -p.tangential_ratio * p.normal_stiffness * h -
                     p.tangential_damping * sqrt_m_eff * p.sqrt_tangential_stiffness * vt;
-  held = -fn <= p.bond_tensile && ft.squaredNorm() <= p.bond_shear * p.bond_shear;
+  const double shear = strength * p.bond_shear;
+  held = -fn <= strength * p.bond_tensile && ft.squaredNorm() <= shear * shear;
   ContactForce<D> out;
   out.force_on_i = -fn * n + ft;
   out.normal_force = fn;
@@ -182,14 +185,15 @@ template <int D>
       rotate_into_plane<D, 3>(r.bending, n);
       r.twist += w_twist * dt;
       const double m_twist = -p.bond_twisting_stiffness(r_eff) * r.twist;
-      held = held && std::abs(m_twist) <= p.bond_twisting_strength;
+      held = held && std::abs(m_twist) <= strength * p.bond_twisting_strength;
       moment = m_twist * n;
     } else {
       moment.setZero();
     }
     r.bending += w_bend * dt;
     const AngVec<D> m_bend = -p.bond_bending_stiffness(r_eff) * r.bending;
-    held = held && m_bend.squaredNorm() <= p.bond_bending_strength * p.bond_bending_strength;
+    const double bending = strength * p.bond_bending_strength;
+    held = held && m_bend.squaredNorm() <= bending * bending;
     moment += m_bend;
     out.torque_i += moment;
     out.torque_j -= moment;

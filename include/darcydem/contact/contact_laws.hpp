@@ -45,6 +45,32 @@ struct PairParameters {
   [[nodiscard]] double bond_twisting_stiffness(double r_eff) const {
     return bond_twisting_ratio * normal_stiffness * r_eff * r_eff;
   }
+  /// Strengths that vary from bond to bond: Weibull's modulus m (0: none),
+  /// the scale 1 / Gamma(1 + 1/m) that makes the mean factor 1, the seed.
+  double bond_weibull_modulus = 0.0;
+  double bond_weibull_scale = 1.0;
+  std::uint64_t bond_seed = 0;
+  [[nodiscard]] bool bond_strength_varies() const { return bondable && bond_weibull_modulus > 0.0; }
+  /// The factor on all the strengths of the bond between the grains of ids
+  /// a and b: f = scale (-ln U)^(1/m), Weibull's distribution of mean 1,
+  /// with U in (0, 1) a hash of the unordered pair and the seed, so that a
+  /// bond's strength depends neither on the order of the grains in memory
+  /// nor on the thread count. 1 when the strengths do not vary.
+  [[nodiscard]] double bond_strength_factor(std::uint32_t a, std::uint32_t b) const {
+    if (!bond_strength_varies()) return 1.0;
+    const std::uint64_t lo = a < b ? a : b;
+    const std::uint64_t hi = a < b ? b : a;
+    const std::uint64_t h = mix_bits(mix_bits(bond_seed) ^ ((lo << 32) | hi));
+    const double u = (static_cast<double>(h >> 11) + 0.5) * 0x1.0p-53;
+    return bond_weibull_scale * std::pow(-std::log(u), 1.0 / bond_weibull_modulus);
+  }
+  /// A 64-bit finalizer (an avalanche of xor-shifts and odd multipliers).
+  [[nodiscard]] static std::uint64_t mix_bits(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ULL;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+  }
   // Derived (ContactTable::set fills them): square roots the dashpots need.
   double sqrt_normal_stiffness = 0.0;      ///< sqrt(k_n), sqrt(N/m) (linear)
   double sqrt_tangential_stiffness = 0.0;  ///< sqrt(k_t), sqrt(N/m) (linear)
@@ -128,6 +154,12 @@ class ContactTable {
   [[nodiscard]] bool any_bond_moment() const {
     for (const auto& p : pairs_) {
       if (p.bond_has_moment()) return true;
+    }
+    return false;
+  }
+  [[nodiscard]] bool any_bond_strength_variation() const {
+    for (const auto& p : pairs_) {
+      if (p.bond_strength_varies()) return true;
     }
     return false;
   }

@@ -1,5 +1,6 @@
 #pragma once
 // Materials and the contact parameters of each pair of materials.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,12 @@ struct ContactSpec {
   double bond_bending_strength = 0.0;
   double bond_twisting_stiffness_ratio = 0.0;
   double bond_twisting_strength = 0.0;
+  /// Bond strengths that vary from bond to bond (PFC's strength scatter):
+  /// Weibull's modulus m of a factor, mean 1, that scales all of a bond's
+  /// strengths, drawn from the two grains' ids and the seed. 0: every bond
+  /// has the strengths given.
+  double bond_strength_weibull_modulus = 0.0;
+  std::uint64_t bond_strength_seed = 1;
 };
 
 }  // namespace darcydem

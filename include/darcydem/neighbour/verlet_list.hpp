@@ -81,9 +81,9 @@ class VerletList {
   /// linked cells are rebuilt at every build and are not kept).
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(row_offset, neighbour, tangential, rolling, bonded, bond_rotation, cross_begin, cross_force,
-       cross_torque, cross_offset, cross_slot, reference_, builds_, cell_size_, block_size_, block_count_,
-       earliest_source_);
+    ar(row_offset, neighbour, tangential, rolling, bonded, bond_rotation, bond_strength, cross_begin,
+       cross_force, cross_torque, cross_offset, cross_slot, reference_, builds_, cell_size_, block_size_,
+       block_count_, earliest_source_);
   }
   /// Bytes held by the list's arrays (capacity), for memory reports.
   [[nodiscard]] std::size_t memory_bytes() const;
@@ -100,6 +100,9 @@ class VerletList {
   /// The relative rotation each bonded pair's bond has taken since it was
   /// made (empty unless a bond carries a moment, PairParameters::bond_has_moment).
   std::vector<BondRotation<D>> bond_rotation;
+  /// Each bonded pair's factor on its strengths (empty unless the strengths
+  /// vary, PairParameters::bond_strength_factor).
+  std::vector<double> bond_strength;
   // Cross pairs: block b's are slots cross_begin[b] .. cross_begin[b+1]-1, in
   // the order its rows meet them.
   std::vector<std::uint32_t> cross_begin;
