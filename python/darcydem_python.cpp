@@ -469,6 +469,12 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
       .def(
           "kinetic_energy", [](const M& s) { return s.sim().kinetic_energy(); }, "J")
       .def(
+          "elastic_energy", [](const M& s) { return s.sim().elastic_energy(); },
+          "J stored in the contacts' and bonds' springs (the probe elastic_energy)")
+      .def(
+          "gravitational_energy", [](const M& s) { return s.sim().gravitational_energy(); },
+          "J, -sum m g.x, zero at the origin (the probe gravitational_energy)")
+      .def(
           "unbalanced_force_ratio", [](M& s) { return s.sim().unbalanced_force_ratio(); },
           "mean unbalanced force / mean contact force of the last step")
       .def("apply_stage", &M::apply_stage, py::arg("name"),

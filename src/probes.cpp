@@ -121,6 +121,10 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
                                      : fluid->wall_thrust(sim.walls, probe.wall));
     case ProbeQuantity::kinetic_energy:
       return sim.kinetic_energy();
+    case ProbeQuantity::elastic_energy:
+      return sim.elastic_energy();
+    case ProbeQuantity::gravitational_energy:
+      return sim.gravitational_energy();
     case ProbeQuantity::removed_particles:
       return static_cast<double>(sim.removed_count);
     case ProbeQuantity::removed_mass:

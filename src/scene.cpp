@@ -989,10 +989,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       if (!pp.bondable) continue;
       // With strengths that vary, the strongest bond in a thousand: the
       // factor whose Weibull exceedance is 1e-3.
-      const double strongest =
-          pp.bond_strength_varies()
-              ? pp.bond_weibull_scale * std::pow(std::log(1000.0), 1.0 / pp.bond_weibull_modulus)
-              : 1.0;
+      const double strongest = pp.bond_strength_quantile(1e-3);
       const double stretch = strongest * pp.bond_tensile / pp.normal_stiffness;
       const double skin = sim.skin_or_default();
       scene.notes.push_back(fmt::format(
@@ -1044,6 +1041,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "wall_force",
                                                 "wall_fluid_force",
                                                 "kinetic_energy",
+                                                "elastic_energy",
+                                                "gravitational_energy",
                                                 "contact_count",
                                                 "coordination",
                                                 "max_overlap",
@@ -1237,15 +1236,17 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       for (auto k : {"particle", "component", "wall"}) {
         if (r.has(k)) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
       }
-      p.quantity = q == "kinetic_energy"      ? ProbeQuantity::kinetic_energy
-                   : q == "contact_count"     ? ProbeQuantity::contact_count
-                   : q == "coordination"      ? ProbeQuantity::coordination
-                   : q == "max_overlap"       ? ProbeQuantity::max_overlap
-                   : q == "removed_particles" ? ProbeQuantity::removed_particles
-                   : q == "removed_mass"      ? ProbeQuantity::removed_mass
-                   : q == "bonds"             ? ProbeQuantity::bonds
-                   : q == "broken_bonds"      ? ProbeQuantity::broken_bonds
-                                              : ProbeQuantity::unbalanced_force;
+      p.quantity = q == "kinetic_energy"         ? ProbeQuantity::kinetic_energy
+                   : q == "elastic_energy"       ? ProbeQuantity::elastic_energy
+                   : q == "gravitational_energy" ? ProbeQuantity::gravitational_energy
+                   : q == "contact_count"        ? ProbeQuantity::contact_count
+                   : q == "coordination"         ? ProbeQuantity::coordination
+                   : q == "max_overlap"          ? ProbeQuantity::max_overlap
+                   : q == "removed_particles"    ? ProbeQuantity::removed_particles
+                   : q == "removed_mass"         ? ProbeQuantity::removed_mass
+                   : q == "bonds"                ? ProbeQuantity::bonds
+                   : q == "broken_bonds"         ? ProbeQuantity::broken_bonds
+                                                 : ProbeQuantity::unbalanced_force;
     }
     scene.output.probes.push_back(p);
   });

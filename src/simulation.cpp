@@ -893,6 +893,10 @@ double Simulation<D>::elastic_energy() const {
     if (pp.law == NormalLaw::linear) return 0.5 * pp.normal_stiffness * overlap * overlap;
     return 0.4 * (4.0 / 3.0) * pp.hertz_modulus * std::sqrt(r_eff) * std::pow(overlap, 2.5);
   };
+  // The rolling spring (linear law): 1/2 k_r theta^2.
+  auto rolling_energy = [](const PairParameters& pp, double r_eff, const AngVec<D>& theta) {
+    return 0.5 * pp.rolling_stiffness(pp.normal_stiffness, r_eff) * theta.squaredNorm();
+  };
   const auto& p = particles;
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::uint32_t k = list_.row_offset[i]; k < list_.row_offset[i + 1]; ++k) {
@@ -905,6 +909,8 @@ double Simulation<D>::elastic_energy() const {
       e += normal_energy(pp, overlap, p.radius[i] * p.radius[j] / reach);
       if (pp.law == NormalLaw::linear) {
         e += 0.5 * pp.tangential_ratio * pp.normal_stiffness * list_.tangential[k].squaredNorm();
+        if (!list_.rolling.empty())
+          e += rolling_energy(pp, p.radius[i] * p.radius[j] / reach, list_.rolling[k]);
       }
       if (pp.bond_has_moment() && list_.is_bonded(k)) {
         // 1/2 k theta^2 of the bond's bending and twisting springs.
@@ -922,6 +928,7 @@ double Simulation<D>::elastic_energy() const {
       e += normal_energy(pp, overlap, p.radius[i]);
       if (pp.law == NormalLaw::linear) {
         e += 0.5 * pp.tangential_ratio * pp.normal_stiffness * wall_list_.tangential[k].squaredNorm();
+        if (!wall_list_.rolling.empty()) e += rolling_energy(pp, p.radius[i], wall_list_.rolling[k]);
       }
     }
   }

@@ -90,6 +90,11 @@ class FreeFall(unittest.TestCase):
         self.assertAlmostEqual(m.velocities[0][2], -G * t, delta=1e-12)
         mass = 2650.0 * 4.0 / 3.0 * math.pi * 0.0005**3
         self.assertAlmostEqual(m.kinetic_energy(), 0.5 * mass * (G * t) ** 2, delta=1e-12 * mass * (G * t) ** 2)
+        # The potential -m g.x = m G z; kinetic plus potential is the energy
+        # at the start (m G 1 m) to the same round-off. No contact: no spring.
+        self.assertAlmostEqual(m.gravitational_energy(), mass * G * x[2], delta=1e-15 * mass * G)
+        self.assertAlmostEqual(m.kinetic_energy() + m.gravitational_energy(), mass * G * 1.0, delta=1e-12 * mass * G)
+        self.assertEqual(m.elastic_energy(), 0.0)
 
     def test_a_stage_applied_from_python_changes_the_motion(self):
         m = self.model

@@ -96,6 +96,14 @@ std::string replace(std::string s, const std::string& from, const std::string& t
   return s.replace(at, from.size(), to);
 }
 
+/// kGood with a stage that bonds the touching grains, its contact's
+/// "friction = 0.5" line replaced by `contact` (e.g. with a bond).
+std::string bonding_scene(const std::string& contact = "friction = 0.5") {
+  const std::string bonding =
+      replace(std::string(kGood), "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmake_bonds = true");
+  return replace(bonding, "friction = 0.5", contact);
+}
+
 /// kGood (or a variant of it) as a 3D scene: its floor, column and gravity
 /// along z.
 std::string in_3d(const std::string& scene) {
@@ -1393,8 +1401,7 @@ count = 20
 
 TEST(SceneErrors, BondIsReadAndChecked) {
   const std::string bond = "friction = 0.5\nbond = { tensile_strength = 2.0, shear_strength = 3.0 }";
-  const std::string good = replace(replace(std::string(kGood), "friction = 0.5", bond),
-                                   "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmake_bonds = true") +
+  const std::string good = bonding_scene(bond) +
                            "\n[[probe]]\nname = \"b\"\nquantity = \"bonds\"\n"
                            "\n[[probe]]\nname = \"broken\"\nquantity = \"broken_bonds\"\n";
   ASSERT_EQ(load_error(good), "");
@@ -1450,8 +1457,7 @@ TEST(SceneErrors, BondIsReadAndChecked) {
   EXPECT_NE(msg.find("key 'bond': a contact bond needs law = \"linear\""), std::string::npos) << msg;
   // Without a bond in any contact, make_bonds and the bond probes are refused.
   const std::string no_bond = replace(good, "\nbond = { tensile_strength = 2.0, shear_strength = 3.0 }", "");
-  msg = load_error(
-      replace(std::string(kGood), "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmake_bonds = true"));
+  msg = load_error(bonding_scene());
   EXPECT_NE(msg.find("[[stage]] #1 key 'make_bonds': bonds pairs whose [[contact]] has a 'bond'"),
             std::string::npos)
       << msg;
@@ -1469,9 +1475,7 @@ TEST(SceneErrors, BondMomentIsReadAndChecked) {
   const std::string bond =
       "friction = 0.5\nbond = { tensile_strength = 2.0, shear_strength = 3.0, bending_stiffness_ratio = 0.5, "
       "bending_strength = 1e-4 }";
-  const std::string with_stage =
-      replace(std::string(kGood), "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmake_bonds = true");
-  const std::string good = replace(with_stage, "friction = 0.5", bond);
+  const std::string good = bonding_scene(bond);
   ASSERT_EQ(load_error(good), "");
   {
     const auto scene = built_scene<2>(good);
@@ -1482,7 +1486,7 @@ TEST(SceneErrors, BondMomentIsReadAndChecked) {
     EXPECT_EQ(pp.bond_twisting_ratio, 0.0);
     // The bending spring turns a grain: the critical step counts it, beside
     // the bond's tangential spring (the time step is the smaller for it).
-    const auto pin = built_scene<2>(replace(with_stage, "friction = 0.5", plain_bond));
+    const auto pin = built_scene<2>(bonding_scene(plain_bond));
     EXPECT_FALSE(pin.simulation.contact_table(0, 0).bond_has_moment());
     EXPECT_LT(scene.simulation.critical_time_step(), pin.simulation.critical_time_step());
   }
@@ -1526,9 +1530,7 @@ TEST(SceneErrors, BondStrengthScatterIsReadAndChecked) {
       "friction = 0.5\nbond = { tensile_strength = 2.0, shear_strength = 3.0, strength_weibull_modulus = "
       "5.0, "
       "strength_seed = 9 }";
-  const std::string with_stage =
-      replace(std::string(kGood), "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmake_bonds = true");
-  const std::string good = replace(with_stage, "friction = 0.5", bond);
+  const std::string good = bonding_scene(bond);
   ASSERT_EQ(load_error(good), "");
   {
     const auto scene = built_scene<2>(good);

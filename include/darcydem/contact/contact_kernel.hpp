@@ -116,7 +116,7 @@ template <int D, class Law>
       rotate_into_plane<D, 3>(*rolling, n);
     }
     *rolling += w_roll * dt;
-    const double kr = 2.25 * nr.normal_stiffness * p.rolling_friction * p.rolling_friction * r_eff * r_eff;
+    const double kr = p.rolling_stiffness(nr.normal_stiffness, r_eff);
     AngVec<D> m = -kr * *rolling;
     const double m_max = p.rolling_friction * r_eff * fn;
     const double m_norm = m.norm();

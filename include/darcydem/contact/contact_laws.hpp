@@ -37,6 +37,11 @@ struct PairParameters {
   [[nodiscard]] bool bond_has_moment() const {
     return bondable && (bond_bending_ratio > 0.0 || bond_twisting_ratio > 0.0);
   }
+  /// The rolling spring's stiffness (type C), k_r = 2.25 k_n mu_r^2 R*^2,
+  /// N m/rad, from the normal spring's stiffness k_n at the contact.
+  [[nodiscard]] double rolling_stiffness(double k_n, double r_eff) const {
+    return 2.25 * k_n * rolling_friction * rolling_friction * r_eff * r_eff;
+  }
   /// The bond's bending and twisting spring stiffnesses, ratio k_n R*^2,
   /// N m/rad, for a pair of effective radius r_eff = R_i R_j / (R_i + R_j).
   [[nodiscard]] double bond_bending_stiffness(double r_eff) const {
@@ -61,8 +66,14 @@ struct PairParameters {
     const std::uint64_t lo = a < b ? a : b;
     const std::uint64_t hi = a < b ? b : a;
     const std::uint64_t h = mix_bits(mix_bits(bond_seed) ^ ((lo << 32) | hi));
-    const double u = (static_cast<double>(h >> 11) + 0.5) * 0x1.0p-53;
-    return bond_weibull_scale * std::pow(-std::log(u), 1.0 / bond_weibull_modulus);
+    return bond_strength_quantile((static_cast<double>(h >> 11) + 0.5) * 0x1.0p-53);
+  }
+  /// The factor that a fraction `exceedance` of the bonds exceed:
+  /// P(f > x) = exp(-(x / scale)^m), so x = scale (-ln exceedance)^(1/m).
+  /// 1 when the strengths do not vary.
+  [[nodiscard]] double bond_strength_quantile(double exceedance) const {
+    if (!bond_strength_varies()) return 1.0;
+    return bond_weibull_scale * std::pow(-std::log(exceedance), 1.0 / bond_weibull_modulus);
   }
   /// A 64-bit finalizer (an avalanche of xor-shifts and odd multipliers).
   [[nodiscard]] static std::uint64_t mix_bits(std::uint64_t x) {

@@ -24,6 +24,8 @@ enum class ProbeQuantity {
   wall_force,
   wall_fluid_force,  ///< the excess pore water's thrust on a wall, N (PoreFluid::wall_thrust, barrier_thrust)
   kinetic_energy,
+  elastic_energy,        ///< J, stored in the contacts' and bonds' springs (Simulation::elastic_energy)
+  gravitational_energy,  ///< J, -sum m g.x (zero at the origin)
   contact_count,
   coordination,
   max_overlap,

@@ -156,7 +156,11 @@ class Simulation {
   [[nodiscard]] double max_overlap() const;           ///< m
   [[nodiscard]] double unbalanced_force_ratio()
       const;  ///< mean |F_i| / mean |F_contact| (needs measure_contact_forces)
-  [[nodiscard]] double elastic_energy() const;  ///< J, normal springs of linear contacts
+  /// J stored in the contacts' springs: the normal spring (linear: 1/2 k_n d^2,
+  /// in tension too for a bond; Hertz: 8/15 E* sqrt(R*) d^2.5) and, for the
+  /// linear law, the tangential (1/2 k_t |xi|^2) and rolling (1/2 k_r |theta|^2)
+  /// springs and a bond's bending and twisting springs.
+  [[nodiscard]] double elastic_energy() const;
   /// The mean stress of the contact forces in the box [lo, hi] (Love and
   /// Weber), Pa, compression positive: -(1/V) sum over the particles whose
   /// centres lie in the box (along a periodic axis: whose image does; the
