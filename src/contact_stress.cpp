@@ -1,8 +1,11 @@
-// Simulation::contact_forces, contact_stress and contact_moments: the
-// contacts of the last force evaluation with their forces, and the forces'
-// moments about the particles' centres, over a box (Love and Weber's mean
-// stress: the effective stress of a saturated bed) or particle by particle.
+// Simulation::contact_forces, contact_stress, contact_fabric and
+// contact_moments: the contacts of the last force evaluation with their
+// forces, and the forces' moments about the particles' centres, over a box
+// (Love and Weber's mean stress: the effective stress of a saturated bed;
+// Satake's fabric: how the contacts' normals are oriented) or particle by
+// particle.
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "darcydem/contact/contact_kernel.hpp"
@@ -117,6 +120,21 @@ typename Simulation<D>::Moment Simulation<D>::contact_stress(const Vec<D>& lo, c
 }
 
 template <int D>
+typename Simulation<D>::Moment Simulation<D>::contact_fabric(const Vec<D>& lo, const Vec<D>& hi) const {
+  const auto& x = particles.position;
+  Moment sum = Moment::Zero();
+  double count = 0.0;
+  for_each_contact_force([&](std::size_t i) { return periodic.image_in_box(x[i], lo, hi); },
+                         [&](const ContactRecord<D>& c, bool, bool) {
+                           if (c.wall >= 0) return;
+                           sum += c.normal * c.normal.transpose();
+                           count += 1.0;
+                         });
+  if (count == 0.0) return Moment::Constant(std::numeric_limits<double>::quiet_NaN());
+  return sum / count;
+}
+
+template <int D>
 std::vector<typename Simulation<D>::Moment> Simulation<D>::contact_moments() const {
   std::vector<Moment> moments(particles.size(), Moment::Zero());
   for_each_contact_moment([](std::size_t) { return true; },
@@ -126,6 +144,8 @@ std::vector<typename Simulation<D>::Moment> Simulation<D>::contact_moments() con
 
 template Simulation<2>::Moment Simulation<2>::contact_stress(const Vec<2>&, const Vec<2>&) const;
 template Simulation<3>::Moment Simulation<3>::contact_stress(const Vec<3>&, const Vec<3>&) const;
+template Simulation<2>::Moment Simulation<2>::contact_fabric(const Vec<2>&, const Vec<2>&) const;
+template Simulation<3>::Moment Simulation<3>::contact_fabric(const Vec<3>&, const Vec<3>&) const;
 template std::vector<Simulation<2>::Moment> Simulation<2>::contact_moments() const;
 template std::vector<ContactRecord<2>> Simulation<2>::contact_forces() const;
 template std::vector<ContactRecord<3>> Simulation<3>::contact_forces() const;

@@ -165,6 +165,7 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
     case ProbeQuantity::fluid_iterations:
       return fluid != nullptr ? fluid->last_solve().iterations : 0.0;
     case ProbeQuantity::stress:
+    case ProbeQuantity::fabric:
     case ProbeQuantity::porosity: {
       Vec<D> lo;
       Vec<D> hi;
@@ -173,6 +174,8 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
         hi[k] = probe.box_max[k];
       }
       if (probe.quantity == ProbeQuantity::porosity) return box_porosity<D>(p, lo, hi, sim.periodic);
+      if (probe.quantity == ProbeQuantity::fabric)
+        return sim.contact_fabric(lo, hi)(probe.tensor[0], probe.tensor[1]);
       const auto s = sim.contact_stress(lo, hi);
       return probe.tensor[0] < 0 ? s.trace() / D : s(probe.tensor[0], probe.tensor[1]);
     }

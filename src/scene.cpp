@@ -257,12 +257,12 @@ std::int64_t axis_component(TableReader& r, std::string_view key, bool allow_nor
   return c[0] - 'x';
 }
 
-/// A stress component: "xx", "xy", ... (i, j), or "mean" (-1, -1).
+/// A tensor's component: "xx", "xy", ... (i, j), or with_mean "mean" (-1, -1).
 template <int D>
-std::array<int, 2> tensor_component(TableReader& r, std::string_view key) {
+std::array<int, 2> tensor_component(TableReader& r, std::string_view key, bool with_mean) {
   std::vector<std::string> allowed = D == 2 ? std::vector<std::string>{"xx", "yy", "xy"}
                                             : std::vector<std::string>{"xx", "yy", "zz", "xy", "xz", "yz"};
-  allowed.emplace_back("mean");
+  if (with_mean) allowed.emplace_back("mean");
   const std::string c = r.choice(key, allowed);
   if (c == "mean") return {-1, -1};
   return {c[0] - 'x', c[1] - 'x'};
@@ -1056,6 +1056,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "particles_in_box",
                                                 "mean_particle_position",
                                                 "stress",
+                                                "fabric",
                                                 "porosity",
                                                 "removed_particles",
                                                 "removed_mass",
@@ -1110,7 +1111,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                          q));
     }
     const bool box_probe = q == "particles_in_box" || q == "mean_particle_position" || q == "stress" ||
-                           q == "porosity" || q == "fluid_force";
+                           q == "fabric" || q == "porosity" || q == "fluid_force";
     for (std::string k : {"position", "side", "from", "to", "points", "min", "max"}) {
       const bool applies = (q == "pore_pressure" && k == "position") ||
                            ((q == "fluid_inflow" || q == "side_pressure") && k == "side") ||
@@ -1136,10 +1137,11 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     }
     if (box_probe) {
       // The particles whose centres lie in [min, max] at each output time
-      // (stress: their contacts; porosity: the grains' parts in the box).
+      // (stress, fabric: their contacts; porosity: the grains' parts in the box).
       p.quantity = q == "particles_in_box"         ? ProbeQuantity::particles_in_box
                    : q == "mean_particle_position" ? ProbeQuantity::mean_particle_position
                    : q == "stress"                 ? ProbeQuantity::stress
+                   : q == "fabric"                 ? ProbeQuantity::fabric
                    : q == "fluid_force"            ? ProbeQuantity::fluid_force
                                                    : ProbeQuantity::porosity;
       p.box_min = r.numbers("min", D);
@@ -1167,7 +1169,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       } else if (q == "fluid_force") {
         p.component = static_cast<int>(axis_component<D>(r, "component", true));
       } else if (q == "stress") {
-        p.tensor = tensor_component<D>(r, "component");
+        p.tensor = tensor_component<D>(r, "component", true);
+      } else if (q == "fabric") {
+        // Its trace is 1: no "mean".
+        p.tensor = tensor_component<D>(r, "component", false);
       } else if (r.has("component")) {
         r.fail("component", fmt::format("does not apply to quantity \"{}\"", q));
       }

@@ -724,6 +724,16 @@ TEST(SceneErrors, StressAndPorosityProbesAreChecked) {
             "");
   msg = load_error(replace(good, "max = [0.001, 0.01]", "max = [0.001, -0.01]"));
   EXPECT_NE(msg.find("key 'max': must be greater than 'min'"), std::string::npos) << msg;
+  // The fabric tensor: the same box and components, but no "mean" (its
+  // trace is 1).
+  const std::string fabric = replace(good, "quantity = \"stress\"", "quantity = \"fabric\"");
+  EXPECT_EQ(load_error(fabric), "");
+  msg = load_error(replace(fabric, "\"yy\"", "\"mean\""));
+  EXPECT_NE(msg.find("[[probe]] #1 key 'component'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("\"xx\", \"yy\", \"xy\""), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("\"xy\", \"mean\""), std::string::npos) << msg;
+  msg = load_error(replace(fabric, "component = \"yy\"\n", ""));
+  EXPECT_NE(msg.find("missing required key 'component'"), std::string::npos) << msg;
 }
 
 TEST(SceneErrors, FluidProbeWithoutFluidIsRefused) {

@@ -2,6 +2,7 @@
 // Loads scene files from the source tree, as a user would run them.
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,7 @@
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/runner.hpp"
+#include "run_output.hpp"
 
 namespace darcydem::testing {
 
@@ -92,6 +94,22 @@ RunSummary run_example(const std::string& relative, const std::string& out_dir) 
   RunOptions options;
   options.out_dir = out_dir;
   return run_scene<D>(scene, options);
+}
+
+/// Writes `text` as a scene in a fresh folder named for `name`, runs it as
+/// `darcydem run` does (its log kept from the terminal) and returns its
+/// probes.csv by column; throws if the run was interrupted.
+template <int D>
+std::map<std::string, std::vector<double>> run_scene_probes(const std::string& name,
+                                                            const std::string& text) {
+  const std::string dir = temp_dir(name);
+  Scene<D> scene = scene_from_text<D>(dir, "scene.toml", text);
+  RunOptions options;
+  options.out_dir = dir + "/out";
+  std::ostringstream log;
+  options.log = &log;
+  if (run_scene<D>(scene, options).interrupted) throw std::runtime_error(name + ": the run was interrupted");
+  return read_probes(options.out_dir + "/probes.csv");
 }
 
 }  // namespace darcydem::testing

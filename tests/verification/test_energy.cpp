@@ -8,12 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <string>
 
-#include "darcydem/simulation/runner.hpp"
 #include "dem_setup.hpp"
-#include "run_output.hpp"
 #include "scene_loading.hpp"
 
 using namespace darcydem;
@@ -164,14 +161,7 @@ duration = 0.2
 gravity = [0.0, -9.81]
 local_damping = 0.7
 )";
-  const std::string dir = darcydem::testing::temp_dir("energy_probes");
-  Scene<2> scene = darcydem::testing::scene_from_text<2>(dir, "scene.toml", scene_text);
-  RunOptions options;
-  options.out_dir = dir + "/out";
-  std::ostringstream log;
-  options.log = &log;
-  ASSERT_FALSE(run_scene<2>(scene, options).interrupted);
-  const auto probes = darcydem::testing::read_probes(options.out_dir + "/probes.csv");
+  const auto probes = darcydem::testing::run_scene_probes<2>("energy_probes", scene_text);
   const double r = 5e-4;
   const double m = 2650.0 * std::numbers::pi * r * r;
   const double weight = m * 9.81;

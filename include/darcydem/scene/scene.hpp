@@ -38,6 +38,7 @@ enum class ProbeQuantity {
   particles_in_box,        ///< how many particle centres lie in a box
   mean_particle_position,  ///< one component of their mean centre, m (NaN with none)
   stress,             ///< a component of the contacts' mean stress in a box, Pa (Simulation::contact_stress)
+  fabric,             ///< a component of the contacts' fabric tensor in a box (Simulation::contact_fabric)
   porosity,           ///< 1 - the grains' volume in a box (exact overlaps) / its volume
   removed_particles,  ///< how many particles have left the [domain] so far
   removed_mass,       ///< their mass, kg (2D: per metre)
@@ -63,7 +64,7 @@ struct ProbeSpec {
   int side = 0;                  ///< fluid_inflow, side_pressure: x_min, x_max, y_min, ...
   /// particles_in_box, mean_particle_position, stress, porosity, fluid_force: the box, m
   std::vector<double> box_min, box_max;
-  std::array<int, 2> tensor{0, 0};  ///< stress: the component (i, j); (-1, -1) the mean, trace / D
+  std::array<int, 2> tensor{0, 0};  ///< stress, fabric: the component (i, j); (-1, -1) the mean, trace / D
 };
 
 struct OutputSpec {

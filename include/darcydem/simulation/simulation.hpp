@@ -169,6 +169,12 @@ class Simulation {
   /// area x 1 m). In a saturated bed the contacts carry the effective
   /// stress. Forces as in the last evaluation (src/contact_stress.cpp).
   [[nodiscard]] Moment contact_stress(const Vec<D>& lo, const Vec<D>& hi) const;
+  /// Satake's fabric tensor of the contacts between grains of which at
+  /// least one has its centre in the box [lo, hi] (as contact_stress
+  /// selects them; contacts with walls left out, bonds whose grains are
+  /// apart counted): (1/N_c) sum of n (x) n over those N_c contacts, n their
+  /// unit normals; trace 1. NaN in every component when there is none.
+  [[nodiscard]] Moment contact_fabric(const Vec<D>& lo, const Vec<D>& hi) const;
   /// Each particle's sum over its contacts of (x_c - x_p) (x) f_c, N m:
   /// contact_stress is -1/V times the symmetric part of their sum over a
   /// volume's particles (e.g. per fluid cell, write_fluid_vti).
