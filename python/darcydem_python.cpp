@@ -27,6 +27,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -93,6 +94,32 @@ Vec<D> as_vec(const std::vector<double>& v, const char* what) {
   Vec<D> x;
   for (int k = 0; k < D; ++k) x[k] = v[static_cast<std::size_t>(k)];
   return x;
+}
+
+/// The box [lo, hi] of a measurement, checked: D numbers each, hi > lo.
+template <int D>
+std::pair<Vec<D>, Vec<D>> as_box(const std::vector<double>& lo, const std::vector<double>& hi) {
+  const Vec<D> a = as_vec<D>(lo, "min");
+  const Vec<D> b = as_vec<D>(hi, "max");
+  for (int k = 0; k < D; ++k) {
+    if (!(b[k] > a[k]))
+      throw py::value_error(
+          fmt::format("max must be greater than min along every axis; along {} min = {} and "
+                      "max = {}",
+                      "xyz"[k], a[k], b[k]));
+  }
+  return {a, b};
+}
+
+/// A D x D tensor as a numpy array.
+template <int D>
+py::array_t<double> as_matrix(const Eigen::Matrix<double, D, D>& m) {
+  py::array_t<double> out({static_cast<py::ssize_t>(D), static_cast<py::ssize_t>(D)});
+  auto a = out.template mutable_unchecked<2>();
+  for (int i = 0; i < D; ++i) {
+    for (int j = 0; j < D; ++j) a(i, j) = m(i, j);
+  }
+  return out;
 }
 
 /// A scene built from its file and stepped from Python.
@@ -474,6 +501,24 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
       .def(
           "gravitational_energy", [](const M& s) { return s.sim().gravitational_energy(); },
           "J, -sum m g.x, zero at the origin (the probe gravitational_energy)")
+      .def(
+          "stress",
+          [](const M& s, const std::vector<double>& lo, const std::vector<double>& hi) {
+            const auto [a, b] = as_box<D>(lo, hi);
+            return as_matrix<D>(s.sim().contact_stress(a, b));
+          },
+          py::arg("min"), py::arg("max"),
+          "(D, D): the contacts' mean stress of the grains whose centres lie in the box, Pa, compression "
+          "positive (the probe stress; with a pore fluid, the effective stress)")
+      .def(
+          "fabric",
+          [](const M& s, const std::vector<double>& lo, const std::vector<double>& hi) {
+            const auto [a, b] = as_box<D>(lo, hi);
+            return as_matrix<D>(s.sim().contact_fabric(a, b));
+          },
+          py::arg("min"), py::arg("max"),
+          "(D, D): Satake's fabric tensor of the contacts between grains of which one at least has its "
+          "centre in the box, (1/N_c) sum n n^T, trace 1 (the probe fabric); NaN without a contact")
       .def(
           "unbalanced_force_ratio", [](M& s) { return s.sim().unbalanced_force_ratio(); },
           "mean unbalanced force / mean contact force of the last step")
