@@ -15,13 +15,10 @@ namespace darcydem {
 
 template <int D>
 template <class Select, class Visit>
-void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) const {
-  if (!prepared_) throw std::logic_error("Simulation: contact forces before prepare");
+void Simulation<D>::for_each_selected_pair(Select&& selected, Visit&& visit) const {
+  if (!prepared_) throw std::logic_error("Simulation: contacts before prepare");
   const auto& p = particles;
   const auto& L = list_;
-  const auto& W = wall_list_;
-  // Forces the last step stored as it applied them, if it did.
-  const bool recorded = pair_force_step_ == steps && pair_force_.size() == L.pair_count();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const bool i_in = selected(i);
     for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
@@ -30,55 +27,70 @@ void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) con
       if (!i_in && !j_in) continue;
       const Vec<D> d = periodic.shortest(p.position[j] - p.position[i]);
       const double reach = p.radius[i] + p.radius[j];
-      const double inv_m = p.inv_mass[i] + p.inv_mass[j];
       const double dist = d.norm();
       const bool bonded = L.is_bonded(k);
-      if ((dist >= reach && !bonded) || inv_m == 0.0) continue;
-      const Vec<D> nrm = d / dist;
-      const double overlap = reach - dist;
-      const double arm_i = p.radius[i] - 0.5 * overlap;
-      const double arm_j = p.radius[j] - 0.5 * overlap;
-      // The force of the last evaluation: stored by it if the step recorded
-      // (Simulation::record_contact_forces), else recomputed: the positions
-      // are those it saw, and the tangential spring it left, xi, gives its
-      // tangential force -k_t xi - c_t v_t whether the contact stuck or
-      // slid (contact_kernel.hpp). Only the recomputed dashpots differ: they
-      // take the velocities of the step's end (the evaluation saw those of
-      // its middle).
-      auto recomputed = [&] {
-        const Vec<D> v_rel =
-            p.velocity[i] - p.velocity[j] +
-            cross(AngVec<D>(p.angular_velocity[i] * arm_i + p.angular_velocity[j] * arm_j), nrm);
-        const double vn = v_rel.dot(nrm);
-        const double sqrt_m = std::sqrt(1.0 / inv_m);
-        const PairParameters& pp = contact_table(p.material[i], p.material[j]);
-        const NormalResponse nr =
-            MixedNormalLaw::evaluate(pp, overlap, vn, sqrt_m, p.radius[i] * p.radius[j] / reach);
-        const Vec<D> vt = v_rel - vn * nrm;
-        // A bond's normal force may pull (evaluate_bond), its tangential
-        // spring acts whatever the friction.
-        const double fn = bonded ? bond_normal_force(pp, overlap, vn, sqrt_m) : nr.force;
-        Vec<D> f = -fn * nrm;
-        if (pp.friction > 0.0 || bonded) {
-          f += -nr.tangential_stiffness * L.tangential[k] -
-               pp.tangential_damping * sqrt_m * nr.sqrt_tangential_stiffness * vt;
-        }
-        return f;
-      };
+      if ((dist >= reach && !bonded) || p.inv_mass[i] + p.inv_mass[j] == 0.0) continue;
       // The contact point is arm_i from i along n and arm_j from j against
-      // it; the force on j is -f_on_i.
-      ContactRecord<D> record{
-          i, j, -1, d, nrm, overlap, arm_i, arm_j, recorded ? pair_force_[k] : recomputed(), bonded};
-      const PairParameters& pp = contact_table(p.material[i], p.material[j]);
-      if (bonded && pp.bond_has_moment()) {
-        // The moments the bond's springs hold (evaluate_bond).
-        const double r_eff = p.radius[i] * p.radius[j] / reach;
-        record.bending_moment = pp.bond_bending_stiffness(r_eff) * L.bond_rotation[k].bending.norm();
-        record.twisting_moment = pp.bond_twisting_stiffness(r_eff) * std::abs(L.bond_rotation[k].twist);
-      }
-      visit(record, i_in, j_in);
+      // it; the force (filled in by for_each_contact_force) on j is -f_on_i.
+      const double overlap = reach - dist;
+      visit(ContactRecord<D>{i, j, -1, d, d / dist, overlap, p.radius[i] - 0.5 * overlap,
+                             p.radius[j] - 0.5 * overlap, Vec<D>::Zero(), bonded},
+            k, i_in, j_in);
     }
-    if (!i_in) continue;
+  }
+}
+
+template <int D>
+template <class Select, class Visit>
+void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) const {
+  const auto& p = particles;
+  const auto& L = list_;
+  const auto& W = wall_list_;
+  // Forces the last step stored as it applied them, if it did.
+  const bool recorded = pair_force_step_ == steps && pair_force_.size() == L.pair_count();
+  for_each_selected_pair(selected, [&](ContactRecord<D> record, std::uint32_t k, bool i_in, bool j_in) {
+    const std::size_t i = record.first, j = record.second;
+    const Vec<D>& nrm = record.normal;
+    const double reach = p.radius[i] + p.radius[j];
+    const PairParameters& pp = contact_table(p.material[i], p.material[j]);
+    // The force of the last evaluation: stored by it if the step recorded
+    // (Simulation::record_contact_forces), else recomputed: the positions
+    // are those it saw, and the tangential spring it left, xi, gives its
+    // tangential force -k_t xi - c_t v_t whether the contact stuck or
+    // slid (contact_kernel.hpp). Only the recomputed dashpots differ: they
+    // take the velocities of the step's end (the evaluation saw those of
+    // its middle).
+    auto recomputed = [&] {
+      const Vec<D> v_rel = p.velocity[i] - p.velocity[j] +
+                           cross(AngVec<D>(p.angular_velocity[i] * record.arm_first +
+                                           p.angular_velocity[j] * record.arm_second),
+                                 nrm);
+      const double vn = v_rel.dot(nrm);
+      const double sqrt_m = std::sqrt(1.0 / (p.inv_mass[i] + p.inv_mass[j]));
+      const NormalResponse nr =
+          MixedNormalLaw::evaluate(pp, record.overlap, vn, sqrt_m, p.radius[i] * p.radius[j] / reach);
+      const Vec<D> vt = v_rel - vn * nrm;
+      // A bond's normal force may pull (evaluate_bond), its tangential
+      // spring acts whatever the friction.
+      const double fn = record.bonded ? bond_normal_force(pp, record.overlap, vn, sqrt_m) : nr.force;
+      Vec<D> f = -fn * nrm;
+      if (pp.friction > 0.0 || record.bonded) {
+        f += -nr.tangential_stiffness * L.tangential[k] -
+             pp.tangential_damping * sqrt_m * nr.sqrt_tangential_stiffness * vt;
+      }
+      return f;
+    };
+    record.force = recorded ? pair_force_[k] : recomputed();
+    if (record.bonded && pp.bond_has_moment()) {
+      // The moments the bond's springs hold (evaluate_bond).
+      const double r_eff = p.radius[i] * p.radius[j] / reach;
+      record.bending_moment = pp.bond_bending_stiffness(r_eff) * L.bond_rotation[k].bending.norm();
+      record.twisting_moment = pp.bond_twisting_stiffness(r_eff) * std::abs(L.bond_rotation[k].twist);
+    }
+    visit(record, i_in, j_in);
+  });
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!selected(i)) continue;
     for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
       // Wall contacts keep their force; the contact point is on the wall.
       const Vec<D>& f = W.force_on_particle[k];
@@ -124,9 +136,9 @@ typename Simulation<D>::Moment Simulation<D>::contact_fabric(const Vec<D>& lo, c
   const auto& x = particles.position;
   Moment sum = Moment::Zero();
   double count = 0.0;
-  for_each_contact_force([&](std::size_t i) { return periodic.image_in_box(x[i], lo, hi); },
-                         [&](const ContactRecord<D>& c, bool, bool) {
-                           if (c.wall >= 0) return;
+  // Only the normals count: the pairs' walk, no force worked out.
+  for_each_selected_pair([&](std::size_t i) { return periodic.image_in_box(x[i], lo, hi); },
+                         [&](const ContactRecord<D>& c, std::uint32_t, bool, bool) {
                            sum += c.normal * c.normal.transpose();
                            count += 1.0;
                          });

@@ -224,8 +224,16 @@ class Simulation {
   /// First half kick and drift; returns the largest displacement since the
   /// last list build (m).
   double kick_drift();
+  /// Calls visit(contact, list slot k, first selected, second selected) for
+  /// each contact between two particles of which one at least is selected
+  /// (selected(p) holds), its geometry only: force and moments left zero
+  /// (src/contact_stress.cpp).
+  template <class Select, class Visit>
+  void for_each_selected_pair(Select&& selected, Visit&& visit) const;
   /// Calls visit(contact, first selected, second selected) for each contact
-  /// of a particle for which selected(p) holds (src/contact_stress.cpp).
+  /// of a particle for which selected(p) holds, with its force: the pairs of
+  /// for_each_selected_pair, then the selected particles' wall contacts
+  /// (src/contact_stress.cpp).
   template <class Select, class Visit>
   void for_each_contact_force(Select&& selected, Visit&& visit) const;
   /// Calls add(p, (x_c - x_p) (x) f_c) for each contact c of each particle
