@@ -7,8 +7,9 @@
 //
 // Counters: particle_steps_per_second, bytes_per_particle (arrays held by
 // the simulation), peak_rss_bytes. Also the time to write and read a
-// checkpoint of the stack (BM_Checkpoint), and the stack cemented by
-// contact bonds (BM_BondedPacking). Write JSON with
+// checkpoint of the stack (BM_Checkpoint), the stack cemented by
+// contact bonds (BM_BondedPacking), and with the energy budget tracked
+// (BM_EnergyTracking). Write JSON with
 //   bench_dense_packing --benchmark_out=bench/results/dense_packing.json
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -152,6 +153,25 @@ void BM_Checkpoint(benchmark::State& state) {
   state.counters["megabytes_per_second"] =
       benchmark::Counter(bytes / 1e6 * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
+
+// The FCC stack with the energy budget tracked (range(2) = 1) or not (0),
+// back to back: what Simulation::track_energy (a budget probe) costs a
+// step. The tracked half kicks split each load, in parallel over the groups.
+void BM_EnergyTracking(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(1));
+  omp_set_num_threads(threads);
+  auto sim = make_packing(state.range(0));
+  sim.track_energy = state.range(2) == 1;
+  const auto builds0 = sim.list_builds();
+  for (auto _ : state) sim.advance(kStepsPerIteration);
+  report(state, sim, threads, builds0);
+}
+
+BENCHMARK(BM_EnergyTracking)
+    ->ArgsProduct({{100'000}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
 
 BENCHMARK(BM_Checkpoint)
     ->ArgsProduct({{100'000}, {0, 1}})

@@ -501,6 +501,30 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
       .def(
           "gravitational_energy", [](const M& s) { return s.sim().gravitational_energy(); },
           "J, -sum m g.x, zero at the origin (the probe gravitational_energy)")
+      .def_property(
+          "track_energy", [](const M& s) { return s.sim().track_energy; },
+          [](M& s, bool on) { s.sim().track_energy = on; },
+          "track the energy budget from the next step on (YADE's O.trackEnergy; the budget's probes turn it "
+          "on): each half kick then takes a serial sweep; the motion is the same, bit for bit")
+      .def(
+          "energy",
+          [](const M& s) {
+            const auto& sim = s.sim();
+            py::dict d;
+            d["kinetic"] = sim.kinetic_energy();
+            d["elastic"] = sim.elastic_energy();
+            d["gravitational"] = sim.gravitational_energy();
+            d["gravity_work"] = sim.energy.gravity_work;
+            d["fluid_work"] = sim.energy.field_work;
+            d["boundary_work"] = sim.energy.boundary_work;
+            d["damping_dissipation"] = sim.energy.damping_dissipation();
+            d["contact_dissipation"] = sim.contact_dissipation();
+            return d;
+          },
+          "the energies now and the budget since tracking began, J (the probes of the same names): "
+          "kinetic, elastic, gravitational; gravity_work, fluid_work, boundary_work (done on the grains), "
+          "damping_dissipation, contact_dissipation (taken from them, the latter inferred: it closes the "
+          "budget, kinetic + elastic + the two dissipations - the three works, at its start)")
       .def(
           "stress",
           [](const M& s, const std::vector<double>& lo, const std::vector<double>& hi) {

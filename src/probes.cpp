@@ -125,6 +125,16 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       return sim.elastic_energy();
     case ProbeQuantity::gravitational_energy:
       return sim.gravitational_energy();
+    case ProbeQuantity::gravity_work:
+      return sim.energy.gravity_work;
+    case ProbeQuantity::fluid_work:
+      return sim.energy.field_work;
+    case ProbeQuantity::boundary_work:
+      return sim.energy.boundary_work;
+    case ProbeQuantity::damping_dissipation:
+      return sim.energy.damping_dissipation();
+    case ProbeQuantity::contact_dissipation:
+      return sim.contact_dissipation();
     case ProbeQuantity::removed_particles:
       return static_cast<double>(sim.removed_count);
     case ProbeQuantity::removed_mass:

@@ -1043,6 +1043,11 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "kinetic_energy",
                                                 "elastic_energy",
                                                 "gravitational_energy",
+                                                "gravity_work",
+                                                "fluid_work",
+                                                "boundary_work",
+                                                "damping_dissipation",
+                                                "contact_dissipation",
                                                 "contact_count",
                                                 "coordination",
                                                 "max_overlap",
@@ -1244,6 +1249,11 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       p.quantity = q == "kinetic_energy"         ? ProbeQuantity::kinetic_energy
                    : q == "elastic_energy"       ? ProbeQuantity::elastic_energy
                    : q == "gravitational_energy" ? ProbeQuantity::gravitational_energy
+                   : q == "gravity_work"         ? ProbeQuantity::gravity_work
+                   : q == "fluid_work"           ? ProbeQuantity::fluid_work
+                   : q == "boundary_work"        ? ProbeQuantity::boundary_work
+                   : q == "damping_dissipation"  ? ProbeQuantity::damping_dissipation
+                   : q == "contact_dissipation"  ? ProbeQuantity::contact_dissipation
                    : q == "contact_count"        ? ProbeQuantity::contact_count
                    : q == "coordination"         ? ProbeQuantity::coordination
                    : q == "max_overlap"          ? ProbeQuantity::max_overlap
@@ -1252,6 +1262,13 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                    : q == "bonds"                ? ProbeQuantity::bonds
                    : q == "broken_bonds"         ? ProbeQuantity::broken_bonds
                                                  : ProbeQuantity::unbalanced_force;
+    }
+    // The budget's works accumulate step by step from the start (a slower
+    // serial sweep per half kick): only when a probe asks for them.
+    if (p.quantity == ProbeQuantity::gravity_work || p.quantity == ProbeQuantity::fluid_work ||
+        p.quantity == ProbeQuantity::boundary_work || p.quantity == ProbeQuantity::damping_dissipation ||
+        p.quantity == ProbeQuantity::contact_dissipation) {
+      sim.track_energy = true;
     }
     scene.output.probes.push_back(p);
   });

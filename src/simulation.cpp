@@ -51,14 +51,36 @@ template <int D>
 void Simulation<D>::advance(std::uint64_t count) {
   if (!prepared_) prepare();
   if (count == 0) return;
-  double moved = kick_drift();
+  const bool tracked = track_energy;
+  if (tracked && !energy.started) {
+    energy.elastic_start = elastic_energy();
+    energy.started = true;
+  }
+  // With tracking the same operations, in separate sweeps.
+  double moved = tracked ? tracked_kick(true) : kick_drift();
+  std::vector<Vec<D>> wall_points, wall_forces;
   for (std::uint64_t s = 0; s < count; ++s) {
+    if (tracked) {
+      wall_points.clear();
+      wall_forces.clear();
+      for (const auto& w : walls) {
+        wall_points.push_back(w.point);
+        wall_forces.push_back(w.force);
+      }
+    }
     for (auto& w : walls) w.advance(time_step);
     time += time_step;
     rebuild_if_needed(moved);
     recording_ = record_contact_forces && s + 1 == count;
     if (recording_) pair_force_.assign(list_.pair_count(), Vec<D>::Zero());
-    moved = compute_forces(s + 1 < count ? Finish::kick_kick_drift : Finish::kick);
+    if (tracked) {
+      compute_forces(Finish::none);
+      account_walls(wall_points, wall_forces);
+      tracked_kick(false);
+      moved = s + 1 < count ? tracked_kick(true) : 0.0;
+    } else {
+      moved = compute_forces(s + 1 < count ? Finish::kick_kick_drift : Finish::kick);
+    }
     ++steps;
     if (recording_) {
       pair_force_step_ = steps;
@@ -282,13 +304,36 @@ double Simulation<D>::kick_drift() {
     kick_group(first, half_dt);
     return drift_group(first, referenced);
   };
-  double moved2 = 0.0;
-  if (groups > parallel_threshold / 4) {
-#pragma omp parallel for schedule(static) reduction(max : moved2)
-    for (std::int64_t g = 0; g < groups; ++g) moved2 = std::max(moved2, one(g));
-  } else {
-    for (std::int64_t g = 0; g < groups; ++g) moved2 = std::max(moved2, one(g));
-  }
+  const double moved2 = max_over_index(groups, parallel_threshold / 4, one);
+  return std::sqrt(moved2);
+}
+
+template <int D>
+double Simulation<D>::tracked_kick(bool drift) {
+  auto& p = particles;
+  const double half_dt = 0.5 * time_step;
+  const bool referenced = list_.reference().size() == p.size();
+  const auto groups = static_cast<std::int64_t>((p.size() + 3) / 4);
+  // Each group's works apart, then added in group order: the same sums
+  // whatever the thread count.
+  group_works_.assign(static_cast<std::size_t>(groups), EnergyBudget{});
+  auto one = [&](std::int64_t g) {
+    const auto first = static_cast<std::size_t>(4 * g);
+    const std::size_t last = std::min<std::size_t>(first + 4, p.size());
+    std::array<Vec<D>, 4> v;
+    std::array<AngVec<D>, 4> w;
+    for (std::size_t i = first; i < last; ++i) {
+      v[i - first] = p.velocity[i];
+      w[i - first] = p.angular_velocity[i];
+    }
+    kick_group(first, half_dt);
+    for (std::size_t i = first; i < last; ++i) {
+      account_kick(i, v[i - first], w[i - first], half_dt, group_works_[static_cast<std::size_t>(g)]);
+    }
+    return drift ? drift_group(first, referenced) : 0.0;
+  };
+  const double moved2 = max_over_index(groups, parallel_threshold / 4, one);
+  for (const auto& works : group_works_) energy.add(works);
   return std::sqrt(moved2);
 }
 
@@ -641,6 +686,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
   // kick, and inside advance() at once the next step's first half kick and
   // drift (the same operations as separate sweeps, one sweep fewer).
   const Vec<D> g = gravity;
+  force_gravity_ = g;
   const bool field = force_field != nullptr;
   const bool external = !p.external_force.empty();
   const double half_dt = 0.5 * dt;

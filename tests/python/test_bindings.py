@@ -96,6 +96,29 @@ class FreeFall(unittest.TestCase):
         self.assertAlmostEqual(m.kinetic_energy() + m.gravitational_energy(), mass * G * 1.0, delta=1e-12 * mass * G)
         self.assertEqual(m.elastic_energy(), 0.0)
 
+    def test_the_energy_budget_follows_the_fall(self):
+        # YADE's O.trackEnergy: from the step after it is turned on. Under a
+        # constant force velocity Verlet is exact, so gravity's work is
+        # m G times the drop to round-off (1e-12 of it), and it all went
+        # into the kinetic energy: nothing dissipated, no boundary, no fluid.
+        m = self.model
+        self.assertFalse(m.track_energy)
+        m.step(100)
+        self.assertEqual(m.energy()["gravity_work"], 0.0)  # not tracked yet
+        m.track_energy = True
+        z0 = m.positions[0][2]
+        k0 = m.kinetic_energy()
+        m.step(5000)
+        e = m.energy()
+        mass = 2650.0 * 4.0 / 3.0 * math.pi * 0.0005**3
+        work = mass * G * (z0 - m.positions[0][2])
+        self.assertAlmostEqual(e["gravity_work"], work, delta=1e-12 * work)
+        self.assertAlmostEqual(e["kinetic"] - k0, work, delta=1e-12 * work)
+        self.assertEqual(e["kinetic"], m.kinetic_energy())
+        self.assertEqual(e["gravitational"], m.gravitational_energy())
+        for key in ("fluid_work", "boundary_work", "damping_dissipation", "contact_dissipation", "elastic"):
+            self.assertEqual(e[key], 0.0, key)
+
     def test_a_stage_applied_from_python_changes_the_motion(self):
         m = self.model
         m.step(500)

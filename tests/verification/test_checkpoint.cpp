@@ -390,6 +390,17 @@ TEST(Checkpoint, ResumedPluviationWritesTheSameFilesWhileGrainsAreAdded) {
   expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 20000, 0);
 }
 
+TEST(Checkpoint, ResumedSlidingSphereKeepsItsEnergyBudget) {
+  // examples/dem_cases/slip_to_roll.toml, whose probes track the energy
+  // budget, stopped at step 10 000 of 115 624, mid-slide: the works done so
+  // far and the springs' energy at the start must come back, or the
+  // budget's probes after the resume start again from zero.
+  const fs::path dir = fresh_dir("slip_to_roll");
+  fs::create_directories(dir);
+  const std::string scene = std::string(DARCYDEM_SOURCE_DIR) + "/examples/dem_cases/slip_to_roll.toml";
+  expect_resumed_run_writes_the_same_files<3>(scene, dir, 1, 10000, 0);
+}
+
 TEST(Checkpoint, ResumedCementedChainKeepsItsBonds) {
   // examples/dem_cases/cemented_chain.toml, stopped at step 3000 of stage
   // "hang" (bonds made, the chain still settling): the bonds and the count

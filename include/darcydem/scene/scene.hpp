@@ -26,6 +26,13 @@ enum class ProbeQuantity {
   kinetic_energy,
   elastic_energy,        ///< J, stored in the contacts' and bonds' springs (Simulation::elastic_energy)
   gravitational_energy,  ///< J, -sum m g.x (zero at the origin)
+  // The energy budget since the run began (Simulation::energy; the scene
+  // turns on Simulation::track_energy when a probe asks for one of these), J.
+  gravity_work,         ///< by gravity on the free grains
+  fluid_work,           ///< by the pore fluid's forces (the force field) on the grains
+  boundary_work,        ///< by moving walls and moving fixed grains on the free grains
+  damping_dissipation,  ///< taken by local and viscous damping
+  contact_dissipation,  ///< taken by the contacts and not stored in their springs
   contact_count,
   coordination,
   max_overlap,

@@ -17,6 +17,7 @@
 #include "darcydem/core/vec.hpp"
 #include "darcydem/neighbour/verlet_list.hpp"
 #include "darcydem/particles/particle_data.hpp"
+#include "darcydem/simulation/energy_budget.hpp"
 #include "darcydem/simulation/force_field.hpp"
 #include "darcydem/walls/wall.hpp"
 
@@ -103,6 +104,12 @@ class Simulation {
   std::uint64_t broken_bonds = 0;
   /// Optional body-force field (the pore fluid), evaluated every step; not owned.
   const ParticleForceField<D>* force_field = nullptr;
+  /// Track the energy budget (energy_budget.hpp) from the next advance() on:
+  /// each half kick then takes a serial sweep that splits the change of
+  /// kinetic energy into the works of gravity, contacts, the force field,
+  /// damping and moving boundaries. The trajectory is the same, bit for bit.
+  bool track_energy = false;
+  EnergyBudget energy;
 
   /// Chooses the contact law loop, builds the neighbour lists and evaluates
   /// the initial forces. Call after setting everything up and before step().
@@ -161,6 +168,8 @@ class Simulation {
   /// linear law, the tangential (1/2 k_t |xi|^2) and rolling (1/2 k_r |theta|^2)
   /// springs and a bond's bending and twisting springs.
   [[nodiscard]] double elastic_energy() const;
+  /// J lost in the contacts since tracking began (EnergyBudget; 0 before).
+  [[nodiscard]] double contact_dissipation() const;
   /// The mean stress of the contact forces in the box [lo, hi] (Love and
   /// Weber), Pa, compression positive: -(1/V) sum over the particles whose
   /// centres lie in the box (along a periodic axis: whose image does; the
@@ -195,7 +204,8 @@ class Simulation {
   template <class Archive>
   void checkpoint(Archive& ar) {
     ar(particles, walls, gravity, damping, skin, time_step, time, steps, list_, wall_list_, field_force_,
-       block_sums_, removed_count, removed_mass, removed_volume, inserted_count, inserted_mass, broken_bonds);
+       block_sums_, removed_count, removed_mass, removed_volume, inserted_count, inserted_mass, broken_bonds,
+       energy, force_gravity_);
     bool from_field = field_forces_from_ != nullptr;
     ar(from_field);
     if constexpr (Archive::loading) field_forces_from_ = from_field ? force_field : nullptr;
@@ -224,6 +234,17 @@ class Simulation {
   /// First half kick and drift; returns the largest displacement since the
   /// last list build (m).
   double kick_drift();
+  /// With track_energy: a half kick of every particle, its works added to
+  /// `energy` (src/energy_budget.cpp), and with `drift` the drift after it;
+  /// returns what kick_drift returns (0 without the drift).
+  double tracked_kick(bool drift);
+  /// Adds to `energy` the works of one particle's half kick from the
+  /// velocities it had before (v, w).
+  void account_kick(std::size_t i, const Vec<D>& v, const AngVec<D>& w, double half_dt,
+                    EnergyBudget& sum) const;
+  /// Adds the walls' work to `energy` over a step in which each moved from
+  /// `points` with the forces `forces` on it at the step's start.
+  void account_walls(const std::vector<Vec<D>>& points, const std::vector<Vec<D>>& forces);
   /// Calls visit(contact, list slot k, first selected, second selected) for
   /// each contact between two particles of which one at least is selected
   /// (selected(p) holds), its geometry only: force and moments left zero
@@ -255,8 +276,10 @@ class Simulation {
   VerletList<D> list_;
   WallContactList<D> wall_list_;
   std::vector<Vec<D>> field_force_;
-  bool recording_ = false;                                    ///< this force evaluation stores pair_force_
-  std::vector<Vec<D>> pair_force_;                            ///< force on i of each pair, as recorded
+  std::vector<EnergyBudget> group_works_;  ///< tracked_kick's works per group of four
+  Vec<D> force_gravity_ = Vec<D>::Zero();  ///< the gravity in the last force evaluation (the budget's split)
+  bool recording_ = false;                 ///< this force evaluation stores pair_force_
+  std::vector<Vec<D>> pair_force_;         ///< force on i of each pair, as recorded
   std::uint64_t pair_force_step_ = ~std::uint64_t{0};         ///< the step that recorded pair_force_
   const ParticleForceField<D>* field_forces_from_ = nullptr;  ///< the field that gave field_force_
   std::vector<std::array<double, 2>> block_sums_;  ///< per force block: sum of |F| of contacts, count

@@ -1,0 +1,83 @@
+// The energy budget's accounting (energy_budget.hpp): the works of each
+// kind of force in a half kick, and the moving walls' work.
+#include "darcydem/simulation/energy_budget.hpp"
+
+#include "darcydem/simulation/simulation.hpp"
+
+namespace darcydem {
+
+namespace {
+/// Cundall's local damping force on a load f moving with v (kick.hpp):
+/// -alpha |f_k| sign(v_k), component by component.
+template <int K>
+Eigen::Matrix<double, K, 1> local_damping(double alpha, const Eigen::Matrix<double, K, 1>& f,
+                                          const Eigen::Matrix<double, K, 1>& v) {
+  Eigen::Matrix<double, K, 1> out;
+  for (int k = 0; k < K; ++k)
+    out[k] = -alpha * std::abs(f[k]) * static_cast<double>((v[k] > 0.0) - (v[k] < 0.0));
+  return out;
+}
+}  // namespace
+
+template <int D>
+void Simulation<D>::account_kick(std::size_t i, const Vec<D>& v, const AngVec<D>& w, double half_dt,
+                                 EnergyBudget& sum) const {
+  const auto& p = particles;
+  const Vec<D>& f = p.force[i];
+  const AngVec<D>& t = p.torque[i];
+  // The load's kinds, as the force evaluation added them (finish_one).
+  // Gravity as that evaluation had it (a stage may have changed it since).
+  const Vec<D> f_gravity = p.inv_mass[i] > 0.0 ? Vec<D>(force_gravity_ / p.inv_mass[i]) : Vec<D>::Zero();
+  const Vec<D> f_field =
+      force_field != nullptr && field_force_.size() == p.size() ? field_force_[i] : Vec<D>::Zero();
+  const Vec<D> f_external = p.external_force.empty() ? Vec<D>::Zero() : p.external_force[i];
+  const Vec<D> f_contact = f - f_gravity - f_field - f_external;
+  if (p.fixed[i] != 0) {
+    // Its velocity is prescribed: the contacts' work on it over the half
+    // kick, (dt/2) f.v, is what it takes from the grains.
+    sum.boundary_work -= half_dt * (f_contact.dot(p.velocity[i]) + t.dot(p.angular_velocity[i]));
+    return;
+  }
+  // (dt/4) F . (v + v') for each kind F of the half kick's load.
+  const double q = 0.5 * half_dt;
+  const Vec<D> sv = v + p.velocity[i];
+  const AngVec<D> sw = w + p.angular_velocity[i];
+  sum.gravity_work += q * f_gravity.dot(sv);
+  sum.field_work += q * f_field.dot(sv);
+  sum.external_work += q * f_external.dot(sv);
+  sum.contact_work += q * (f_contact.dot(sv) + t.dot(sw));
+  if (damping.local > 0.0) {
+    sum.local_damping_work += q * (local_damping<D>(damping.local, f, v).dot(sv) +
+                                   local_damping<rotation_dim<D>>(damping.local, t, w).dot(sw));
+  }
+  if (damping.viscous > 0.0) {
+    sum.viscous_damping_work -=
+        q * damping.viscous * (v.dot(sv) / p.inv_mass[i] + w.dot(sw) / p.inv_inertia[i]);
+  }
+}
+
+template <int D>
+void Simulation<D>::account_walls(const std::vector<Vec<D>>& points, const std::vector<Vec<D>>& forces) {
+  // The grains' force on a wall, taken as the mean of the step's start and
+  // end (exact for a linear spring), times the wall's move: the work the
+  // grains did on it, which the wall did on them with the other sign.
+  for (std::size_t k = 0; k < walls.size(); ++k) {
+    energy.boundary_work -= 0.5 * (forces[k] + walls[k].force).dot(walls[k].point - points[k]);
+  }
+}
+
+template <int D>
+double Simulation<D>::contact_dissipation() const {
+  return energy.started ? energy.contact_dissipation(elastic_energy()) : 0.0;
+}
+
+template void Simulation<2>::account_kick(std::size_t, const Vec<2>&, const AngVec<2>&, double,
+                                          EnergyBudget&) const;
+template void Simulation<3>::account_kick(std::size_t, const Vec<3>&, const AngVec<3>&, double,
+                                          EnergyBudget&) const;
+template void Simulation<2>::account_walls(const std::vector<Vec<2>>&, const std::vector<Vec<2>>&);
+template void Simulation<3>::account_walls(const std::vector<Vec<3>>&, const std::vector<Vec<3>>&);
+template double Simulation<2>::contact_dissipation() const;
+template double Simulation<3>::contact_dissipation() const;
+
+}  // namespace darcydem
