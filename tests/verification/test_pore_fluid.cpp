@@ -842,6 +842,45 @@ TEST(PoreFluid, AGrainSinksInStillWaterAtItsTerminalVelocity) {
   EXPECT_EQ(v.head<2>().norm(), 0.0);
 }
 
+TEST(PoreFluid, TheWaterTakesTheWorkOfGravityFromAGrainSinkingAtItsTerminalVelocity) {
+  // The sinking sphere of the test above with the energy budget tracked.
+  // Without contacts or damping the budget closes: gravity's work plus the
+  // water's (buoyancy and drag, the force field's) is the kinetic energy,
+  // to round-off (bound 1e-12 of gravity's work). Once the sphere sinks at
+  // v_t the water takes all that gravity gives: over 0.15-0.2 s (more than
+  // 11.7 tau, 8e-6 of v_t left to gain, so the kinetic energy grows by
+  // 1.3e-6 of gravity's work there) the water's work is -m g v_t (0.05 s),
+  // v_t by bisection, independent of the simulation; bound 1e-5.
+  const double r = 2.5e-4;
+  const double rho_s = 2650.0;
+  const double v_terminal = terminal_velocity(2 * r, rho_s);
+  const double m = rho_s * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+
+  auto sim = lone_sphere(r, rho_s);
+  PoreFluid<3> fluid;
+  set_up_cube_of_cells(fluid, 2 * r);
+  fluid.water_level = 1.0;
+  fluid.initialize(sim.particles);
+  sim.force_field = &fluid;
+  sim.gravity = Vec<3>(0.0, 0.0, -g);
+  sim.time_step = 1e-5;
+  sim.track_energy = true;
+  sim.prepare();
+  sim.advance(15000);
+  const EnergyBudget before = sim.energy;
+  sim.advance(5000);
+  const EnergyBudget& after = sim.energy;
+  const double kinetic = sim.kinetic_energy();
+  EXPECT_NEAR(after.gravity_work + after.field_work, kinetic, 1e-12 * after.gravity_work);
+  const double expected = -m * g * v_terminal * 5000 * sim.time_step;
+  const double water = after.field_work - before.field_work;
+  std::printf("water's work over 0.15-0.2 s: %.10g J against -m g v_t dt = %.10g J\n", water, expected);
+  EXPECT_NEAR(water, expected, 1e-5 * std::abs(expected));
+  // No contact: what the split leaves to the contacts (the load less
+  // gravity and the water) is round-off.
+  EXPECT_NEAR(after.contact_work, 0.0, 1e-12 * after.gravity_work);
+}
+
 TEST(PoreFluid, AGrainAboveASeepingBedMovesAtTheOutflowLessItsSettlingVelocity) {
   // The sphere of the test above, released from rest in the water above
   // an empty grid through which water flows up at q = 10 cm/s (inflow on
