@@ -505,7 +505,9 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "track_energy", [](const M& s) { return s.sim().track_energy; },
           [](M& s, bool on) { s.sim().track_energy = on; },
           "track the energy budget from the next step on (YADE's O.trackEnergy; the budget's probes turn it "
-          "on): each half kick then takes a serial sweep; the motion is the same, bit for bit")
+          "on): the step then accounts each force's work (up to a tenth more time on one thread); the motion "
+          "is "
+          "the same, bit for bit")
       .def(
           "energy",
           [](const M& s) {
@@ -519,12 +521,15 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
             d["boundary_work"] = sim.energy.boundary_work;
             d["damping_dissipation"] = sim.energy.damping_dissipation();
             d["contact_dissipation"] = sim.contact_dissipation();
+            d["unaccounted"] = sim.unaccounted_energy();
             return d;
           },
           "the energies now and the budget since tracking began, J (the probes of the same names): "
           "kinetic, elastic, gravitational; gravity_work, fluid_work, boundary_work (done on the grains), "
           "damping_dissipation, contact_dissipation (taken from them, the latter inferred: it closes the "
-          "budget, kinetic + elastic + the two dissipations - the three works, at its start)")
+          "budget, kinetic + elastic + the two dissipations - the three works, at its start); unaccounted, "
+          "the "
+          "kinetic energy's change that no work explains (round-off, or grains added or removed)")
       .def(
           "stress",
           [](const M& s, const std::vector<double>& lo, const std::vector<double>& hi) {

@@ -71,6 +71,11 @@ double Simulation<D>::contact_dissipation() const {
   return energy.started ? energy.contact_dissipation(elastic_energy()) : 0.0;
 }
 
+template <int D>
+double Simulation<D>::unaccounted_energy() const {
+  return energy.started ? energy.unaccounted(kinetic_energy()) : 0.0;
+}
+
 template void Simulation<2>::account_kick(std::size_t, const Vec<2>&, const AngVec<2>&, double,
                                           EnergyBudget&) const;
 template void Simulation<3>::account_kick(std::size_t, const Vec<3>&, const AngVec<3>&, double,
@@ -79,5 +84,7 @@ template void Simulation<2>::account_walls(const std::vector<Vec<2>>&, const std
 template void Simulation<3>::account_walls(const std::vector<Vec<3>>&, const std::vector<Vec<3>>&);
 template double Simulation<2>::contact_dissipation() const;
 template double Simulation<3>::contact_dissipation() const;
+template double Simulation<2>::unaccounted_energy() const;
+template double Simulation<3>::unaccounted_energy() const;
 
 }  // namespace darcydem

@@ -138,6 +138,19 @@ void write_final_particles(const fs::path& out, const Scene<D>& scene, bool inte
           overlap / r_min, std::ceil(overlap / r_min * 1.05 * 1000.0) / 1000.0));
 }
 
+/// The energy budget since tracking began, for the run log at a stage's end.
+template <int D>
+std::string describe_energy(const Simulation<D>& sim) {
+  const auto& e = sim.energy;
+  const char* unit = D == 2 ? "J/m" : "J";
+  return fmt::format(
+      "energy budget so far ({}): done on the grains by gravity {:.6g}, the fluid {:.6g}, external forces "
+      "{:.6g}, moving boundaries {:.6g}; taken by damping {:.6g}, the contacts {:.6g}; kinetic {:.6g} and "
+      "elastic {:.6g} now; unaccounted {:.3g}\n",
+      unit, e.gravity_work, e.field_work, e.external_work, e.boundary_work, e.damping_dissipation(),
+      sim.contact_dissipation(), sim.kinetic_energy(), sim.elastic_energy(), sim.unaccounted_energy());
+}
+
 /// run.json: what ran, how long, how it ended, the fluid's balance and the analysis' verdict.
 template <int D>
 void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummary& summary,
@@ -201,6 +214,15 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
         "  \"seepage_column\": {{\"uplift_rms_error\": {:.6g}, \"pressure_max_error\": {:.6g}, "
         "\"passed\": {}}},\n",
         r.uplift_rms_error, r.pressure_max_error, r.passed ? "true" : "false");
+  }
+  if (sim.energy.started) {
+    const auto& e = sim.energy;
+    json << fmt::format(
+        "  \"energy\": {{\"gravity_work\": {:.17g}, \"fluid_work\": {:.17g}, \"external_work\": {:.17g}, "
+        "\"boundary_work\": {:.17g}, \"damping_dissipation\": {:.17g}, \"contact_dissipation\": {:.17g}, "
+        "\"kinetic\": {:.17g}, \"elastic\": {:.17g}, \"unaccounted\": {:.6g}}},\n",
+        e.gravity_work, e.field_work, e.external_work, e.boundary_work, e.damping_dissipation(),
+        sim.contact_dissipation(), sim.kinetic_energy(), sim.elastic_energy(), sim.unaccounted_energy());
   }
   json << fmt::format("  \"status\": \"{}\",\n",
                       !failure.empty() ? "failed" : (summary.interrupted ? "interrupted" : "completed"));
@@ -614,6 +636,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
               immersed, sim.particles.size());
         }
       }
+      if (sim.energy.started && options.log != nullptr) *options.log << describe_energy(sim);
       if (summary.interrupted) break;
       summary.stages_completed.push_back(stage.name);
       if (options.log != nullptr && stopped_early) {

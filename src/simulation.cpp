@@ -54,6 +54,7 @@ void Simulation<D>::advance(std::uint64_t count) {
   const bool tracked = track_energy;
   if (tracked && !energy.started) {
     energy.elastic_start = elastic_energy();
+    energy.kinetic_start = kinetic_energy();
     energy.started = true;
   }
   // With tracking the same operations, in separate sweeps.

@@ -98,10 +98,11 @@ RunSummary run_example(const std::string& relative, const std::string& out_dir) 
 
 /// Writes `text` as a scene in a fresh folder named for `name`, runs it as
 /// `darcydem run` does (its log kept from the terminal) and returns its
-/// probes.csv by column; throws if the run was interrupted.
+/// probes.csv by column (its log in *log_text if given; run.json stays in
+/// temp_path(name)/out); throws if the run was interrupted.
 template <int D>
-std::map<std::string, std::vector<double>> run_scene_probes(const std::string& name,
-                                                            const std::string& text) {
+std::map<std::string, std::vector<double>> run_scene_probes(const std::string& name, const std::string& text,
+                                                            std::string* log_text = nullptr) {
   const std::string dir = temp_dir(name);
   Scene<D> scene = scene_from_text<D>(dir, "scene.toml", text);
   RunOptions options;
@@ -109,6 +110,7 @@ std::map<std::string, std::vector<double>> run_scene_probes(const std::string& n
   std::ostringstream log;
   options.log = &log;
   if (run_scene<D>(scene, options).interrupted) throw std::runtime_error(name + ": the run was interrupted");
+  if (log_text != nullptr) *log_text = log.str();
   return read_probes(options.out_dir + "/probes.csv");
 }
 

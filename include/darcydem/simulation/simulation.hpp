@@ -170,6 +170,9 @@ class Simulation {
   [[nodiscard]] double elastic_energy() const;
   /// J lost in the contacts since tracking began (EnergyBudget; 0 before).
   [[nodiscard]] double contact_dissipation() const;
+  /// J of the kinetic energy's change since tracking began that the works
+  /// do not explain (EnergyBudget::unaccounted; 0 before).
+  [[nodiscard]] double unaccounted_energy() const;
   /// The mean stress of the contact forces in the box [lo, hi] (Love and
   /// Weber), Pa, compression positive: -(1/V) sum over the particles whose
   /// centres lie in the box (along a periodic axis: whose image does; the
