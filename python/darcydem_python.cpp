@@ -506,8 +506,7 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           [](M& s, bool on) { s.sim().track_energy = on; },
           "track the energy budget from the next step on (YADE's O.trackEnergy; the budget's probes turn it "
           "on): the step then accounts each force's work (up to a tenth more time on one thread); the motion "
-          "is "
-          "the same, bit for bit")
+          "is the same, bit for bit")
       .def(
           "energy",
           [](const M& s) {
@@ -528,8 +527,7 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "kinetic, elastic, gravitational; gravity_work, fluid_work, boundary_work (done on the grains), "
           "damping_dissipation, contact_dissipation (taken from them, the latter inferred: it closes the "
           "budget, kinetic + elastic + the two dissipations - the three works, at its start); unaccounted, "
-          "the "
-          "kinetic energy's change that no work explains (round-off, or grains added or removed)")
+          "the kinetic energy's change that no work explains (round-off, or grains added or removed)")
       .def(
           "stress",
           [](const M& s, const std::vector<double>& lo, const std::vector<double>& hi) {

@@ -105,9 +105,10 @@ class Simulation {
   /// Optional body-force field (the pore fluid), evaluated every step; not owned.
   const ParticleForceField<D>* force_field = nullptr;
   /// Track the energy budget (energy_budget.hpp) from the next advance() on:
-  /// each half kick then takes a serial sweep that splits the change of
-  /// kinetic energy into the works of gravity, contacts, the force field,
-  /// damping and moving boundaries. The trajectory is the same, bit for bit.
+  /// each half kick then splits the change of kinetic energy into the works
+  /// of gravity, contacts, the force field, damping and moving boundaries
+  /// (in parallel over groups of four, their sums added in order). The
+  /// trajectory is the same, bit for bit.
   bool track_energy = false;
   EnergyBudget energy;
 
