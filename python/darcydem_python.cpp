@@ -520,14 +520,18 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
             d["boundary_work"] = sim.energy.boundary_work;
             d["damping_dissipation"] = sim.energy.damping_dissipation();
             d["contact_dissipation"] = sim.contact_dissipation();
+            d["inserted_kinetic"] = sim.energy.inserted_kinetic;
+            d["removed_kinetic"] = sim.energy.removed_kinetic;
             d["unaccounted"] = sim.unaccounted_energy();
             return d;
           },
           "the energies now and the budget since tracking began, J (the probes of the same names): "
           "kinetic, elastic, gravitational; gravity_work, fluid_work, boundary_work (done on the grains), "
           "damping_dissipation, contact_dissipation (taken from them, the latter inferred: it closes the "
-          "budget, kinetic + elastic + the two dissipations - the three works, at its start); unaccounted, "
-          "the kinetic energy's change that no work explains (round-off, or grains added or removed)")
+          "budget, kinetic + elastic + the two dissipations - the three works, at its start); "
+          "inserted_kinetic, "
+          "removed_kinetic (brought in by grains inlets added, taken out by grains the domain removed); "
+          "unaccounted, the kinetic energy's change that none of these explains (round-off)")
       .def(
           "stress",
           [](const M& s, const std::vector<double>& lo, const std::vector<double>& hi) {

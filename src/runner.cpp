@@ -143,12 +143,20 @@ template <int D>
 std::string describe_energy(const Simulation<D>& sim) {
   const auto& e = sim.energy;
   const char* unit = D == 2 ? "J/m" : "J";
+  // Grains added or removed bring or take kinetic energy: said when a
+  // scene can do either.
+  const std::string carried =
+      sim.has_domain || sim.inserted_count > 0
+          ? fmt::format("; kinetic energy brought in by inlets {:.6g}, taken out of the domain {:.6g}",
+                        e.inserted_kinetic, e.removed_kinetic)
+          : std::string();
   return fmt::format(
       "energy budget so far ({}): done on the grains by gravity {:.6g}, the fluid {:.6g}, external forces "
-      "{:.6g}, moving boundaries {:.6g}; taken by damping {:.6g}, the contacts {:.6g}; kinetic {:.6g} and "
+      "{:.6g}, moving boundaries {:.6g}; taken by damping {:.6g}, the contacts {:.6g}{}; kinetic {:.6g} and "
       "elastic {:.6g} now; unaccounted {:.3g}\n",
       unit, e.gravity_work, e.field_work, e.external_work, e.boundary_work, e.damping_dissipation(),
-      sim.contact_dissipation(), sim.kinetic_energy(), sim.elastic_energy(), sim.unaccounted_energy());
+      sim.contact_dissipation(), carried, sim.kinetic_energy(), sim.elastic_energy(),
+      sim.unaccounted_energy());
 }
 
 /// run.json: what ran, how long, how it ended, the fluid's balance and the analysis' verdict.
@@ -220,9 +228,12 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
     json << fmt::format(
         "  \"energy\": {{\"gravity_work\": {:.17g}, \"fluid_work\": {:.17g}, \"external_work\": {:.17g}, "
         "\"boundary_work\": {:.17g}, \"damping_dissipation\": {:.17g}, \"contact_dissipation\": {:.17g}, "
-        "\"kinetic\": {:.17g}, \"elastic\": {:.17g}, \"unaccounted\": {:.6g}}},\n",
+        "\"inserted_kinetic\": {:.17g}, \"removed_kinetic\": {:.17g}, \"kinetic\": {:.17g}, \"elastic\": "
+        "{:.17g}, "
+        "\"unaccounted\": {:.6g}}},\n",
         e.gravity_work, e.field_work, e.external_work, e.boundary_work, e.damping_dissipation(),
-        sim.contact_dissipation(), sim.kinetic_energy(), sim.elastic_energy(), sim.unaccounted_energy());
+        sim.contact_dissipation(), e.inserted_kinetic, e.removed_kinetic, sim.kinetic_energy(),
+        sim.elastic_energy(), sim.unaccounted_energy());
   }
   json << fmt::format("  \"status\": \"{}\",\n",
                       !failure.empty() ? "failed" : (summary.interrupted ? "interrupted" : "completed"));

@@ -102,6 +102,7 @@ std::size_t Simulation<D>::add_particle(const Vec<D>& x, double radius, std::uin
   particles.force.back() = mass * gravity;
   ++inserted_count;
   inserted_mass += mass;
+  if (energy.started) energy.inserted_kinetic += 0.5 * mass * velocity.squaredNorm();
   return particles.size() - 1;
 }
 
@@ -245,7 +246,16 @@ std::vector<std::uint32_t> Simulation<D>::remove_outside_domain() {
     }
     ++removed_count;
     removed_volume += particle_volume<D>(particles.radius[i]);
-    if (particles.inv_mass[i] > 0.0) removed_mass += 1.0 / particles.inv_mass[i];
+    if (particles.inv_mass[i] > 0.0) {
+      removed_mass += 1.0 / particles.inv_mass[i];
+      // The budget's kinetic energy leaves with it (the step's first half
+      // kick is in the budget and in this velocity alike).
+      if (energy.started) {
+        energy.removed_kinetic +=
+            0.5 * particles.velocity[i].squaredNorm() / particles.inv_mass[i] +
+            0.5 * particles.angular_velocity[i].squaredNorm() / particles.inv_inertia[i];
+      }
+    }
   }
   // Forces a field holds go with their particles.
   if (field_force_.size() == n) ParticleData<D>::reorder(field_force_, kept);

@@ -116,7 +116,8 @@ class FreeFall(unittest.TestCase):
         self.assertAlmostEqual(e["kinetic"] - k0, work, delta=1e-12 * work)
         self.assertEqual(e["kinetic"], m.kinetic_energy())
         self.assertEqual(e["gravitational"], m.gravitational_energy())
-        for key in ("fluid_work", "boundary_work", "damping_dissipation", "contact_dissipation", "elastic"):
+        for key in ("fluid_work", "boundary_work", "damping_dissipation", "contact_dissipation", "elastic",
+                    "inserted_kinetic", "removed_kinetic"):
             self.assertEqual(e[key], 0.0, key)
         # What the works leave unexplained of the kinetic energy's gain since
         # tracking began (k0): round-off.

@@ -230,6 +230,8 @@ TEST(Domain, SiloDischargesAtASteadyRate) {
   for (double inv : scene.simulation.particles.inv_mass) total += 1.0 / inv;
   RunOptions options;
   options.out_dir = dir;
+  // The energy budget too: tracking leaves the motion bit for bit as it is.
+  scene.simulation.track_energy = true;
   ASSERT_FALSE(run_scene<2>(scene, options).interrupted);
   const auto probes = read_probes(dir + "/probes.csv");
   const auto& t = probes.at("time");
@@ -270,5 +272,14 @@ TEST(Domain, SiloDischargesAtASteadyRate) {
   for (double inv : scene.simulation.particles.inv_mass) remaining += 1.0 / inv;
   EXPECT_NEAR(scene.simulation.removed_mass + remaining, total, 1e-12 * total);
   EXPECT_GT(scene.simulation.removed_count, 700U);
+  // Energy: the grains that left took their kinetic energy out, and the
+  // budget (energy_budget.hpp) still closes: the kinetic energy's change is
+  // the works plus what came in less what went out, to round-off.
+  const auto& budget = scene.simulation.energy;
+  const double unaccounted = scene.simulation.unaccounted_energy();
+  std::printf("silo: gravity's work %.6g J/m, kinetic energy taken out %.6g J/m, unaccounted %.3g of it\n",
+              budget.gravity_work, budget.removed_kinetic, unaccounted / budget.gravity_work);
+  EXPECT_GT(budget.removed_kinetic, 0.0);
+  EXPECT_LT(std::abs(unaccounted), 1e-10 * budget.gravity_work);
   std::filesystem::remove_all(dir);
 }

@@ -35,6 +35,8 @@ struct EnergyBudget {
   double local_damping_work = 0.0;    ///< J, by Cundall's local damping (<= 0)
   double viscous_damping_work = 0.0;  ///< J, by global viscous damping (<= 0)
   double boundary_work = 0.0;         ///< J, by moving walls and moving fixed grains on the free grains
+  double inserted_kinetic = 0.0;      ///< J, kinetic energy the grains an inlet added brought in
+  double removed_kinetic = 0.0;       ///< J, kinetic energy the grains the domain removed took out
 
   /// Adds another sum's works (not its start).
   void add(const EnergyBudget& o) {
@@ -53,19 +55,19 @@ struct EnergyBudget {
     return boundary_work - contact_work - (elastic_now - elastic_start);
   }
 
-  /// J of the kinetic energy's change since the start that no work
-  /// explains: round-off in a sound run; grains added (inlets) or removed
-  /// (the domain) bring or take their kinetic energy without work.
+  /// J of the kinetic energy's change since the start that neither a work
+  /// nor the grains added (inlets) or removed (the domain) explain:
+  /// round-off in a sound run.
   [[nodiscard]] double unaccounted(double kinetic_now) const {
     return kinetic_now - kinetic_start -
            (gravity_work + contact_work + field_work + external_work + local_damping_work +
-            viscous_damping_work);
+            viscous_damping_work + inserted_kinetic - removed_kinetic);
   }
 
   template <class Archive>
   void checkpoint(Archive& ar) {
     ar(started, elastic_start, kinetic_start, gravity_work, contact_work, field_work, external_work,
-       local_damping_work, viscous_damping_work, boundary_work);
+       local_damping_work, viscous_damping_work, boundary_work, inserted_kinetic, removed_kinetic);
   }
 };
 
