@@ -491,7 +491,8 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
             }
             return walls;
           },
-          "each wall's name, point (a box: its centre), m, the force the particles exert on it, N, and "
+          "each wall's name, point (a box: its centre; a cylinder: its centre, on its axis), m, the force "
+          "the particles exert on it, N, and "
           "on a box that displaces the fluid the pore water's thrust, N (zero on other walls)")
       .def(
           "kinetic_energy", [](const M& s) { return s.sim().kinetic_energy(); }, "J")

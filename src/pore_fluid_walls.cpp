@@ -78,7 +78,7 @@ void for_each_section(const FluidGrid<D>& grid, const Vec<D>& lo, const Vec<D>& 
 
 template <int D>
 std::optional<SolidBox<D>> PoreFluid<D>::displaced_box(const Wall<D>& wall) const {
-  if (wall.is_box) return SolidBox<D>{wall.point, wall.half, wall.axes};
+  if (wall.is_box()) return SolidBox<D>{wall.point, wall.half, wall.axes};
   // A plane: the half-space behind it, its face kept a hundred-thousandth
   // of a cell inside the grid (ten times box_section's slab), so that a
   // plane on or beyond the side it faces stands on that side: it takes the
@@ -99,7 +99,7 @@ Vec<D> PoreFluid<D>::wall_thrust(const std::vector<Wall<D>>& walls, std::size_t 
   if (!box) return Vec<D>::Zero();
   const Vec<D> thrust = is_impermeable(w) ? sealed_box_thrust(*box) : box_thrust(*box);
   // On a plane, along its normal (the box's sides beyond the grid are dry).
-  return wall.is_box ? thrust : Vec<D>(thrust.dot(wall.normal) * wall.normal);
+  return wall.is_box() ? thrust : Vec<D>(thrust.dot(wall.normal) * wall.normal);
 }
 
 template <int D>

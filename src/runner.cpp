@@ -713,7 +713,7 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::
   for (std::size_t w : fluid.solid_walls) {
     const Wall<D>& wall = walls.at(w);
     const char* closed = fluid.is_impermeable(w) ? ", impermeable (closes the faces it covers)" : "";
-    if (wall.is_box) {
+    if (wall.is_box()) {
       out += fmt::format("wall {} displaces the fluid: a box{}\n", wall.name, closed);
       continue;
     }

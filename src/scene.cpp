@@ -203,13 +203,39 @@ WallBarrier<D> plate_barrier(TableReader& r, const Wall<D>& w, const Vec<D>& box
   return b;
 }
 
-/// A wall's motion: `velocity`, `servo` or `fixed`. A servo moves a plane
-/// along its normal and a box (`box`) along its `direction`; its load may
-/// count the pore water's thrust (`load = "total"`) on a wall that
-/// displaces the fluid (`displaces_fluid`).
+/// A cylinder wall (`cylinder = { centre, radius, axis (3D), touched_from }`):
+/// in 3D infinite along its axis through `centre`, in 2D a circle.
 template <int D>
-void read_wall_motion(TableReader& r, bool box, bool displaces_fluid, Vec<D>& velocity, WallMotion& motion,
-                      ServoControl& servo, Vec<D>& servo_axis) {
+void read_cylinder(TableReader& r, const toml::table& table, Wall<D>& w) {
+  for (auto k : {"point", "normal", "box"}) {
+    if (r.has(k))
+      r.fail(k, fmt::format("a cylinder wall is placed by 'cylinder' alone; remove '{}' (a plane has 'point' "
+                            "and 'normal', a box 'box', a cylinder 'cylinder = {{ centre = [...], radius = "
+                            "... }}')",
+                            k));
+  }
+  TableReader cr(table, r.where() + " cylinder", r.file());
+  w.shape = WallShape::cylinder;
+  w.point = to_vec<D>(cr.numbers("centre", D));
+  w.radius = cr.check(
+      "radius", cr.number("radius"), [](double x) { return x > 0.0; }, "> 0 m");
+  if constexpr (D == 3) {
+    w.axis = read_direction<D>(cr, "axis", std::nullopt);
+  } else if (cr.has("axis")) {
+    cr.fail("axis", "a 2D cylinder is a circle about 'centre' in the plane of the discs: it has no axis");
+  }
+  w.from_inside = cr.optional_choice("touched_from", {"inside", "outside"}).value_or("inside") == "inside";
+  cr.finish();
+}
+
+/// A wall's motion: `velocity`, `servo` or `fixed`. A servo moves a plane
+/// along its normal and a box along its `direction` (a cylinder has none);
+/// its load may count the pore water's thrust (`load = "total"`) on a wall
+/// that displaces the fluid (`displaces_fluid`).
+template <int D>
+void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec<D>& velocity,
+                      WallMotion& motion, ServoControl& servo, Vec<D>& servo_axis) {
+  const bool box = shape == WallShape::box;
   r.allow({"velocity", "servo", "fixed"});
   const int given = int(r.has("velocity")) + int(r.has("servo")) + int(r.has("fixed"));
   if (given > 1) r.fail_table("give only one of 'velocity', 'servo' or 'fixed'");
@@ -217,6 +243,11 @@ void read_wall_motion(TableReader& r, bool box, bool displaces_fluid, Vec<D>& ve
     motion = WallMotion::velocity;
     velocity = to_vec<D>(r.numbers("velocity", D));
   } else if (const toml::table* s = r.optional_table("servo")) {
+    if (shape == WallShape::cylinder) {
+      r.fail("servo",
+             "a cylinder wall keeps its radius, so no servo can load the grains through it; give it a "
+             "'velocity' or leave it fixed (load through a plane or box wall instead)");
+    }
     TableReader sr(*s, r.where() + " servo", r.file());
     motion = WallMotion::servo;
     servo.target_force = sr.check("target_force", sr.number("target_force"), is_non_negative, ">= 0 N");
@@ -295,12 +326,18 @@ template <int D>
 void check_wall_in_period(TableReader& r, const Wall<D>& w, const PeriodicCell<D>& cell) {
   for (int k = 0; k < D; ++k) {
     if (!cell.periodic[k]) continue;
-    if (!w.is_box && w.normal[k] != 0.0) {
+    if (w.is_cylinder() && !(D == 3 && std::abs(w.axis[k]) == 1.0)) {
+      r.fail("cylinder",
+             fmt::format("a cylinder wall must run along the periodic axis {} (a 3D cylinder with its axis "
+                         "along it): walls are not repeated across periodic boundaries",
+                         "xyz"[k]));
+    }
+    if (w.is_plane() && w.normal[k] != 0.0) {
       r.fail("normal", fmt::format("a plane wall must be parallel to the periodic axis {} (normal[{}] = 0): "
                                    "particles leave through the periodic boundaries instead",
                                    "xyz"[k], k));
     }
-    if (w.is_box) {
+    if (w.is_box()) {
       const double extent = w.axes.row(k).cwiseAbs().dot(w.half);
       const double lo = cell.lower[k];
       const double hi = lo + cell.length[k];
@@ -681,18 +718,21 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                      TableReader::format_number(hi[k])));
         }
       }
-      w.is_box = true;
+      w.shape = WallShape::box;
       box_lo = lo;
       box_hi = hi;
       w.point = 0.5 * (lo + hi);
       w.half = 0.5 * (hi - lo);
       if (br.has("rotation")) w.axes = read_box_rotation<D>(br);
       br.finish();
+    } else if (const toml::table* ct = r.optional_table("cylinder")) {
+      read_cylinder<D>(r, *ct, w);
     } else {
       if (!r.has("point") && !r.has("normal")) {
         r.fail_table(
-            "a wall needs 'point' and 'normal' (an infinite plane) or 'box = { min = [...], max = "
-            "[...] }' (a box or plate)");
+            "a wall needs 'point' and 'normal' (an infinite plane), 'box = { min = [...], max = "
+            "[...] }' (a box or plate) or 'cylinder = { centre = [...], radius = ... }' (a cylinder; 2D: a "
+            "circle)");
       }
       w.point = to_vec<D>(r.numbers("point", D));
       w.normal = read_direction<D>(r, "normal", std::nullopt);
@@ -702,7 +742,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     // thickness, or plane, displaces the fluid and closes the faces it
     // covers.
     const bool impermeable = r.boolean_or("impermeable", false);
-    const bool plate = w.is_box && w.half.minCoeff() == 0.0;
+    const bool plate = w.is_box() && w.half.minCoeff() == 0.0;
     const bool sealed = impermeable && !plate;
     if (sealed && r.has("displaces_fluid") && !r.boolean_or("displaces_fluid", true)) {
       r.fail(
@@ -711,19 +751,25 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
           "wall permeable");
     }
     const bool displaces_fluid = r.boolean_or("displaces_fluid", false) || sealed;
-    read_wall_motion<D>(r, w.is_box, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis);
+    if (w.is_cylinder() && (impermeable || displaces_fluid)) {
+      r.fail(impermeable ? "impermeable" : "displaces_fluid",
+             "a cylinder wall lets the pore water through (the fluid's grid is Cartesian and cannot follow "
+             "its curve); leave this out, and bound the water with the grid's sides, barriers or impermeable "
+             "box walls");
+    }
+    read_wall_motion<D>(r, w.shape, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis);
     if (impermeable && plate) {
       wall_barriers.push_back(plate_barrier<D>(r, w, box_lo, box_hi));
     }
     wall_is_barrier.push_back(impermeable && plate);
     if (sealed) {
-      if (w.is_box && w.axes != Eigen::Matrix<double, D, D>::Identity()) {
+      if (w.is_box() && w.axes != Eigen::Matrix<double, D, D>::Identity()) {
         r.fail(
             "impermeable",
             "an impermeable box closes the fluid grid's faces it covers, so it lies along the grid's axes: "
             "it cannot be rotated");
       }
-      if (!w.is_box && grid_axis_of<D>(w.normal) < 0) {
+      if (w.is_plane() && grid_axis_of<D>(w.normal) < 0) {
         r.fail("impermeable",
                "an impermeable plane needs its normal along an axis of the fluid grid (e.g. [0, -1] for a "
                "platen over a 2D sample)");
@@ -732,13 +778,13 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     }
     if (displaces_fluid) {
       const std::string key = r.has("displaces_fluid") ? "displaces_fluid" : "impermeable";
-      if (!w.is_box && grid_axis_of<D>(w.normal) < 0) {
+      if (w.is_plane() && grid_axis_of<D>(w.normal) < 0) {
         r.fail("displaces_fluid",
                "a plane wall takes up the pore volume behind it only with its normal along an axis of the "
                "fluid grid (e.g. [0, -1] for a platen over a 2D sample); give a box wall for any other "
                "orientation");
       }
-      if (w.is_box && w.half.minCoeff() == 0.0) {
+      if (w.is_box() && w.half.minCoeff() == 0.0) {
         r.fail("displaces_fluid",
                "a plate (min = max along an axis) has no volume to take up; give it a thickness");
       }
@@ -1347,7 +1393,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         WallChange<D> c;
         c.wall = it->second;
         const bool displaces = std::find(solid_walls.begin(), solid_walls.end(), c.wall) != solid_walls.end();
-        read_wall_motion<D>(cr, sim.walls[c.wall].is_box, displaces, c.velocity, c.motion, c.servo,
+        read_wall_motion<D>(cr, sim.walls[c.wall].shape, displaces, c.velocity, c.motion, c.servo,
                             c.servo_axis);
         if (wall_is_barrier[c.wall] && c.motion != WallMotion::fixed) {
           cr.fail(c.motion == WallMotion::velocity ? "velocity" : "servo",

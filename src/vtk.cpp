@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <stdexcept>
 #include <type_traits>
 
@@ -94,7 +95,7 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
   const Vec<D> middle = 0.5 * (lo + hi);
   const double half_size = 0.55 * (hi - lo).norm();
   for (const auto& w : walls) {
-    if (w.is_box) {
+    if (w.is_box()) {
       // Corners counter-clockwise about the box's third axis (in 2D, the
       // plane's normal), then (3D) the same on the far side, in its own axes.
       const double xs[4] = {-1.0, 1.0, 1.0, -1.0};
@@ -109,6 +110,31 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
         }
       }
       types.push_back(D == 3 ? 12 : 9);  // VTK_HEXAHEDRON, VTK_QUAD
+    } else if (w.is_cylinder()) {
+      // 64 sides: in 2D a closed line round the circle, in 3D a strip of
+      // triangles between two rings across the view, as a plane is drawn.
+      constexpr int sides = 64;
+      Vec<3> u = Vec<3>::UnitX();
+      Vec<3> v = Vec<3>::UnitY();
+      Vec<3> along = Vec<3>::Zero();
+      Vec<3> centre = lift(w.point);
+      if constexpr (D == 3) {
+        along = w.axis;
+        centre += (middle - w.point).dot(w.axis) * w.axis;
+        u = unit_across<3>(w.axis);
+        v = along.cross(u);
+      }
+      for (int c = 0; c <= sides; ++c) {
+        const double a = 2.0 * std::numbers::pi * c / sides;
+        const Vec<3> rim = centre + w.radius * (std::cos(a) * u + std::sin(a) * v);
+        if constexpr (D == 3) {
+          points.push_back(rim - half_size * along);
+          points.push_back(rim + half_size * along);
+        } else {
+          points.push_back(rim);
+        }
+      }
+      types.push_back(D == 3 ? 6 : 4);  // VTK_TRIANGLE_STRIP, VTK_POLY_LINE
     } else {
       const Vec<D> centre = middle - (middle - w.point).dot(w.normal) * w.normal;
       if constexpr (D == 2) {

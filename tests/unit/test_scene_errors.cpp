@@ -276,7 +276,9 @@ TEST(SceneErrors, BoxWallsAreChecked) {
   EXPECT_NE(msg.find("key 'direction': a plane wall's servo moves it along its normal"), std::string::npos)
       << msg;
   msg = load_error(replace(good, "box = { min = [0.002, 0.0], max = [0.002, 0.002] }", ""));
-  EXPECT_NE(msg.find("a wall needs 'point' and 'normal' (an infinite plane) or 'box"), std::string::npos)
+  EXPECT_NE(msg.find("a wall needs 'point' and 'normal' (an infinite plane), 'box = { min = [...], max = "
+                     "[...] }' (a box or plate) or 'cylinder"),
+            std::string::npos)
       << msg;
   msg = load_error(replace(good, "min = [0.002, 0.0]", "min = [0.002, 0.0], size = 1"));
   EXPECT_NE(msg.find("unknown key 'size'"), std::string::npos) << msg;
@@ -295,6 +297,45 @@ TEST(SceneErrors, BoxWallsAreChecked) {
   EXPECT_EQ(load_error(staged), "");
   const auto scene = built_scene<2>(staged);
   EXPECT_EQ(scene.stages.front().walls.front().servo_axis, Vec<2>(-1.0, 0.0));  // normalised
+}
+
+TEST(SceneErrors, CylinderWallsAreChecked) {
+  // A drum of 3 mm radius round the column of discs (2D: a circle).
+  const std::string drum =
+      "\n[[wall]]\nname = \"drum\"\ncylinder = { centre = [0.0, 0.002], radius = 0.003 }\nmaterial = "
+      "\"sand\"\n";
+  const std::string good = replace(kGood, "[[particles]]", drum + "\n[[particles]]");
+  EXPECT_EQ(load_error(good), "");
+  const auto scene = built_scene<2>(good);
+  const auto& w = scene.simulation.walls.back();
+  EXPECT_TRUE(w.is_cylinder());
+  EXPECT_TRUE(w.from_inside);  // the default: a drum
+  EXPECT_EQ(w.radius, 0.003);
+  auto msg = load_error(replace(good, "radius = 0.003", "radius = 0.0"));
+  EXPECT_NE(msg.find("[[wall]] #2 cylinder key 'radius': must be > 0 m"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, "radius = 0.003", "radius = 0.003, axis = [0.0, 1.0]"));
+  EXPECT_NE(msg.find("cylinder key 'axis': a 2D cylinder is a circle"), std::string::npos) << msg;
+  msg = load_error(replace(good, "radius = 0.003", "radius = 0.003, touched_from = \"above\""));
+  EXPECT_NE(msg.find("key 'touched_from'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("inside"), std::string::npos) << msg;
+  msg = load_error(replace(good, "centre = [0.0, 0.002], ", ""));
+  EXPECT_NE(msg.find("centre"), std::string::npos) << msg;
+  msg = load_error(replace(good, "cylinder = {", "point = [0.0, 0.0]\ncylinder = {"));
+  EXPECT_NE(msg.find("key 'point': a cylinder wall is placed by 'cylinder' alone"), std::string::npos) << msg;
+  msg = load_error(replace(good, "radius = 0.003 }\nmaterial = \"sand\"",
+                           "radius = 0.003 }\nmaterial = \"sand\"\nservo = { target_force = 1.0, gain = 1.0, "
+                           "max_speed = 1.0 }"));
+  EXPECT_NE(msg.find("[[wall]] #2 key 'servo': a cylinder wall keeps its radius"), std::string::npos) << msg;
+  // Touched from outside, the discs would start inside the solid: refused
+  // as any overlap at the start is.
+  msg = load_error(replace(good, "radius = 0.003", "radius = 0.003, touched_from = \"outside\""));
+  EXPECT_NE(msg.find("overlaps wall \"drum\""), std::string::npos) << msg;
+  // The pore water passes through it.
+  msg = load_error(replace(good, "radius = 0.003 }\nmaterial = \"sand\"",
+                           "radius = 0.003 }\nmaterial = \"sand\"\ndisplaces_fluid = true"));
+  EXPECT_NE(msg.find("key 'displaces_fluid': a cylinder wall lets the pore water through"), std::string::npos)
+      << msg;
 }
 
 TEST(SceneErrors, BoxWallRotationsAreReadAndChecked) {

@@ -32,7 +32,7 @@ std::string temp_file(const std::string& name) {
 
 TEST(WallsVtu, PlateAndFloorIn3D) {
   Wall<3> plate;
-  plate.is_box = true;
+  plate.shape = WallShape::box;
   plate.point = Vec<3>(1.0, 1.5, 1.0);
   plate.half = Vec<3>(1.0, 1.5, 0.0);  // x 0..2, y 0..3 at z = 1
   plate.force = Vec<3>(0.0, 0.0, -2.5);
@@ -64,7 +64,7 @@ TEST(WallsVtu, PlateAndFloorIn3D) {
 
 TEST(WallsVtu, SegmentAndSlopeIn2D) {
   Wall<2> pile;
-  pile.is_box = true;
+  pile.shape = WallShape::box;
   pile.point = Vec<2>(0.02, 0.013);
   pile.half = Vec<2>(0.0, 0.007);
   Wall<2> slope;
@@ -73,7 +73,7 @@ TEST(WallsVtu, SegmentAndSlopeIn2D) {
   // A segment from (0, 0) to (2, 0) turned by 90 degrees about its middle:
   // from (1, -1) to (1, 1).
   Wall<2> turned;
-  turned.is_box = true;
+  turned.shape = WallShape::box;
   turned.point = Vec<2>(1.0, 0.0);
   turned.half = Vec<2>(1.0, 0.0);
   turned.axes << std::cos(std::numbers::pi / 2), -1.0, 1.0, std::cos(std::numbers::pi / 2);
@@ -102,6 +102,51 @@ TEST(WallsVtu, SegmentAndSlopeIn2D) {
   EXPECT_NEAR((a - b).norm(), 1.1 * 0.05, 1e-15);
   EXPECT_NEAR((0.5 * (a + b) - Vec<2>(0.02, 0.015)).norm(), 0.0, 1e-15);
   EXPECT_EQ(testing::vtk_array(text, "types"), (std::vector<double>{9, 3, 9}));  // quad, line, quad
+}
+
+TEST(WallsVtu, CylindersAreDrawnOnTheirSurface) {
+  // 3D: radius 0.5 about the axis (0, 0.6, 0.8) through (1, 1, 1), drawn
+  // across the view centred on the point of the axis nearest the middle
+  // of the drawing box (1, 1, 1): every point 0.5 from the axis, 0.55
+  // sqrt(12) along it either way.
+  Wall<3> cell;
+  cell.shape = WallShape::cylinder;
+  cell.point = Vec<3>(1.0, 1.0, 1.0) - 2.0 * Vec<3>(0.0, 0.6, 0.8);
+  cell.axis = Vec<3>(0.0, 0.6, 0.8);
+  cell.radius = 0.5;
+  const std::string path = temp_file("walls_cyl3d_");
+  write_walls_vtu<3>(path, {cell}, Vec<3>(0, 0, 0), Vec<3>(2, 2, 2));
+  const std::string text = read_all(path);
+  std::filesystem::remove(path);
+  EXPECT_NE(text.find("NumberOfPoints=\"130\" NumberOfCells=\"1\""), std::string::npos);
+  const auto p = testing::vtk_array(text, "position");
+  ASSERT_EQ(p.size(), 390U);
+  const double along = 0.55 * std::sqrt(12.0);
+  for (int c = 0; c < 130; ++c) {
+    const Vec<3> d = Vec<3>(p[3 * c], p[3 * c + 1], p[3 * c + 2]) - Vec<3>(1.0, 1.0, 1.0);
+    const double a = d.dot(cell.axis);
+    EXPECT_NEAR(std::abs(a), along, 1e-14) << c;
+    EXPECT_NEAR((d - a * cell.axis).norm(), 0.5, 1e-14) << c;
+  }
+  EXPECT_EQ(testing::vtk_array(text, "types"), (std::vector<double>{6}));  // a triangle strip
+  // 2D: a closed line round the circle of radius 2 about (1, -1).
+  Wall<2> drum;
+  drum.shape = WallShape::cylinder;
+  drum.point = Vec<2>(1.0, -1.0);
+  drum.radius = 2.0;
+  const std::string path2 = temp_file("walls_cyl2d_");
+  write_walls_vtu<2>(path2, {drum}, Vec<2>(0, 0), Vec<2>(1, 1));
+  const std::string text2 = read_all(path2);
+  std::filesystem::remove(path2);
+  const auto q = testing::vtk_array(text2, "position");
+  ASSERT_EQ(q.size(), 3U * 65U);
+  for (int c = 0; c < 65; ++c) {
+    EXPECT_NEAR(std::hypot(q[3 * c] - 1.0, q[3 * c + 1] + 1.0), 2.0, 1e-14) << c;
+    EXPECT_EQ(q[3 * c + 2], 0.0);
+  }
+  EXPECT_NEAR(q[0], q[3 * 64], 1e-14);  // closed
+  EXPECT_NEAR(q[1], q[3 * 64 + 1], 1e-14);
+  EXPECT_EQ(testing::vtk_array(text2, "types"), (std::vector<double>{4}));  // a poly-line
 }
 
 }  // namespace

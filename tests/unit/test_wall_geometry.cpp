@@ -1,7 +1,7 @@
 // Where a particle's centre stands against a wall (Wall::touch): planes as
 // before, and box walls touched on a face, an edge or a corner, from either
-// side, and from inside; each case against the nearest point worked out by
-// hand.
+// side, and from inside; cylinders from inside and outside; each case
+// against the nearest point worked out by hand.
 #include <gtest/gtest.h>
 
 #include "darcydem/walls/wall.hpp"
@@ -12,7 +12,7 @@ namespace {
 template <int D>
 Wall<D> box(const Vec<D>& lo, const Vec<D>& hi) {
   Wall<D> w;
-  w.is_box = true;
+  w.shape = WallShape::box;
   w.point = 0.5 * (lo + hi);
   w.half = 0.5 * (hi - lo);
   return w;
@@ -95,6 +95,55 @@ TEST(WallTouch, ABoxThatMovesSidewaysHasMovedAPlaneDoesNot) {
   floor.normal = Vec<3>(0, 0, 1);
   floor.point = Vec<3>(0.3, 0.4, 0.1);
   EXPECT_NEAR(floor.moved_since_build(), 0.1, kTol);
+}
+
+template <int D>
+Wall<D> cylinder(const Vec<D>& centre, double radius, const Vec<D>& axis, bool from_inside) {
+  Wall<D> w;
+  w.shape = WallShape::cylinder;
+  w.point = centre;
+  w.radius = radius;
+  w.axis = axis;
+  w.from_inside = from_inside;
+  return w;
+}
+
+TEST(WallTouch, ACylinderIsTouchedAcrossItsAxisFromTheSideItFaces) {
+  // Radius 5 about the axis (0, 0.6, 0.8) through (1, 1, 1). A point at
+  // (4, 1, 1) + 7 (0, 0.6, 0.8) is 3 from the axis along x: 2 inside the
+  // wall, its normal (from the wall towards the point) -x.
+  const Vec<3> axis(0, 0.6, 0.8);
+  const auto drum = cylinder<3>(Vec<3>(1, 1, 1), 5.0, axis, true);
+  expect_touch(drum.touch(Vec<3>(4, 1, 1) + 7.0 * axis), 2.0, Vec<3>(-1, 0, 0));
+  // Across the axis along (0, 0.8, -0.6), 6 from it: outside, pushed back in.
+  const Vec<3> across(0, 0.8, -0.6);
+  expect_touch(drum.touch(Vec<3>(1, 1, 1) + 6.0 * across - 2.0 * axis), -1.0, -across);
+  // Touched from outside (a pile): the same points, gaps of the other sign.
+  const auto pile = cylinder<3>(Vec<3>(1, 1, 1), 5.0, axis, false);
+  expect_touch(pile.touch(Vec<3>(4, 1, 1) + 7.0 * axis), -2.0, Vec<3>(1, 0, 0));
+  expect_touch(pile.touch(Vec<3>(1, 1, 1) + 6.0 * across), 1.0, across);
+  // On the axis: the gap is the radius, the normal some unit across it.
+  const auto on_axis = drum.touch(Vec<3>(1, 1, 1) + 3.0 * axis);
+  EXPECT_NEAR(on_axis.gap, 5.0, kTol);
+  EXPECT_NEAR(on_axis.normal.norm(), 1.0, kTol);
+  EXPECT_NEAR(on_axis.normal.dot(axis), 0.0, kTol);
+  // Moving along its axis it has not moved towards any particle.
+  auto moved = drum;
+  moved.point_at_build = moved.point;
+  moved.point += 2.0 * axis + Vec<3>(0.3, 0.4 * 0.8, -0.4 * 0.6);
+  EXPECT_NEAR(moved.moved_since_build(), 0.5, kTol);
+}
+
+TEST(WallTouch, A2DCylinderIsACircle) {
+  // Radius 2 about (1, -1): (1, -1) + (0.6, 0.8) is 1 from the centre.
+  const auto drum = cylinder<2>(Vec<2>(1, -1), 2.0, Vec<2>::Zero(), true);
+  const auto t = drum.touch(Vec<2>(1.6, -0.2));
+  EXPECT_NEAR(t.gap, 1.0, kTol);
+  EXPECT_NEAR((t.normal - Vec<2>(-0.6, -0.8)).norm(), 0.0, kTol);
+  const auto ring = cylinder<2>(Vec<2>(1, -1), 2.0, Vec<2>::Zero(), false);
+  const auto u = ring.touch(Vec<2>(1, -4));
+  EXPECT_NEAR(u.gap, 1.0, kTol);
+  EXPECT_NEAR((u.normal - Vec<2>(0, -1)).norm(), 0.0, kTol);
 }
 
 }  // namespace

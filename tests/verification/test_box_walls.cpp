@@ -23,7 +23,7 @@ template <int D>
 Wall<D> box_wall(const Vec<D>& lo, const Vec<D>& hi, const char* name = "plate") {
   Wall<D> w;
   w.name = name;
-  w.is_box = true;
+  w.shape = WallShape::box;
   w.point = 0.5 * (lo + hi);
   w.half = 0.5 * (hi - lo);
   return w;

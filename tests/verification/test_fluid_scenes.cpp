@@ -938,7 +938,7 @@ TEST(FluidScenes, ConsolidationUnderASealedPlanePlaten) {
        {"max_speed = 0.05, direction = [0.0, -1.0] }", "max_speed = 0.05 }"},
        {"max_speed = 0.05, direction = [0.0, -1.0], load", "max_speed = 0.05, load"}},
       "sealed_platen");
-  ASSERT_FALSE(run.scene.simulation.walls.back().is_box);
+  ASSERT_FALSE(run.scene.simulation.walls.back().is_box());
   expect_sealed_piston(run, "sealed plane platen");
 }
 

@@ -235,7 +235,7 @@ TEST(ServoWall, ReachesTargetLoadAndSpringCompression) {
 TEST(ServoWall, ABoxLidPushesAlongItsDirection) {
   Wall<2> lid;
   lid.name = "lid";
-  lid.is_box = true;
+  lid.shape = WallShape::box;
   lid.half = Vec<2>(2e-3, 1e-3);
   lid.motion = WallMotion::servo;
   lid.servo_axis = Vec<2>(0, -1);

@@ -24,7 +24,7 @@ Wall<D> moving_box(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& v,
                    const Eigen::Matrix<double, D, D>& axes = Eigen::Matrix<double, D, D>::Identity()) {
   Wall<D> w;
   w.name = "rod";
-  w.is_box = true;
+  w.shape = WallShape::box;
   w.point = 0.5 * (lo + hi);
   w.half = 0.5 * (hi - lo);
   w.axes = axes;

@@ -1,12 +1,16 @@
 #pragma once
-// Walls: infinite planes and boxes. A plane's normal points into the
+// Walls: infinite planes, boxes and cylinders. A plane's normal points into the
 // granular domain; a particle touches it when its centre is closer to the
 // plane than its radius, and one behind it is pushed back out. A box wall is
 // a box with its own axes (those of the grid unless the scene rotates it;
 // possibly of zero thickness along one: a plate in 3D, a segment in 2D, such
 // as a sheet pile, a baffle or a hopper's side); particles touch it
 // from any side, on a face, an edge or a corner, along the line from the
-// box's nearest point to their centre. A wall is fixed, moves at a
+// box's nearest point to their centre. A cylinder (3D: infinite along its
+// axis; 2D: a circle, a drum) is touched from the side the scene says:
+// from inside (a drum, a triaxial or permeameter cell, an oedometer ring),
+// where a particle that has got outside is pushed back in, or from outside
+// (a pile, a pipe in a bed). A wall is fixed, moves at a
 // prescribed velocity, or is servo-controlled so that the load on it
 // approaches a target force: a plane along its normal, a box along its
 // servo_axis; the load is what the particles put on it, and with
@@ -23,6 +27,7 @@
 namespace darcydem {
 
 enum class WallMotion { fixed, velocity, servo };
+enum class WallShape { plane, box, cylinder };
 
 struct ServoControl {
   double target_force = 0.0;     ///< N, compressive load wanted on the wall
@@ -31,13 +36,32 @@ struct ServoControl {
   bool with_pore_water = false;  ///< the load includes Wall::water_force
 };
 
+/// A unit vector normal to `axis` (unit, or zero: then x's unit): the grid
+/// axis least along it, made normal to it.
+template <int D>
+Vec<D> unit_across(const Vec<D>& axis) {
+  int least = 0;
+  for (int k = 1; k < D; ++k) {
+    if (std::abs(axis[k]) < std::abs(axis[least])) least = k;
+  }
+  Vec<D> out = Vec<D>::Zero();
+  out[least] = 1.0;
+  out -= out.dot(axis) * axis;
+  return out.normalized();
+}
+
 template <int D>
 struct Wall {
   std::string name;
-  Vec<D> point = Vec<D>::Zero();   ///< a point of the plane, m (a box: its centre)
-  Vec<D> normal = Vec<D>::Zero();  ///< unit, pointing into the domain (a box: unused)
-  bool is_box = false;             ///< a box wall rather than a plane
-  Vec<D> half = Vec<D>::Zero();    ///< a box's half-extents, m (>= 0; from the scene)
+  Vec<D> point = Vec<D>::Zero();   ///< a point of the plane, m (a box: its centre; a cylinder: on its axis)
+  Vec<D> normal = Vec<D>::Zero();  ///< unit, pointing into the domain (a box, a cylinder: unused)
+  WallShape shape = WallShape::plane;
+  Vec<D> half = Vec<D>::Zero();  ///< a box's half-extents, m (>= 0; from the scene)
+  /// A cylinder's radius, m (> 0), its axis (3D, unit; zero in 2D, where
+  /// it is a circle) and whether the particles touch it from inside.
+  double radius = 0.0;
+  Vec<D> axis = Vec<D>::Zero();
+  bool from_inside = true;
   /// A box's own axes, as the columns of a rotation (from the scene).
   Eigen::Matrix<double, D, D> axes = Eigen::Matrix<double, D, D>::Identity();
   std::uint16_t material = 0;
@@ -68,8 +92,13 @@ struct Wall {
     double gap = 0.0;
     Vec<D> normal = Vec<D>::Zero();
   };
+  [[nodiscard]] bool is_box() const { return shape == WallShape::box; }
+  [[nodiscard]] bool is_plane() const { return shape == WallShape::plane; }
+  [[nodiscard]] bool is_cylinder() const { return shape == WallShape::cylinder; }
+
   [[nodiscard]] Touch touch(const Vec<D>& x) const {
-    if (!is_box) return {(x - point).dot(normal), normal};
+    if (shape == WallShape::plane) return {(x - point).dot(normal), normal};
+    if (shape == WallShape::cylinder) return cylinder_touch(x);
     // In the box's own axes.
     const Vec<D> d = axes.transpose() * (x - point);
     const Vec<D> outside = d - d.cwiseMax(-half).cwiseMin(half);
@@ -88,17 +117,37 @@ struct Wall {
     t.normal = (d[axis] < 0.0 ? -1.0 : 1.0) * axes.col(axis);
     return t;
   }
+  /// A cylinder's touch: d, x's offset from the axis across it, |d| = rho;
+  /// from inside the gap is radius - rho towards -d, from outside rho -
+  /// radius along d. On the axis itself (to round-off) any direction across
+  /// it will do.
+  [[nodiscard]] Touch cylinder_touch(const Vec<D>& x) const {
+    Vec<D> d = x - point;
+    if constexpr (D == 3) d -= d.dot(axis) * axis;
+    const double rho = d.norm();
+    Vec<D> out;
+    // Within round-off of the axis d has no direction worth the name.
+    if (rho > 1e-12 * radius) {
+      out = d / rho;
+    } else {
+      out = unit_across(axis);
+    }
+    return from_inside ? Touch{radius - rho, -out} : Touch{rho - radius, out};
+  }
   /// The gap alone (touch(x).gap).
   [[nodiscard]] double gap(const Vec<D>& x) const { return touch(x).gap; }
   /// How far the wall has come towards particles since the last contact
-  /// list build: along its normal for a plane, any way for a box.
+  /// list build: along its normal for a plane, any way for a box, across
+  /// its axis for a cylinder.
   [[nodiscard]] double moved_since_build() const {
-    const Vec<D> shift = point - point_at_build;
-    return is_box ? shift.norm() : std::abs(shift.dot(normal));
+    Vec<D> shift = point - point_at_build;
+    if (shape == WallShape::plane) return std::abs(shift.dot(normal));
+    if (shape == WallShape::cylinder && D == 3) shift -= shift.dot(axis) * axis;
+    return shift.norm();
   }
   /// The direction the wall moves in to load the particles more: a
-  /// plane's normal, a box's servo_axis.
-  [[nodiscard]] Vec<D> push_direction() const { return is_box ? servo_axis : normal; }
+  /// plane's normal, a box's servo_axis (a cylinder has no servo).
+  [[nodiscard]] Vec<D> push_direction() const { return shape == WallShape::plane ? normal : servo_axis; }
   /// Compressive load on the wall (N): the force's component against
   /// push_direction(), the particles' and, with servo.with_pore_water, the
   /// pore water's.
