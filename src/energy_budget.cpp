@@ -57,12 +57,17 @@ void Simulation<D>::account_kick(std::size_t i, const Vec<D>& v, const AngVec<D>
 }
 
 template <int D>
-void Simulation<D>::account_walls(const std::vector<Vec<D>>& points, const std::vector<Vec<D>>& forces) {
+void Simulation<D>::account_walls(const std::vector<Vec<D>>& points, const std::vector<Vec<D>>& forces,
+                                  const std::vector<double>& torques) {
   // The grains' force on a wall, taken as the mean of the step's start and
   // end (exact for a linear spring), times the wall's move: the work the
-  // grains did on it, which the wall did on them with the other sign.
+  // grains did on it, which the wall did on them with the other sign. A
+  // spinning cylinder's likewise from their moment about its axis times
+  // the angle it turned.
   for (std::size_t k = 0; k < walls.size(); ++k) {
-    energy.boundary_work -= 0.5 * (forces[k] + walls[k].force).dot(walls[k].point - points[k]);
+    const Wall<D>& w = walls[k];
+    energy.boundary_work -= 0.5 * (forces[k] + w.force).dot(w.point - points[k]);
+    if (w.spin != 0.0) energy.boundary_work -= 0.5 * (torques[k] + w.torque) * w.spin * time_step;
   }
 }
 
@@ -80,8 +85,10 @@ template void Simulation<2>::account_kick(std::size_t, const Vec<2>&, const AngV
                                           EnergyBudget&) const;
 template void Simulation<3>::account_kick(std::size_t, const Vec<3>&, const AngVec<3>&, double,
                                           EnergyBudget&) const;
-template void Simulation<2>::account_walls(const std::vector<Vec<2>>&, const std::vector<Vec<2>>&);
-template void Simulation<3>::account_walls(const std::vector<Vec<3>>&, const std::vector<Vec<3>>&);
+template void Simulation<2>::account_walls(const std::vector<Vec<2>>&, const std::vector<Vec<2>>&,
+                                           const std::vector<double>&);
+template void Simulation<3>::account_walls(const std::vector<Vec<3>>&, const std::vector<Vec<3>>&,
+                                           const std::vector<double>&);
 template double Simulation<2>::contact_dissipation() const;
 template double Simulation<3>::contact_dissipation() const;
 template double Simulation<2>::unaccounted_energy() const;

@@ -115,6 +115,8 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       return pick(sim.walls[probe.wall].point);
     case ProbeQuantity::wall_force:
       return pick(sim.walls[probe.wall].force);
+    case ProbeQuantity::wall_torque:
+      return sim.walls[probe.wall].torque;
     case ProbeQuantity::wall_fluid_force:
       if (fluid == nullptr) return 0.0;
       return pick(probe.barrier >= 0 ? fluid->barrier_thrust(static_cast<std::size_t>(probe.barrier))

@@ -269,6 +269,7 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
     w.velocity = c.motion == WallMotion::velocity ? c.velocity : Vec<D>::Zero();
     w.servo = c.servo;
     w.servo_axis = c.servo_axis;
+    w.spin = c.spin;
   }
 }
 

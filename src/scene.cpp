@@ -228,15 +228,28 @@ void read_cylinder(TableReader& r, const toml::table& table, Wall<D>& w) {
   cr.finish();
 }
 
-/// A wall's motion: `velocity`, `servo` or `fixed`. A servo moves a plane
-/// along its normal and a box along its `direction` (a cylinder has none);
+/// A wall's motion: `velocity`, `servo` or `fixed`, and a cylinder's
+/// `angular_velocity`. A servo moves a plane along its normal and a box
+/// along its `direction` (a cylinder has none);
 /// its load may count the pore water's thrust (`load = "total"`) on a wall
 /// that displaces the fluid (`displaces_fluid`).
 template <int D>
 void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec<D>& velocity,
-                      WallMotion& motion, ServoControl& servo, Vec<D>& servo_axis) {
+                      WallMotion& motion, ServoControl& servo, Vec<D>& servo_axis, double& spin) {
   const bool box = shape == WallShape::box;
-  r.allow({"velocity", "servo", "fixed"});
+  r.allow({"velocity", "servo", "fixed", "angular_velocity"});
+  // A cylinder's spin about its axis, whatever its translation.
+  if (auto w = r.optional_number("angular_velocity")) {
+    if (shape != WallShape::cylinder) {
+      r.fail("angular_velocity",
+             "turns a cylinder wall about its axis (a drum); a plane or box wall does not turn: give it a "
+             "'velocity'");
+    }
+    spin = r.check(
+        "angular_velocity", *w, [](double x) { return std::isfinite(x); },
+        D == 3 ? "a number, rad/s, right-handed about the cylinder's axis"
+               : "a number, rad/s, counter-clockwise");
+  }
   const int given = int(r.has("velocity")) + int(r.has("servo")) + int(r.has("fixed"));
   if (given > 1) r.fail_table("give only one of 'velocity', 'servo' or 'fixed'");
   if (r.has("velocity")) {
@@ -757,7 +770,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
              "its curve); leave this out, and bound the water with the grid's sides, barriers or impermeable "
              "box walls");
     }
-    read_wall_motion<D>(r, w.shape, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis);
+    read_wall_motion<D>(r, w.shape, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis, w.spin);
     if (impermeable && plate) {
       wall_barriers.push_back(plate_barrier<D>(r, w, box_lo, box_hi));
     }
@@ -1086,6 +1099,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "wall_position",
                                                 "wall_force",
                                                 "wall_fluid_force",
+                                                "wall_torque",
                                                 "kinetic_energy",
                                                 "elastic_energy",
                                                 "gravitational_energy",
@@ -1288,6 +1302,21 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       if (p.quantity == ProbeQuantity::wall_fluid_force)
         p.barrier = fluid_thrust_barrier(r, *scene.fluid, sim.walls, p.wall, wall_is_barrier[p.wall]);
       p.component = static_cast<int>(axis_component<D>(r, "component", true));
+    } else if (q == "wall_torque") {
+      p.quantity = ProbeQuantity::wall_torque;
+      const std::string w = r.string("wall");
+      auto it = wall_index.find(w);
+      if (it == wall_index.end() || !sim.walls[it->second].is_cylinder()) {
+        std::vector<std::string> cylinders;
+        for (const auto& wall : sim.walls) {
+          if (wall.is_cylinder()) cylinders.push_back("\"" + wall.name + "\"");
+        }
+        r.fail("wall", fmt::format("must name a cylinder wall (the moment about its axis); the scene's: {}",
+                                   cylinders.empty() ? std::string("none")
+                                                     : fmt::format("{}", fmt::join(cylinders, ", "))));
+      }
+      p.wall = it->second;
+      if (r.has("component")) r.fail("component", "does not apply: the moment is about the cylinder's axis");
     } else {
       for (auto k : {"particle", "component", "wall"}) {
         if (r.has(k)) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
@@ -1394,7 +1423,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         c.wall = it->second;
         const bool displaces = std::find(solid_walls.begin(), solid_walls.end(), c.wall) != solid_walls.end();
         read_wall_motion<D>(cr, sim.walls[c.wall].shape, displaces, c.velocity, c.motion, c.servo,
-                            c.servo_axis);
+                            c.servo_axis, c.spin);
         if (wall_is_barrier[c.wall] && c.motion != WallMotion::fixed) {
           cr.fail(c.motion == WallMotion::velocity ? "velocity" : "servo",
                   "an impermeable wall cannot move: its barrier is fixed in the fluid grid");

@@ -60,13 +60,16 @@ void Simulation<D>::advance(std::uint64_t count) {
   // With tracking the same operations, in separate sweeps.
   double moved = tracked ? tracked_kick(true) : kick_drift();
   std::vector<Vec<D>> wall_points, wall_forces;
+  std::vector<double> wall_torques;
   for (std::uint64_t s = 0; s < count; ++s) {
     if (tracked) {
       wall_points.clear();
       wall_forces.clear();
+      wall_torques.clear();
       for (const auto& w : walls) {
         wall_points.push_back(w.point);
         wall_forces.push_back(w.force);
+        wall_torques.push_back(w.torque);
       }
     }
     for (auto& w : walls) w.advance(time_step);
@@ -76,7 +79,7 @@ void Simulation<D>::advance(std::uint64_t count) {
     if (recording_) pair_force_.assign(list_.pair_count(), Vec<D>::Zero());
     if (tracked) {
       compute_forces(Finish::none);
-      account_walls(wall_points, wall_forces);
+      account_walls(wall_points, wall_forces, wall_torques);
       tracked_kick(false);
       moved = s + 1 < count ? tracked_kick(true) : 0.0;
     } else {
@@ -409,19 +412,24 @@ double Simulation<D>::compute_forces_with(Finish finish) {
         W.tangential[k].setZero();
         if constexpr (Rolling) W.rolling[k].setZero();
         W.force_on_particle[k].setZero();
+        W.torque_on_particle[k].setZero();
         continue;
       }
       const Vec<D> nrm = -touch.normal;
       const double arm_i = ri - overlap;
-      const Vec<D> v_rel = vi + cross(AngVec<D>(wi * arm_i), nrm) - w.velocity;
+      // Against the wall's surface where they touch (a spinning drum's moves).
+      const Vec<D> v_rel =
+          vi + cross(AngVec<D>(wi * arm_i), nrm) - w.surface_velocity(Vec<D>(xi + arm_i * nrm));
+      const AngVec<D> w_rel = w.spin == 0.0 ? wi : AngVec<D>(wi - w.angular_velocity());
       const auto c = evaluate_contact<D, Law>(contact_table(mat_i, w.material), nrm, overlap, arm_i, 0.0,
-                                              v_rel, wi, std::sqrt(1.0 / inv_mi), ri, dt, W.tangential[k],
+                                              v_rel, w_rel, std::sqrt(1.0 / inv_mi), ri, dt, W.tangential[k],
                                               Rolling ? &W.rolling[k] : nullptr);
       f += c.force_on_i;
       t += c.torque_i;
       if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
       touching += 1.0;
       W.force_on_particle[k] = c.force_on_i;
+      W.torque_on_particle[k] = c.torque_i;
     }
   };
 
@@ -777,10 +785,20 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     moved2 = run_blocks(0, blocks, [] {});
   }
 
-  for (auto& w : walls) w.force.setZero();
+  bool cylinders = false;
+  for (auto& w : walls) {
+    w.force.setZero();
+    w.torque = 0.0;
+    cylinders = cylinders || w.is_cylinder();
+  }
   for (std::int64_t i = 0; i < n; ++i) {
     for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
-      walls[W.wall[k]].force -= W.force_on_particle[k];
+      Wall<D>& w = walls[W.wall[k]];
+      w.force -= W.force_on_particle[k];
+      // The contact's action on the particle about the axis: its force at
+      // the particle's centre and its torque about that centre.
+      if (cylinders && w.is_cylinder())
+        w.torque -= w.moment_about_axis(p.position[i], W.force_on_particle[k], W.torque_on_particle[k]);
     }
   }
   return std::sqrt(moved2);

@@ -331,6 +331,21 @@ TEST(SceneErrors, CylinderWallsAreChecked) {
   // as any overlap at the start is.
   msg = load_error(replace(good, "radius = 0.003", "radius = 0.003, touched_from = \"outside\""));
   EXPECT_NE(msg.find("overlaps wall \"drum\""), std::string::npos) << msg;
+  // Only a cylinder turns, and only a cylinder has a torque probe.
+  EXPECT_EQ(load_error(replace(good, "radius = 0.003 }\nmaterial = \"sand\"",
+                               "radius = 0.003 }\nmaterial = \"sand\"\nangular_velocity = 2.0")),
+            "");
+  msg = load_error(replace(good, "normal = [0.0, 1.0]\nmaterial = \"sand\"",
+                           "normal = [0.0, 1.0]\nmaterial = \"sand\"\nangular_velocity = 2.0"));
+  EXPECT_NE(msg.find("key 'angular_velocity': turns a cylinder wall about its axis"), std::string::npos)
+      << msg;
+  msg = load_error(
+      replace(good, "[[stage]]",
+              "[[probe]]\nname = \"t\"\nquantity = \"wall_torque\"\nwall = \"floor\"\n\n[[stage]]"));
+  EXPECT_NE(
+      msg.find("key 'wall': must name a cylinder wall (the moment about its axis); the scene's: \"drum\""),
+      std::string::npos)
+      << msg;
   // The pore water passes through it.
   msg = load_error(replace(good, "radius = 0.003 }\nmaterial = \"sand\"",
                            "radius = 0.003 }\nmaterial = \"sand\"\ndisplaces_fluid = true"));

@@ -171,3 +171,69 @@ TEST(CylinderWalls, CylinderCellCarriesPartOfTheWeightByFriction) {
   EXPECT_GT(rough.cell, 0.01);
   EXPECT_LT(rough.cell, 0.24);
 }
+
+TEST(CylinderWalls, ASpinningDrumCarriesARollingDiscToTheAngleItsRollingResistanceHolds) {
+  // A disc (r = 0.5 mm) in a drum (R = 5 mm) turning at Omega = 1 rad/s
+  // counter-clockwise, rolling resistance mu_r = 0.2, friction 0.5, local
+  // damping to still its swing (it acts on the net force, zero at rest, so
+  // it leaves the rest state alone). At rest the disc rolls in place,
+  // spinning at Omega R / a: its rolling spring slips, so the wall's couple
+  // on it is mu_r r N against its turning relative to the drum, which the
+  // friction f balances at the arm a = r - delta: f a = mu_r r N, and f =
+  // m g sin(theta), N = m g cos(theta): tan(theta) = mu_r r / a, on the side
+  // the drum's bottom moves to (+x). The drum then gives the disc the power
+  // the rolling resistance takes, mu_r r N Omega (R / a - 1) (its moment
+  // times the relative spin), so its torque is minus that over Omega.
+  ContactSpec spec;
+  spec.normal_stiffness = 1e4;
+  spec.friction = 0.5;
+  spec.rolling_friction = 0.2;
+  auto sim = single_material<2>(2650.0, spec);
+  const double r = 5e-4;
+  const double drum_radius = 5e-3;
+  Wall<2> drum;
+  drum.name = "drum";
+  drum.shape = WallShape::cylinder;
+  drum.radius = drum_radius;
+  drum.spin = 1.0;
+  sim.walls.push_back(drum);
+  const double mass = ParticleData<2>::mass_of(2650.0, r);
+  sim.particles.add(Vec<2>(0.0, -(drum_radius - r)), r, 2650.0, 0, false);
+  sim.gravity[1] = -g;
+  sim.damping.local = 0.3;
+  sim.time_step = 0.05 * std::sqrt(mass / spec.normal_stiffness);
+  sim.track_energy = true;
+  sim.prepare();
+  while (sim.time < 1.0) sim.advance(1000);
+  const Vec<2> x = sim.particles.position[0];
+  const double theta = std::atan2(x[0], -x[1]);
+  const double normal = mass * g * std::cos(theta);
+  const double arm = r - normal / spec.normal_stiffness;
+  const double expected = std::atan(spec.rolling_friction * r / arm);
+  const double torque = -spec.rolling_friction * r * normal * (drum_radius / arm - 1.0);
+  // The power over 0.1 s at rest: boundary work against contact dissipation.
+  const double boundary0 = sim.energy.boundary_work;
+  const double lost0 = sim.contact_dissipation();
+  sim.advance(static_cast<std::uint64_t>(0.1 / sim.time_step));
+  const double power = -torque * 1.0;
+  std::printf(
+      "spinning drum: theta %.6f rad (closed form %.6f), torque %.6g N m (%.6g), spin %.5g rad/s "
+      "(Omega R / a %.5g); over 0.1 s boundary work %.6g J/m, contact dissipation %.6g, rolling power x "
+      "0.1 s %.6g\n",
+      theta, expected, sim.walls[0].torque, torque, sim.particles.angular_velocity[0][0], drum_radius / arm,
+      sim.energy.boundary_work - boundary0, sim.contact_dissipation() - lost0, 0.1 * power);
+  // After 1 s (the swing's period is 0.13 s; local damping 0.3 stills
+  // most of it). Measured: the angle 0.199408 against 0.198168 rad
+  // (+0.6 %), the torque -0.67 %, the spin -0.10 %, the power +0.31 %
+  // (boundary) and +0.15 % (dissipation). The residue is not yet explained:
+  // without the damping the disc keeps swinging (the spin reads 9.66 at an
+  // instant), so the rolling spring's stick and slip may leave it
+  // oscillating about the rest state. 1e-2 bounds what was measured and
+  // still catches the wall's couple left out of its torque or its power
+  // (the force's moment alone is R / (R - a) = 1.11 times the expected).
+  EXPECT_NEAR(theta / expected, 1.0, 1e-2);
+  EXPECT_NEAR(sim.walls[0].torque / torque, 1.0, 1e-2);
+  EXPECT_NEAR(sim.particles.angular_velocity[0][0] / (drum_radius / arm), 1.0, 1e-2);
+  EXPECT_NEAR((sim.energy.boundary_work - boundary0) / (0.1 * power), 1.0, 1e-2);
+  EXPECT_NEAR((sim.contact_dissipation() - lost0) / (0.1 * power), 1.0, 1e-2);
+}

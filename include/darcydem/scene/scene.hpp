@@ -23,6 +23,7 @@ enum class ProbeQuantity {
   wall_position,
   wall_force,
   wall_fluid_force,  ///< the excess pore water's thrust on a wall, N (PoreFluid::wall_thrust, barrier_thrust)
+  wall_torque,       ///< the particles' moment on a cylinder about its axis, N m (Wall::torque)
   kinetic_energy,
   elastic_energy,        ///< J, stored in the contacts' and bonds' springs (Simulation::elastic_energy)
   gravitational_energy,  ///< J, -sum m g.x (zero at the origin)
@@ -94,6 +95,7 @@ struct WallChange {
   Vec<D> velocity = Vec<D>::Zero();
   ServoControl servo;
   Vec<D> servo_axis = Vec<D>::Zero();  ///< a box's (Wall::servo_axis)
+  double spin = 0.0;                   ///< rad/s, a cylinder's (Wall::spin)
 };
 
 template <int D>

@@ -248,7 +248,8 @@ class Simulation {
                     EnergyBudget& sum) const;
   /// Adds the walls' work to `energy` over a step in which each moved from
   /// `points` with the forces `forces` on it at the step's start.
-  void account_walls(const std::vector<Vec<D>>& points, const std::vector<Vec<D>>& forces);
+  void account_walls(const std::vector<Vec<D>>& points, const std::vector<Vec<D>>& forces,
+                     const std::vector<double>& torques);
   /// Calls visit(contact, list slot k, first selected, second selected) for
   /// each contact between two particles of which one at least is selected
   /// (selected(p) holds), its geometry only: force and moments left zero

@@ -78,11 +78,48 @@ struct Wall {
   /// counts it with servo.with_pore_water.
   Vec<D> water_force = Vec<D>::Zero();
   Vec<D> point_at_build = Vec<D>::Zero();
+  /// A cylinder's spin about its axis, rad/s (right-handed about `axis`;
+  /// 2D counter-clockwise): its surface moves, its shape stays (a drum).
+  double spin = 0.0;
+  /// N m, the moment about a cylinder's axis of the particles' contacts on
+  /// it, forces and couples (zero on other walls): turning a drum takes
+  /// the power -torque x spin.
+  double torque = 0.0;
 
   /// The state a checkpoint keeps (the name comes from the scene).
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(point, normal, material, motion, velocity, servo, servo_axis, force, water_force, point_at_build);
+    ar(point, normal, material, motion, velocity, servo, servo_axis, force, water_force, point_at_build, spin,
+       torque);
+  }
+
+  /// The wall's velocity at a point c of its surface: its translation, and
+  /// a cylinder's spin.
+  [[nodiscard]] Vec<D> surface_velocity(const Vec<D>& c) const {
+    if (spin == 0.0) return velocity;
+    const Vec<D> arm = c - point;
+    if constexpr (D == 2) {
+      return velocity + spin * Vec<D>(-arm[1], arm[0]);
+    } else {
+      return velocity + spin * cross(axis, arm);
+    }
+  }
+  /// Its angular velocity, rad/s: a cylinder's spin about its axis.
+  [[nodiscard]] AngVec<D> angular_velocity() const {
+    if constexpr (D == 2) {
+      return AngVec<D>(spin);
+    } else {
+      return spin * axis;
+    }
+  }
+  /// The moment about a cylinder's axis of a force f at x and a couple t.
+  [[nodiscard]] double moment_about_axis(const Vec<D>& x, const Vec<D>& f, const AngVec<D>& t) const {
+    const Vec<D> arm = x - point;
+    if constexpr (D == 2) {
+      return arm[0] * f[1] - arm[1] * f[0] + t[0];
+    } else {
+      return (cross(arm, f) + t).dot(axis);
+    }
   }
 
   /// Where a particle centred at x stands against the wall: the gap from
@@ -174,15 +211,16 @@ struct Wall {
 /// plus the skin, with their contact history (CSR by particle).
 template <int D>
 struct WallContactList {
-  std::vector<std::uint32_t> offset;      ///< N+1
-  std::vector<std::uint16_t> wall;        ///< wall index of each candidate
-  std::vector<Vec<D>> tangential;         ///< tangential history
-  std::vector<AngVec<D>> rolling;         ///< rolling history (empty when unused)
-  std::vector<Vec<D>> force_on_particle;  ///< this step's force, N
+  std::vector<std::uint32_t> offset;          ///< N+1
+  std::vector<std::uint16_t> wall;            ///< wall index of each candidate
+  std::vector<Vec<D>> tangential;             ///< tangential history
+  std::vector<AngVec<D>> rolling;             ///< rolling history (empty when unused)
+  std::vector<Vec<D>> force_on_particle;      ///< this step's force, N
+  std::vector<AngVec<D>> torque_on_particle;  ///< this step's torque about the particle's centre, N m
 
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(offset, wall, tangential, rolling, force_on_particle);
+    ar(offset, wall, tangential, rolling, force_on_particle, torque_on_particle);
   }
 
   /// old_index[i] (if given) is the index particle i had at the last build.
@@ -192,7 +230,7 @@ struct WallContactList {
   [[nodiscard]] std::size_t memory_bytes() const {
     return offset.capacity() * sizeof(std::uint32_t) + wall.capacity() * sizeof(std::uint16_t) +
            tangential.capacity() * sizeof(Vec<D>) + rolling.capacity() * sizeof(AngVec<D>) +
-           force_on_particle.capacity() * sizeof(Vec<D>);
+           force_on_particle.capacity() * sizeof(Vec<D>) + torque_on_particle.capacity() * sizeof(AngVec<D>);
   }
 };
 
