@@ -228,9 +228,8 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
     json << fmt::format(
         "  \"energy\": {{\"gravity_work\": {:.17g}, \"fluid_work\": {:.17g}, \"external_work\": {:.17g}, "
         "\"boundary_work\": {:.17g}, \"damping_dissipation\": {:.17g}, \"contact_dissipation\": {:.17g}, "
-        "\"inserted_kinetic\": {:.17g}, \"removed_kinetic\": {:.17g}, \"kinetic\": {:.17g}, \"elastic\": "
-        "{:.17g}, "
-        "\"unaccounted\": {:.6g}}},\n",
+        "\"inserted_kinetic\": {:.17g}, \"removed_kinetic\": {:.17g}, "
+        "\"kinetic\": {:.17g}, \"elastic\": {:.17g}, \"unaccounted\": {:.6g}}},\n",
         e.gravity_work, e.field_work, e.external_work, e.boundary_work, e.damping_dissipation(),
         sim.contact_dissipation(), e.inserted_kinetic, e.removed_kinetic, sim.kinetic_energy(),
         sim.elastic_energy(), sim.unaccounted_energy());

@@ -144,17 +144,9 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
         types.push_back(3);  // VTK_LINE
       } else {
         // Two directions in the plane: from the axis least along the normal.
-        int least = 0;
-        for (int k = 1; k < 3; ++k) {
-          if (std::abs(w.normal[k]) < std::abs(w.normal[least])) least = k;
-        }
-        Vec<3> axis = Vec<3>::Zero();
-        axis[least] = 1.0;
         const Vec<3> n = lift(w.normal);
-        Vec<3> t1 = axis - axis.dot(n) * n;
-        t1.normalize();
-        const Vec<3> t2(n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
-                        n[0] * t1[1] - n[1] * t1[0]);
+        const Vec<3> t1 = unit_across<3>(n);
+        const Vec<3> t2 = cross(n, t1);
         const Vec<3> c = lift(centre);
         points.push_back(c - half_size * t1 - half_size * t2);
         points.push_back(c + half_size * t1 - half_size * t2);
