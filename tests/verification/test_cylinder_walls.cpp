@@ -2,9 +2,13 @@
 // grain swinging at the bottom of a drum is a pendulum of length R - r,
 // and one that rolls without slipping swings slower by sqrt(1 + I/(m a^2));
 // and a bed at rest in a cylindrical cell, whose floor and wall together
-// carry its weight, the wall none of it without friction.
+// carry its weight, the wall none of it without friction; a disc carried
+// up a spinning drum to the angle its rolling resistance holds; and a
+// rotating drum's torque and gravity's moment, which change the grains'
+// angular momentum about its axis by their impulse, to round-off.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -241,4 +245,150 @@ TEST(CylinderWalls, ASpinningDrumCarriesARollingDiscToTheAngleItsRollingResistan
   EXPECT_NEAR(sim.particles.angular_velocity[0][0] / (drum_radius / arm), 1.0, 1e-8);
   EXPECT_NEAR((sim.energy.boundary_work - boundary0) / (elapsed * power), 1.0, 1e-8);
   EXPECT_NEAR((sim.contact_dissipation() - lost0) / (elapsed * power), 1.0, 1e-8);
+}
+
+namespace {
+
+/// A rotating drum (2D: a circle; 3D: a horizontal cylinder along y
+/// between two end planes) a third full of grains of two sizes, turning at
+/// 3 rad/s from the start: the grains are carried up and avalanche. Over
+/// the run, the grains' angular momentum about the drum's axis changes by
+/// the time integral of the moments about it of the only external forces,
+/// the drum's contacts (minus its `torque`, forces and couples) and gravity.
+/// Contacts between grains are equal and opposite at one contact point
+/// (arms r - delta/2) and cancel; the end planes are frictionless and push
+/// along the axis. The leapfrog (kick, drift, kick) changes x m v only in
+/// its kicks, by x x F dt/2 at the kick's positions, so the identity holds
+/// step by step with the moments at each step's positions, trapezoid in
+/// time: to round-off.
+template <int D>
+void check_drum_momentum() {
+  ContactSpec spec;
+  spec.normal_stiffness = D == 2 ? 1e4 : 100.0;
+  spec.restitution = 0.5;
+  spec.friction = 0.5;
+  spec.rolling_friction = 0.1;
+  ContactSpec smooth = spec;
+  smooth.friction = 0.0;
+  smooth.rolling_friction = 0.0;
+  Simulation<D> sim;
+  const Material grain{"grain", 2650.0, 0.0, 0.0};
+  const Material end{"end", 2650.0, 0.0, 0.0};
+  sim.materials = {grain, end};
+  sim.contact_table = ContactTable(2);
+  sim.contact_table.set(0, 0, make_pair_parameters(grain, grain, spec));
+  sim.contact_table.set(0, 1, make_pair_parameters(grain, end, smooth));
+  sim.contact_table.set(1, 1, make_pair_parameters(end, end, smooth));
+  const double drum_radius = D == 2 ? 1e-2 : 5e-3;
+  const double length = 5e-3;  // 3D: between the end planes
+  Wall<D> drum;
+  drum.name = "drum";
+  drum.shape = WallShape::cylinder;
+  drum.radius = drum_radius;
+  drum.spin = 3.0;
+  if constexpr (D == 3) {
+    drum.axis = Vec<3>(0.0, 1.0, 0.0);
+    drum.point = Vec<3>(0.0, 0.5 * length, 0.0);
+    for (int s = 0; s < 2; ++s) {
+      Wall<3> plane;
+      plane.name = s == 0 ? "front" : "back";
+      plane.point = Vec<3>(0.0, s * length, 0.0);
+      plane.normal = Vec<3>(0.0, s == 0 ? 1.0 : -1.0, 0.0);
+      plane.material = 1;
+      sim.walls.push_back(plane);
+    }
+  }
+  sim.walls.insert(sim.walls.begin(), drum);
+  // Grains of 0.9 and 1.1 mm on a lattice of 1.15 mm, in the drum below
+  // 0.2 R under its axis, clear of the drum and the end planes.
+  const double spacing = 1.15e-3;
+  int count = 0;
+  const int n = static_cast<int>(drum_radius / spacing) + 1;
+  const int layers = D == 2 ? 1 : static_cast<int>(length / spacing);
+  for (int l = 0; l < layers; ++l) {
+    for (int i = -n; i <= n; ++i) {
+      for (int j = -n; j <= n; ++j) {
+        Vec<D> x = Vec<D>::Zero();
+        x[0] = i * spacing;
+        x[D - 1] = j * spacing;
+        if constexpr (D == 3) x[1] = (l + 0.5) * length / layers;
+        const double across = std::hypot(x[0], x[D - 1]);
+        if (across > drum_radius - 0.6e-3 || x[D - 1] > -0.2 * drum_radius) continue;
+        const double r = ((i + j + l) % 2 == 0 ? 0.45e-3 : 0.55e-3);
+        sim.particles.add(x, r, 2650.0, 0, false);
+        ++count;
+      }
+    }
+  }
+  sim.gravity[D - 1] = -g;
+  const double light = ParticleData<D>::mass_of(2650.0, 0.45e-3);
+  sim.time_step = 0.05 * std::sqrt(light / spec.normal_stiffness);
+  sim.prepare();
+  const Vec<D> centre = sim.walls[0].point;
+  // The grains' angular momentum about the axis, and the external moment.
+  auto momentum = [&] {
+    const auto& p = sim.particles;
+    double l = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Vec<D> a = p.position[i] - centre;
+      const double m = 1.0 / p.inv_mass[i];
+      if constexpr (D == 2) {
+        l += m * (a[0] * p.velocity[i][1] - a[1] * p.velocity[i][0]) +
+             p.angular_velocity[i][0] / p.inv_inertia[i];
+      } else {
+        l += m * (a[2] * p.velocity[i][0] - a[0] * p.velocity[i][2]) +
+             p.angular_velocity[i][1] / p.inv_inertia[i];
+      }
+    }
+    return l;
+  };
+  // The drum's and gravity's moments.
+  auto moments = [&] {
+    const auto& p = sim.particles;
+    double m = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Vec<D> a = p.position[i] - centre;
+      const Vec<D> w = sim.gravity / p.inv_mass[i];
+      m += D == 2 ? a[0] * w[1] - a[1] * w[0] : a[2] * w[0] - a[0] * w[2];
+    }
+    return std::array<double, 2>{-sim.walls[0].torque, m};
+  };
+  const double l0 = momentum();
+  double impulse = 0.0;
+  double scale = 0.0;  // the sum of the parts' sizes, for round-off
+  double drum_impulse = 0.0;
+  std::array<double, 2> before = moments();
+  const double duration = D == 2 ? 0.5 : 0.2;
+  while (sim.time < duration) {
+    sim.advance(1);
+    const std::array<double, 2> after = moments();
+    const double dt = sim.time_step;
+    impulse += 0.5 * (before[0] + after[0] + before[1] + after[1]) * dt;
+    drum_impulse += 0.5 * (before[0] + after[0]) * dt;
+    scale += 0.5 * (std::abs(before[0]) + std::abs(after[0]) + std::abs(before[1]) + std::abs(after[1])) * dt;
+    before = after;
+  }
+  const double change = momentum() - l0;
+  std::printf(
+      "%dD rotating drum, %d grains, %.2f s: angular momentum change %.9g kg m^2/s, impulse of the drum and "
+      "gravity %.9g (%+.2e of their sizes' sum %.4g; the drum's part %.4g)\n",
+      D, count, sim.time, change, impulse, (change - impulse) / scale, scale, drum_impulse);
+  EXPECT_GT(count, 60);
+  // The drum's moment is a sizeable part of the balance.
+  EXPECT_GT(std::abs(drum_impulse), 0.1 * scale);
+  // Measured: 1e-16 of the parts' sizes in 2D and 3D (round-off of the
+  // sums over steps and grains). 1e-12 leaves ten thousandfold for the
+  // order of the sums; the drum's contact couples left out of its torque
+  // are off by 2.2e-2 (2D) and 4.7e-2 (3D) of it (caught).
+  EXPECT_NEAR(change, impulse, 1e-12 * scale);
+}
+
+}  // namespace
+
+TEST(CylinderWalls, ARotatingDrumChangesTheGrainsAngularMomentumByItsTorqueAndGravitys) {
+  check_drum_momentum<2>();
+}
+
+TEST(CylinderWalls, ARotatingCylinderChangesTheSpheresAngularMomentumByItsTorqueAndGravitys) {
+  check_drum_momentum<3>();
 }
