@@ -4,6 +4,7 @@
 //   darcydem.run("scene.toml", out="out/run")   # as `darcydem run`, returns a summary dict
 //   model = darcydem.load("scene.toml")         # as `darcydem check`, at the first stage's start
 //   model.apply_stage("settle")                 # a stage's settings, as a run starts it
+//   model.set_wall_motion("drum", angular_velocity=2.0)  # a wall's motion between steps
 //   model.step(1000)                            # DEM steps, with the fluid's steps and inlets' grains among
 //   them model.positions, model.velocities           # numpy arrays (N, D), particles in creation order
 //   model.fluid.pressure                        # numpy array over the cells, indexed [i, j(, k)]
@@ -26,6 +27,7 @@
 #include <cstdint>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -165,6 +167,45 @@ class Model {
     for (const auto& n : stage_names()) allowed += (allowed.empty() ? "" : ", ") + ("'" + n + "'");
     throw py::value_error(fmt::format("{}: no stage '{}' (the scene's stages: {})", scene_.file, name,
                                       allowed.empty() ? "none" : allowed));
+  }
+
+  /// A wall's motion changed between steps, as a stage's `walls.NAME`
+  /// entry does (YADE's state.vel and state.angVel, PFC's wall attribute
+  /// velocity and spin): a velocity (which ends a servo) and, for a
+  /// cylinder, its spin about its axis.
+  void set_wall_motion(const std::string& name, const std::optional<std::vector<double>>& velocity,
+                       std::optional<double> angular_velocity) {
+    auto& walls = sim().walls;
+    auto it = std::find_if(walls.begin(), walls.end(), [&](const Wall<D>& w) { return w.name == name; });
+    if (it == walls.end()) {
+      std::string names;
+      for (const auto& w : walls) names += (names.empty() ? "" : ", ") + ("'" + w.name + "'");
+      throw py::value_error(fmt::format("set_wall_motion: no wall '{}' (the scene's walls: {})", name,
+                                        names.empty() ? "none" : names));
+    }
+    if (!velocity && !angular_velocity)
+      throw py::value_error(
+          "set_wall_motion: give velocity = [D numbers] (m/s), angular_velocity (rad/s), or both");
+    if (angular_velocity) {
+      if (!it->is_cylinder()) {
+        throw py::value_error(fmt::format(
+            "set_wall_motion: wall '{}' is not a cylinder, and only a cylinder turns about its axis "
+            "(a drum); give a plane or box wall a velocity",
+            name));
+      }
+      if (!std::isfinite(*angular_velocity))
+        throw py::value_error("set_wall_motion: angular_velocity must be a finite number, rad/s");
+    }
+    Vec<D> v = Vec<D>::Zero();
+    if (velocity) {
+      v = as_vec<D>(*velocity, "velocity");
+      if (!v.allFinite()) throw py::value_error("set_wall_motion: velocity must be finite, m/s");
+    }
+    if (velocity) {
+      it->motion = WallMotion::velocity;
+      it->velocity = v;
+    }
+    if (angular_velocity) it->spin = *angular_velocity;
   }
 
   /// `count` DEM steps, with a fluid step after every steps_per_update of
@@ -487,13 +528,27 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["point"] = as_tuple<D>(w.point);
               d["force"] = as_tuple<D>(w.force);
               d["water_force"] = as_tuple<D>(w.water_force);
+              d["shape"] = w.is_cylinder() ? "cylinder" : (w.is_box() ? "box" : "plane");
+              d["velocity"] = as_tuple<D>(w.velocity);
+              d["angular_velocity"] = w.spin;
+              d["torque"] = w.torque;
               walls.append(d);
             }
             return walls;
           },
           "each wall's name, point (a box: its centre; a cylinder: its centre, on its axis), m, the force "
-          "the particles exert on it, N, and "
-          "on a box that displaces the fluid the pore water's thrust, N (zero on other walls)")
+          "the particles exert on it, N, "
+          "on a box that displaces the fluid the pore water's thrust, N (zero on other walls), its shape "
+          "('plane', 'box', 'cylinder'), velocity, m/s, and a cylinder's angular_velocity about its axis, "
+          "rad/s, and torque, the particles' moment on it about its axis, N m (the probe wall_torque; zero "
+          "on "
+          "other walls)")
+      .def(
+          "set_wall_motion", &M::set_wall_motion, py::arg("name"), py::arg("velocity") = py::none(),
+          py::arg("angular_velocity") = py::none(),
+          "sets a wall's velocity, m/s (ending a servo), and a cylinder's angular_velocity about its axis, "
+          "rad/s (right-handed about it; 2D counter-clockwise), between steps, as a stage's walls.NAME entry "
+          "does")
       .def(
           "kinetic_energy", [](const M& s) { return s.sim().kinetic_energy(); }, "J")
       .def(
