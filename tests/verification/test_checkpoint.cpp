@@ -422,6 +422,24 @@ TEST(Checkpoint, ResumedBondedCantileverKeepsItsBondsBending) {
   expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 3000, 0);
 }
 
+TEST(Checkpoint, ResumedRotatingDrumKeepsTurning) {
+  // examples/dem_cases/rotating_drum.toml with 150 spheres, 0.1 s of
+  // settling (about 11 400 steps) and 0.1 s of turning, stopped at step 17 000,
+  // the drum turning: its spin and the torque its probe reads must come
+  // back, or the grains after the resume meet a still drum.
+  const fs::path dir = fresh_dir("rotating_drum");
+  fs::create_directories(dir);
+  const std::string text = darcydem::testing::scene_variant("examples/dem_cases/rotating_drum.toml",
+                                                            {{"count = 450", "count = 150"},
+                                                             {"duration = 0.6", "duration = 0.1"},
+                                                             {"duration = 3.0", "duration = 0.1"}});
+  const fs::path scene = dir / "drum.toml";
+  std::ofstream(scene) << text;
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  expect_resumed_run_writes_the_same_files<3>(scene.string(), out, 2, 17000, 1);
+}
+
 TEST(Checkpoint, ResumedCantileverKeepsItsBondsScatteredStrengths) {
   // The same cantilever with strengths scattered from bond to bond
   // (strength_weibull_modulus), stopped in stage "sag": each bond's factor
