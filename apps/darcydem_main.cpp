@@ -47,8 +47,9 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
     double duration = 0.0;
     for (const auto& stage : scene.stages) duration += stage.duration;
     std::cout << fmt::format(
-        "{}: OK ({}D, {} particles, {} walls, {} stage{}, time step {:.4g} s, at most {:.0f} steps)\n", file,
-        D, scene.simulation.particles.size(), scene.simulation.walls.size(), scene.stages.size(),
+        "{}: OK ({}D, {} particles, {} wall{}, {} stage{}, time step {:.4g} s, at most {:.0f} steps)\n", file,
+        D, scene.simulation.particles.size(), scene.simulation.walls.size(),
+        scene.simulation.walls.size() == 1 ? "" : "s", scene.stages.size(),
         scene.stages.size() == 1 ? "" : "s", scene.simulation.time_step,
         std::ceil(duration / scene.simulation.time_step));
     if (scene.simulation.particles.size() > 0) {

@@ -40,6 +40,8 @@ scene="$src/examples/column_settling/column.toml"
   && ok "check says what an infinite critical step means (only fixed particles)" || bad "check: critical step"
 "$exe" check "$src/examples/fluid_cases/sheet_pile_heave.toml" | grep -q "OK (2D, 508 particles, 4 walls" \
   && ok "check accepts a scene with a box wall" || bad "check: box wall"
+"$exe" check "$src/examples/dem_cases/rotating_drum.toml" | grep -q "OK (3D, 450 particles, 1 wall, 2 stages" \
+  && ok "check counts one wall in the singular" || bad "check: one wall"
 "$exe" check "$scene" | grep -q "^  grains: all d = 1 mm$" \
   && ok "check gives the grains' sizes" || bad "check: grains ($("$exe" check "$scene" | sed -n 2p))"
 "$exe" check "$src/examples/fluid_cases/graded_sand_seepage.toml" \
