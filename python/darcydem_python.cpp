@@ -5,8 +5,8 @@
 //   model = darcydem.load("scene.toml")         # as `darcydem check`, at the first stage's start
 //   model.apply_stage("settle")                 # a stage's settings, as a run starts it
 //   model.set_wall_motion("drum", angular_velocity=2.0)  # a wall's motion between steps
-//   model.step(1000)                            # DEM steps, with the fluid's steps and inlets' grains among
-//   them model.positions, model.velocities           # numpy arrays (N, D), particles in creation order
+//   model.step(1000)                            # DEM steps, with the fluid's and inlets' steps among them
+//   model.positions, model.velocities           # numpy arrays (N, D), particles in creation order
 //   model.fluid.pressure                        # numpy array over the cells, indexed [i, j(, k)]
 //   darcydem.consolidation_degree(t, height=H, conductivity=k, compressibility=m_v, fluid_storage=n/K_f)
 //                                               # Terzaghi's closed forms (analysis/seepage_analytic.hpp)
@@ -196,11 +196,9 @@ class Model {
       if (!std::isfinite(*angular_velocity))
         throw py::value_error("set_wall_motion: angular_velocity must be a finite number, rad/s");
     }
-    Vec<D> v = Vec<D>::Zero();
-    if (velocity) {
-      v = as_vec<D>(*velocity, "velocity");
-      if (!v.allFinite()) throw py::value_error("set_wall_motion: velocity must be finite, m/s");
-    }
+    // Both checked before either is set.
+    const Vec<D> v = velocity ? as_vec<D>(*velocity, "velocity") : Vec<D>::Zero();
+    if (!v.allFinite()) throw py::value_error("set_wall_motion: velocity must be finite, m/s");
     if (velocity) {
       it->motion = WallMotion::velocity;
       it->velocity = v;
@@ -540,9 +538,8 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "the particles exert on it, N, "
           "on a box that displaces the fluid the pore water's thrust, N (zero on other walls), its shape "
           "('plane', 'box', 'cylinder'), velocity, m/s, and a cylinder's angular_velocity about its axis, "
-          "rad/s, and torque, the particles' moment on it about its axis, N m (the probe wall_torque; zero "
-          "on "
-          "other walls)")
+          "rad/s, and torque, the particles' moment on it about its axis, N m (the probe wall_torque; "
+          "zero on other walls)")
       .def(
           "set_wall_motion", &M::set_wall_motion, py::arg("name"), py::arg("velocity") = py::none(),
           py::arg("angular_velocity") = py::none(),

@@ -710,6 +710,12 @@ class SpinningDrum(unittest.TestCase):
             m.set_wall_motion("drum")
         with self.assertRaisesRegex(ValueError, "finite"):
             m.set_wall_motion("drum", angular_velocity=float("nan"))
+        with self.assertRaisesRegex(ValueError, "velocity: 2 numbers expected, 3 given"):
+            m.set_wall_motion("floor", velocity=[0.0, 0.0, 1.0])
+        with self.assertRaisesRegex(ValueError, "velocity must be finite"):
+            m.set_wall_motion("floor", velocity=[0.0, float("inf")])
+        # Nothing refused was set.
+        self.assertEqual([(w["velocity"], w["angular_velocity"]) for w in m.walls], [((0.0, 0.0), 0.0)] * 2)
         m.set_wall_motion("floor", velocity=[0.0, -0.1])
         floor = next(w for w in m.walls if w["name"] == "floor")
         self.assertEqual(floor["velocity"], (0.0, -0.1))
