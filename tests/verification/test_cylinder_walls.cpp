@@ -136,13 +136,8 @@ struct CellLoads {
 };
 
 CellLoads settle_in_cell(const std::string& mu_wall) {
-  using darcydem::testing::file_contents;
-  std::string text =
-      file_contents(std::string(DARCYDEM_SOURCE_DIR) + "/examples/dem_cases/cylinder_cell.toml");
-  const std::string key = "friction = 0.4";
-  const auto at = text.find(key);
-  if (at == std::string::npos) throw std::runtime_error("cylinder_cell.toml: no 'friction = 0.4'");
-  text.replace(at, key.size(), "friction = " + mu_wall);
+  const std::string text = darcydem::testing::scene_variant("examples/dem_cases/cylinder_cell.toml",
+                                                            {{"friction = 0.4", "friction = " + mu_wall}});
   const auto scene = darcydem::testing::scene_from_text<3>(darcydem::testing::temp_dir("cylinder_cell_mass"),
                                                            "scene.toml", text);
   double mass = 0.0;
@@ -170,8 +165,12 @@ TEST(CylinderWalls, CylinderCellCarriesPartOfTheWeightByFriction) {
   // A smooth cell pushes across its axis only: no vertical load at all.
   EXPECT_EQ(smooth.cell, 0.0);
   // A rough one carries a part by friction (Janssen's arching): a bed 1.6
-  // radii high poured and settled carried 3.1 %; fully mobilised friction
-  // (K = 0.45) would carry 24 %. Some of it, and less than that.
+  // radii high poured and settled carried 3.1 % at 2334d99 and 2.5 % since
+  // bdc64d1 (spinning walls), whose contact against a still wall is the same
+  // up to round-off (not traced further); the pour is chaotic, and the
+  // smooth cell's 1.000019 did not move;
+  // fully mobilised friction (K = 0.45) would carry 24 %. Some of it, and
+  // less than that.
   EXPECT_GT(rough.cell, 0.01);
   EXPECT_LT(rough.cell, 0.24);
 }
@@ -401,16 +400,9 @@ TEST(CylinderWalls, RotatingDrumExampleTurnsWithItsTorqueBalancingTheBedsWeight)
   // window the drum's mean torque balances the mean moment of their weight,
   // M g x_cm (one size of grain: the mean centre is the centre of mass),
   // up to Delta L / window.
-  using darcydem::testing::file_contents;
-  std::string text =
-      file_contents(std::string(DARCYDEM_SOURCE_DIR) + "/examples/dem_cases/rotating_drum.toml");
-  auto replace = [&](const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    if (at == std::string::npos) throw std::runtime_error("rotating_drum.toml: no '" + from + "'");
-    text.replace(at, from.size(), to);
-  };
-  replace("duration = 3.0", "duration = 1.4");
-  replace("probe_interval = 0.005", "probe_interval = 0.001");
+  const std::string text = darcydem::testing::scene_variant(
+      "examples/dem_cases/rotating_drum.toml",
+      {{"duration = 3.0", "duration = 1.4"}, {"probe_interval = 0.005", "probe_interval = 0.001"}});
   const auto scene = darcydem::testing::scene_from_text<3>(darcydem::testing::temp_dir("rotating_drum_mass"),
                                                            "scene.toml", text);
   double mass = 0.0;
