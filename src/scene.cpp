@@ -7,6 +7,7 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <tuple>
 
 #include <unistd.h>
 
@@ -20,6 +21,7 @@
 #include "darcydem/scene/scene_inlet.hpp"
 #include "darcydem/scene/scene_sizes.hpp"
 #include "darcydem/scene/toml_reader.hpp"
+#include "darcydem/walls/loaded_area.hpp"
 
 namespace darcydem {
 namespace {
@@ -263,7 +265,23 @@ void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec
     }
     TableReader sr(*s, r.where() + " servo", r.file());
     motion = WallMotion::servo;
-    servo.target_force = sr.check("target_force", sr.number("target_force"), is_non_negative, ">= 0 N");
+    servo = ServoControl{};
+    if (sr.has("target_force") == sr.has("target_stress")) {
+      sr.fail_table(
+          "a servo needs one of 'target_force' (N, the load wanted on the wall) or 'target_stress' (Pa, a "
+          "plane wall's load over the cross-section the other walls bound: a triaxial or biaxial test)");
+    }
+    if (sr.has("target_stress")) {
+      if (shape != WallShape::plane) {
+        sr.fail("target_stress",
+                "is for a plane wall, whose loaded area the other walls bound; give a box wall a "
+                "'target_force'");
+      }
+      servo.by_stress = true;
+      servo.target_stress = sr.check("target_stress", sr.number("target_stress"), is_non_negative, ">= 0 Pa");
+    } else {
+      servo.target_force = sr.check("target_force", sr.number("target_force"), is_non_negative, ">= 0 N");
+    }
     servo.gain = sr.check("gain", sr.number("gain"), is_positive, "> 0 m/(s N)");
     servo.max_speed = sr.check("max_speed", sr.number("max_speed"), is_positive, "> 0 m/s");
     if (box) {
@@ -289,6 +307,20 @@ void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec
       r.fail("fixed", "only 'fixed = true' makes sense; give 'velocity' to move it");
     motion = WallMotion::fixed;
   }
+}
+
+/// A stress-controlled servo (read by read_wall_motion from r's 'servo')
+/// needs walls[i]'s loaded area: fails at its 'target_stress' otherwise.
+template <int D>
+void require_loaded_area(TableReader& r, const std::vector<Wall<D>>& walls, std::size_t i,
+                         const PeriodicCell<D>& cell) {
+  const LoadedArea a = loaded_area(walls, i, cell);
+  if (a.why_not.empty()) return;
+  TableReader sr(*r.optional_table("servo"), r.where() + " servo", r.file());
+  sr.fail("target_stress",
+          fmt::format("loads wall \"{}\" over the sample's cross-section, and {}; give 'target_force' (N) "
+                      "instead",
+                      walls[i].name, a.why_not));
 }
 
 template <int D>
@@ -706,6 +738,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   std::vector<std::size_t> solid_walls;        // walls that take up pore volume
   std::vector<std::size_t> impermeable_walls;  // of them, those that close the faces they cover
   std::string solid_wall_prefix;               // where the first was asked for
+  std::vector<std::tuple<std::size_t, const toml::table*, std::string>> stress_servos;
   for_each_table(top, "wall", "wall", [&](TableReader& r, int) {
     Wall<D> w;
     w.name = r.string("name");
@@ -808,10 +841,18 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       solid_walls.push_back(sim.walls.size());
     }
     check_wall_in_period<D>(r, w, sim.periodic);
+    if (w.motion == WallMotion::servo && w.servo.by_stress) {
+      stress_servos.emplace_back(sim.walls.size(), &r.table(), r.where());
+    }
     wall_index[w.name] = sim.walls.size();
     wall_names.push_back(w.name);
     sim.walls.push_back(w);
   });
+  // A stress servo's loaded area is bounded by walls read after it too.
+  for (const auto& [i, table, where] : stress_servos) {
+    TableReader r(*table, where, file);
+    require_loaded_area<D>(r, sim.walls, i, sim.periodic);
+  }
 
   // [[particles]]
   std::vector<std::string> origin;
@@ -1084,6 +1125,17 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     r.finish();
   }
   std::vector<std::string> probe_names;
+  // A probe's 'wall', by name.
+  const auto probe_wall = [&](TableReader& r) {
+    const std::string w = r.string("wall");
+    auto it = wall_index.find(w);
+    if (it == wall_index.end()) {
+      std::string hint;
+      if (auto s = did_you_mean(w, wall_names); !s.empty()) hint = fmt::format(" (did you mean \"{}\"?)", s);
+      r.fail("wall", fmt::format("no wall named \"{}\"{}", w, hint));
+    }
+    return it->second;
+  };
   for_each_table(top, "probe", "probe", [&](TableReader& r, int) {
     ProbeSpec p;
     p.name = r.string("name");
@@ -1100,6 +1152,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "wall_force",
                                                 "wall_fluid_force",
                                                 "wall_torque",
+                                                "wall_stress",
                                                 "kinetic_energy",
                                                 "elastic_energy",
                                                 "gravitational_energy",
@@ -1290,18 +1343,21 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       p.quantity = q == "wall_position" ? ProbeQuantity::wall_position
                    : q == "wall_force"  ? ProbeQuantity::wall_force
                                         : ProbeQuantity::wall_fluid_force;
-      const std::string w = r.string("wall");
-      auto it = wall_index.find(w);
-      if (it == wall_index.end()) {
-        std::string hint;
-        if (auto s = did_you_mean(w, wall_names); !s.empty())
-          hint = fmt::format(" (did you mean \"{}\"?)", s);
-        r.fail("wall", fmt::format("no wall named \"{}\"{}", w, hint));
-      }
-      p.wall = it->second;
+      p.wall = probe_wall(r);
       if (p.quantity == ProbeQuantity::wall_fluid_force)
         p.barrier = fluid_thrust_barrier(r, *scene.fluid, sim.walls, p.wall, wall_is_barrier[p.wall]);
       p.component = static_cast<int>(axis_component<D>(r, "component", true));
+    } else if (q == "wall_stress") {
+      p.quantity = ProbeQuantity::wall_stress;
+      p.wall = probe_wall(r);
+      if (const LoadedArea a = loaded_area(sim.walls, p.wall, sim.periodic); !a.why_not.empty()) {
+        r.fail("wall",
+               fmt::format("wall \"{}\" has no loaded area to divide its load by: {} (allowed: a plane "
+                           "wall normal to an axis, its cross-section bounded by a pair of plane walls "
+                           "or a period along each other axis, or in 3D by a cylinder along its normal)",
+                           sim.walls[p.wall].name, a.why_not));
+      }
+      if (r.has("component")) r.fail("component", "does not apply: the stress is normal to the wall");
     } else if (q == "wall_torque") {
       p.quantity = ProbeQuantity::wall_torque;
       const std::string w = r.string("wall");
@@ -1424,6 +1480,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         const bool displaces = std::find(solid_walls.begin(), solid_walls.end(), c.wall) != solid_walls.end();
         read_wall_motion<D>(cr, sim.walls[c.wall].shape, displaces, c.velocity, c.motion, c.servo,
                             c.servo_axis, c.spin);
+        if (c.motion == WallMotion::servo && c.servo.by_stress) {
+          require_loaded_area<D>(cr, sim.walls, c.wall, sim.periodic);
+        }
         if (wall_is_barrier[c.wall] && c.motion != WallMotion::fixed) {
           cr.fail(c.motion == WallMotion::velocity ? "velocity" : "servo",
                   "an impermeable wall cannot move: its barrier is fixed in the fluid grid");

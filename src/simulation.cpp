@@ -17,6 +17,7 @@
 #include "darcydem/core/deterministic_sum.hpp"
 #include "darcydem/core/parallel.hpp"
 #include "darcydem/simulation/kick.hpp"
+#include "darcydem/walls/loaded_area.hpp"
 
 namespace darcydem {
 
@@ -72,6 +73,7 @@ void Simulation<D>::advance(std::uint64_t count) {
         wall_torques.push_back(w.torque);
       }
     }
+    update_stress_servos();
     for (auto& w : walls) w.advance(time_step);
     time += time_step;
     rebuild_if_needed(moved);
@@ -264,6 +266,21 @@ std::vector<std::uint32_t> Simulation<D>::remove_outside_domain() {
   if (field_force_.size() == n) ParticleData<D>::reorder(field_force_, kept);
   particles.permute(kept);
   return kept;
+}
+
+template <int D>
+void Simulation<D>::update_stress_servos() {
+  for (std::size_t i = 0; i < walls.size(); ++i) {
+    ServoControl& servo = walls[i].servo;
+    if (walls[i].motion != WallMotion::servo || !servo.by_stress) continue;
+    const LoadedArea a = loaded_area(walls, i, periodic);
+    if (!a.why_not.empty()) {
+      throw std::runtime_error(
+          fmt::format("wall \"{}\": its servo's target_stress needs a loaded area, but {} (at t = {} s)",
+                      walls[i].name, a.why_not, time));
+    }
+    servo.target_force = servo.target_stress * a.area;
+  }
 }
 
 template <int D>

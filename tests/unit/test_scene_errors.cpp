@@ -299,6 +299,81 @@ TEST(SceneErrors, BoxWallsAreChecked) {
   EXPECT_EQ(scene.stages.front().walls.front().servo_axis, Vec<2>(-1.0, 0.0));  // normalised
 }
 
+TEST(SceneErrors, StressServosAreChecked) {
+  // A lid over the column, between two side walls: its loaded length is
+  // the 2 mm between them (x 1 m).
+  const std::string sides =
+      "\n[[wall]]\nname = \"left\"\npoint = [-0.001, 0.0]\nnormal = [1.0, 0.0]\nmaterial = \"sand\"\n"
+      "\n[[wall]]\nname = \"right\"\npoint = [0.001, 0.0]\nnormal = [-1.0, 0.0]\nmaterial = \"sand\"\n";
+  const std::string lid =
+      "\n[[wall]]\nname = \"lid\"\npoint = [0.0, 0.004]\nnormal = [0.0, -1.0]\nmaterial = \"sand\"\n"
+      "servo = { target_stress = 1000.0, gain = 1e-3, max_speed = 0.01 }\n";
+  const std::string probe = "\n[[probe]]\nname = \"s\"\nquantity = \"wall_stress\"\nwall = \"lid\"\n";
+  const std::string good = replace(kGood, "[[particles]]", lid + sides + probe + "\n[[particles]]");
+  EXPECT_EQ(load_error(good), "");
+  const auto scene = built_scene<2>(good);
+  EXPECT_TRUE(scene.simulation.walls[1].servo.by_stress);
+  EXPECT_EQ(scene.simulation.walls[1].servo.target_stress, 1000.0);
+  // The sides may come after the lid; without one, the lid has no area.
+  std::string msg = load_error(replace(kGood, "[[particles]]", lid + "\n[[particles]]"));
+  EXPECT_NE(msg.find("[[wall]] #2 servo key 'target_stress': loads wall \"lid\" over the sample's "
+                     "cross-section, and its cross-section needs, along x, one plane wall facing +x and one "
+                     "facing -x (or a periodic x); there are 0 and 0; give 'target_force' (N) instead"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "target_stress = 1000.0", "target_stress = 1000.0, target_force = 1.0"));
+  EXPECT_NE(
+      msg.find("a servo needs one of 'target_force' (N, the load wanted on the wall) or 'target_stress'"),
+      std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "target_stress = 1000.0, ", ""));
+  EXPECT_NE(msg.find("a servo needs one of 'target_force'"), std::string::npos) << msg;
+  msg = load_error(replace(good, "target_stress = 1000.0", "target_stress = -1.0"));
+  EXPECT_NE(msg.find("key 'target_stress': must be >= 0 Pa, got -1"), std::string::npos) << msg;
+  // A tilted plane's cross-section is not bounded by walls along the axes.
+  msg = load_error(replace(good, "normal = [0.0, -1.0]", "normal = [0.6, -0.8]"));
+  EXPECT_NE(msg.find("its normal is not along an axis"), std::string::npos) << msg;
+  // A box has no loaded area: give it a force.
+  msg = load_error(replace(good, "point = [0.0, 0.004]\nnormal = [0.0, -1.0]",
+                           "box = { min = [-0.001, 0.004], max = [0.001, 0.005] }"));
+  EXPECT_NE(msg.find("key 'target_stress': is for a plane wall, whose loaded area the other walls bound"),
+            std::string::npos)
+      << msg;
+  // A stage that makes the floor a stress servo: the side walls bound it;
+  // two walls facing +x and none facing -x do not; nor do no side walls.
+  // The probe on a plane the walls do not bound is refused.
+  const std::string staged =
+      replace(good, "gravity = [0.0, -9.81]",
+              "gravity = [0.0, -9.81]\nwalls.floor = { servo = { target_stress = 10.0, "
+              "gain = 1e-3, max_speed = 0.01 } }");
+  EXPECT_EQ(load_error(staged), "");
+  msg = load_error(replace(staged, "normal = [-1.0, 0.0]", "normal = [1.0, 0.0]"));
+  EXPECT_NE(msg.find("there are 2 and 0"), std::string::npos) << msg;
+  msg = load_error(replace(replace(kGood, "gravity = [0.0, -9.81]",
+                                   "gravity = [0.0, -9.81]\nwalls.floor = { servo = { target_stress = 10.0, "
+                                   "gain = 1e-3, max_speed = 0.01 } }"),
+                           "[[particles]]", sides + "\n[[particles]]"));
+  EXPECT_EQ(msg, "");
+  msg = load_error(
+      replace(kGood, "gravity = [0.0, -9.81]",
+              "gravity = [0.0, -9.81]\nwalls.floor = { servo = { target_stress = 10.0, gain = 1e-3, "
+              "max_speed = 0.01 } }"));
+  EXPECT_NE(msg.find("[[stage]] #1 walls.floor servo key 'target_stress': loads wall \"floor\""),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(kGood, "[[particles]]", probe + "\n[[particles]]"));
+  EXPECT_NE(msg.find("no wall named \"lid\""), std::string::npos) << msg;
+  msg = load_error(replace(replace(kGood, "[[particles]]", probe + "\n[[particles]]"), "wall = \"lid\"",
+                           "wall = \"floor\""));
+  EXPECT_NE(msg.find("key 'wall': wall \"floor\" has no loaded area to divide its load by: its cross-section "
+                     "needs, along x"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "wall = \"lid\"", "wall = \"lid\"\ncomponent = \"y\""));
+  EXPECT_NE(msg.find("key 'component': does not apply: the stress is normal to the wall"), std::string::npos)
+      << msg;
+}
+
 TEST(SceneErrors, CylinderWallsAreChecked) {
   // A drum of 3 mm radius round the column of discs (2D: a circle).
   const std::string drum =

@@ -4,6 +4,10 @@
 // against the nearest point worked out by hand.
 #include <gtest/gtest.h>
 
+#include <numbers>
+#include <vector>
+
+#include "darcydem/walls/loaded_area.hpp"
 #include "darcydem/walls/wall.hpp"
 
 namespace darcydem {
@@ -144,6 +148,54 @@ TEST(WallTouch, A2DCylinderIsACircle) {
   const auto u = ring.touch(Vec<2>(1, -4));
   EXPECT_NEAR(u.gap, 1.0, kTol);
   EXPECT_NEAR((u.normal - Vec<2>(0, -1)).norm(), 0.0, kTol);
+}
+
+}  // namespace
+}  // namespace darcydem
+
+namespace darcydem {
+namespace {
+
+Wall<3> plane3(const Vec<3>& point, const Vec<3>& normal) {
+  Wall<3> w;
+  w.point = point;
+  w.normal = normal;
+  return w;
+}
+
+// The loaded area of a plane (walls/loaded_area.hpp), by hand: a box of
+// planes 2 x 3 (x, y) under a lid normal to z; the same with y periodic
+// over 5; in a cylinder of radius 2 along z; and the walls crossed.
+TEST(LoadedArea, IsTheCrossSectionTheOtherWallsBound) {
+  std::vector<Wall<3>> walls = {
+      plane3(Vec<3>(0, 0, 4), Vec<3>(0, 0, -1)),  // the lid
+      plane3(Vec<3>(-1, 0, 0), Vec<3>(1, 0, 0)), plane3(Vec<3>(1, 0, 0), Vec<3>(-1, 0, 0)),
+      plane3(Vec<3>(0, -1, 0), Vec<3>(0, 1, 0)), plane3(Vec<3>(0, 2, 0), Vec<3>(0, -1, 0))};
+  PeriodicCell<3> none;
+  EXPECT_DOUBLE_EQ(loaded_area(walls, 0, none).area, 6.0);
+  // A side wall's area: the lid and an absent floor leave z unbounded.
+  EXPECT_NE(loaded_area(walls, 1, none).why_not.find("along z, one plane wall facing +z and one facing -z"),
+            std::string::npos);
+  walls.push_back(plane3(Vec<3>(0, 0, 0), Vec<3>(0, 0, 1)));  // the floor
+  EXPECT_DOUBLE_EQ(loaded_area(walls, 1, none).area, 3.0 * 4.0);
+  EXPECT_DOUBLE_EQ(loaded_area(walls, 3, none).area, 2.0 * 4.0);
+  // Periodic along y: the period, not the walls (there are none along y).
+  std::vector<Wall<3>> periodic_walls = {walls[0], walls[1], walls[2]};
+  PeriodicCell<3> cell;
+  cell.set_axis(1, -2.0, 3.0);
+  EXPECT_DOUBLE_EQ(loaded_area(periodic_walls, 0, cell).area, 2.0 * 5.0);
+  // A triaxial cell: a cylinder along z, touched from inside.
+  Wall<3> cylinder;
+  cylinder.shape = WallShape::cylinder;
+  cylinder.axis = Vec<3>(0, 0, 1);
+  cylinder.radius = 2.0;
+  std::vector<Wall<3>> cell_walls = {walls[0], cylinder};
+  EXPECT_DOUBLE_EQ(loaded_area(cell_walls, 0, none).area, std::numbers::pi * 4.0);
+  // Crossed: the +x wall moved past the -x one.
+  walls[2].point.x() = -1.5;
+  EXPECT_NE(loaded_area(walls, 0, none).why_not.find("have crossed"), std::string::npos);
+  // A box has none.
+  EXPECT_NE(loaded_area(std::vector<Wall<3>>{box<3>(Vec<3>(0, 0, 0), Vec<3>(1, 1, 1))}, 0, none).why_not, "");
 }
 
 }  // namespace

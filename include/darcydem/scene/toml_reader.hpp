@@ -81,6 +81,7 @@ class TableReader {
   }
 
   [[nodiscard]] const std::string& file() const { return file_; }
+  [[nodiscard]] const toml::table& table() const { return table_; }
   [[nodiscard]] const std::string& where() const { return where_; }
   [[nodiscard]] std::string location(const toml::source_region& s) const;
   static std::string format_number(double v);

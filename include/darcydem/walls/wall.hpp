@@ -30,7 +30,11 @@ enum class WallMotion { fixed, velocity, servo };
 enum class WallShape { plane, box, cylinder };
 
 struct ServoControl {
-  double target_force = 0.0;     ///< N, compressive load wanted on the wall
+  double target_force = 0.0;  ///< N, compressive load wanted on the wall
+  /// Pa: with `by_stress`, target_force follows target_stress times the
+  /// wall's loaded area (walls/loaded_area.hpp) at every step.
+  double target_stress = 0.0;
+  bool by_stress = false;
   double gain = 0.0;             ///< m/(s N): wall speed per newton of load error
   double max_speed = 0.0;        ///< m/s
   bool with_pore_water = false;  ///< the load includes Wall::water_force

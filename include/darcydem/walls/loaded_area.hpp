@@ -1,0 +1,96 @@
+#pragma once
+// The area a plane wall loads the sample over, as a triaxial or biaxial
+// test takes it (YADE's TriaxialStressController, PFC's servo walls): the
+// sample's cross-section across the plane's normal, bounded by the other
+// walls as they stand now. The plane's normal must be along an axis; the
+// cross-section is then
+// - 3D: the disc of a cylinder wall touched from inside whose axis is along
+//   the normal (a triaxial cell's platen), pi R^2; otherwise
+// - along each other axis, the distance between the plane wall facing up
+//   it (normal +e_k: the sample's lower side) and the one facing down it
+//   (normal -e_k), or the period along a periodic axis; their product
+//   (2D: times the unit thickness, 1 m).
+// A stress-controlled servo loads such a wall with its target stress times
+// this area, and the `wall_stress` probe divides the wall's load by it.
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "darcydem/core/periodic_cell.hpp"
+#include "darcydem/walls/wall.hpp"
+
+namespace darcydem {
+
+/// The area, m^2 (2D: per metre), or why the walls do not define one.
+struct LoadedArea {
+  double area = 0.0;
+  std::string why_not;  ///< empty when `area` holds
+};
+
+/// The axis a unit vector lies along (to 1e-9 of its length), or -1.
+template <int D>
+int axis_along(const Vec<D>& n) {
+  for (int k = 0; k < D; ++k) {
+    if (std::abs(std::abs(n[k]) - 1.0) <= 1e-9) return k;
+  }
+  return -1;
+}
+
+/// The area walls[i] (a plane) loads, from the walls as they are now.
+template <int D>
+LoadedArea loaded_area(const std::vector<Wall<D>>& walls, std::size_t i, const PeriodicCell<D>& periodic) {
+  static constexpr const char* axis_name[] = {"x", "y", "z"};
+  const Wall<D>& w = walls[i];
+  if (!w.is_plane()) return {0.0, "only a plane wall has a loaded area (its cross-section of the sample)"};
+  const int a = axis_along<D>(w.normal);
+  if (a < 0) return {0.0, "its normal is not along an axis, so the walls do not bound its cross-section"};
+  if constexpr (D == 3) {
+    int cylinders = 0;
+    double area = 0.0;
+    for (const auto& c : walls) {
+      if (c.is_cylinder() && c.from_inside && std::abs(std::abs(c.axis.dot(w.normal)) - 1.0) <= 1e-9) {
+        ++cylinders;
+        area = std::numbers::pi * c.radius * c.radius;
+      }
+    }
+    if (cylinders == 1) return {area, {}};
+    if (cylinders > 1)
+      return {0.0, "several cylinder walls run along its normal: its cross-section is ambiguous"};
+  }
+  double area = 1.0;  // 2D: the unit thickness, m
+  for (int k = 0; k < D; ++k) {
+    if (k == a) continue;
+    if (periodic.periodic[k]) {
+      area *= periodic.length[k];
+      continue;
+    }
+    int below = 0, above = 0;
+    double lo = 0.0, hi = 0.0;
+    for (const auto& o : walls) {
+      if (!o.is_plane() || axis_along<D>(o.normal) != k) continue;
+      if (o.normal[k] > 0.0) {
+        ++below;
+        lo = o.point[k];
+      } else {
+        ++above;
+        hi = o.point[k];
+      }
+    }
+    const std::string along = axis_name[k];
+    if (below != 1 || above != 1) {
+      return {0.0, "its cross-section needs, along " + along + ", one plane wall facing +" + along +
+                       " and one facing -" + along + " (or a periodic " + along + "); there are " +
+                       std::to_string(below) + " and " + std::to_string(above)};
+    }
+    if (!(hi > lo)) {
+      return {0.0, "the plane walls bounding its cross-section along " + along + " have crossed (" +
+                       std::to_string(lo) + " m facing +" + along + ", " + std::to_string(hi) +
+                       " m facing -" + along + ")"};
+    }
+    area *= hi - lo;
+  }
+  return {area, {}};
+}
+
+}  // namespace darcydem
