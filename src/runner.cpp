@@ -262,6 +262,7 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
   if (stage.gravity) sim.gravity = *stage.gravity;
   if (stage.local_damping) sim.damping.local = *stage.local_damping;
   if (stage.viscous_damping) sim.damping.viscous = *stage.viscous_damping;
+  for (const auto& c : stage.frictions) sim.contact_table.set_friction(c.first, c.second, c.friction);
   for (const auto& c : stage.walls) {
     auto& w = sim.walls[c.wall];
     w.motion = c.motion;

@@ -1491,6 +1491,42 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         s.walls.push_back(c);
       }
     }
+    if (const toml::array* contacts = r.optional_array("contacts")) {
+      // New friction for pairs of materials: [{ materials = [...], friction = ... }].
+      for (std::size_t k = 0; k < contacts->size(); ++k) {
+        const toml::table* ct = contacts->get(k)->as_table();
+        if (ct == nullptr) {
+          r.fail(
+              "contacts",
+              "must be an array of tables, e.g. contacts = [{ materials = [\"sand\", \"sand\"], friction = "
+              "0.0 }]");
+        }
+        TableReader cr(*ct, fmt::format("{} contacts #{}", r.where(), k + 1), file);
+        auto names = cr.string_list("materials");
+        if (names.size() != 2)
+          cr.fail("materials", "must name exactly two materials, e.g. [\"sand\", \"sand\"]");
+        const auto a = materials.lookup(cr, "materials", names[0]);
+        const auto b = materials.lookup(cr, "materials", names[1]);
+        if (!defined[a * nm + b]) {
+          cr.fail("materials",
+                  fmt::format("the pair {} / {} has no [[contact]] whose friction a stage could change",
+                              names[0], names[1]));
+        }
+        const double mu = cr.check("friction", cr.number("friction"), is_non_negative, ">= 0");
+        // The automatic time step counts the turning that the tangential
+        // spring gives a grain only where the [[contact]] has friction.
+        if (mu > 0.0 && sim.contact_table(a, b).friction == 0.0 && !sim.contact_table(a, b).bondable) {
+          cr.fail(
+              "friction",
+              fmt::format("the [[contact]] of {} / {} has no friction, so the time step does not allow for "
+                          "the grains its tangential spring turns; give the [[contact]] the friction of the "
+                          "stage that has the most, and lower it in the others",
+                          names[0], names[1]));
+        }
+        cr.finish();
+        s.frictions.push_back({a, b, mu});
+      }
+    }
     if (r.has("make_bonds")) {
       s.make_bonds = r.boolean_or("make_bonds", false);
       if (s.make_bonds && !sim.contact_table.any_bondable()) {

@@ -374,6 +374,48 @@ TEST(SceneErrors, StressServosAreChecked) {
       << msg;
 }
 
+TEST(SceneErrors, StageFrictionIsChecked) {
+  const std::string at_stage = "gravity = [0.0, -9.81]\ncontacts = ";
+  auto staged = [&](const std::string& contacts) {
+    return load_error(replace(kGood, "gravity = [0.0, -9.81]", at_stage + contacts));
+  };
+  EXPECT_EQ(staged("[{ materials = [\"sand\", \"sand\"], friction = 0.1 }]"), "");
+  const auto scene = built_scene<2>(replace(
+      kGood, "gravity = [0.0, -9.81]", at_stage + "[{ materials = [\"sand\", \"sand\"], friction = 0.1 }]"));
+  ASSERT_EQ(scene.stages.front().frictions.size(), 1U);
+  EXPECT_EQ(scene.stages.front().frictions.front().friction, 0.1);
+  std::string msg = staged("[{ materials = [\"sand\", \"sand\"], friction = -0.1 }]");
+  EXPECT_NE(msg.find("[[stage]] #1 contacts #1 key 'friction': must be >= 0, got -0.1"), std::string::npos)
+      << msg;
+  msg = staged("[{ materials = [\"sand\", \"snad\"], friction = 0.1 }]");
+  EXPECT_NE(msg.find("contacts #1 key 'materials'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("snad"), std::string::npos) << msg;
+  msg = staged("[{ materials = [\"sand\"], friction = 0.1 }]");
+  EXPECT_NE(msg.find("must name exactly two materials"), std::string::npos) << msg;
+  msg = staged("[{ materials = [\"sand\", \"sand\"], friction = 0.1, restitution = 0.2 }]");
+  EXPECT_NE(msg.find("unknown key 'restitution'"), std::string::npos) << msg;
+  msg = staged("[{ materials = [\"sand\", \"sand\"] }]");
+  EXPECT_NE(msg.find("friction"), std::string::npos) << msg;
+  msg = staged("[0.1]");
+  EXPECT_NE(msg.find("key 'contacts': must be an array of tables"), std::string::npos) << msg;
+  // A pair without a [[contact]], and friction where the [[contact]] has
+  // none (the time step did not allow for it).
+  const std::string steel =
+      replace(kGood, "[[contact]]", "[[material]]\nname = \"steel\"\ndensity = 7850.0\n\n[[contact]]");
+  msg = load_error(replace(steel, "gravity = [0.0, -9.81]",
+                           at_stage + "[{ materials = [\"sand\", \"steel\"], friction = 0.1 }]"));
+  EXPECT_NE(msg.find("the pair sand / steel has no [[contact]] whose friction a stage could change"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(replace(kGood, "friction = 0.5", "friction = 0.0"), "gravity = [0.0, -9.81]",
+                           at_stage + "[{ materials = [\"sand\", \"sand\"], friction = 0.1 }]"));
+  EXPECT_NE(
+      msg.find("key 'friction': the [[contact]] of sand / sand has no friction, so the time step does not "
+               "allow for the grains its tangential spring turns"),
+      std::string::npos)
+      << msg;
+}
+
 TEST(SceneErrors, CylinderWallsAreChecked) {
   // A drum of 3 mm radius round the column of discs (2D: a circle).
   const std::string drum =

@@ -440,6 +440,27 @@ TEST(Checkpoint, ResumedRotatingDrumKeepsTurning) {
   expect_resumed_run_writes_the_same_files<3>(scene.string(), out, 2, 17000, 1);
 }
 
+TEST(Checkpoint, ResumedStageKeepsItsFriction) {
+  // examples/dem_cases/slip_to_roll.toml whose stages slide the sphere at
+  // mu = 0.1 for 20 ms, then at 0.2 (the [[contact]]'s is 0.3), stopped
+  // in the second at step 26 000 (about 22 ms), still sliding: its
+  // friction must come back with the checkpoint, or the sphere slows at
+  // the first stage's or the scene's friction after the resume.
+  const fs::path dir = fresh_dir("stage_friction");
+  fs::create_directories(dir);
+  const std::string text = darcydem::testing::scene_variant(
+      "examples/dem_cases/slip_to_roll.toml",
+      {{"[[stage]]\nname = \"roll\"\nduration = 0.1\n",
+        "[[stage]]\nname = \"slide\"\nduration = 0.02\ncontacts = [{ materials = [\"glass\", \"glass\"], "
+        "friction = 0.1 }]\ngravity = [0.0, 0.0, -9.81]\n\n[[stage]]\nname = \"roll\"\nduration = 0.02\n"
+        "contacts = [{ materials = [\"glass\", \"glass\"], friction = 0.2 }]\n"}});
+  const fs::path scene = dir / "slide.toml";
+  std::ofstream(scene) << text;
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  expect_resumed_run_writes_the_same_files<3>(scene.string(), out, 2, 26000, 1);
+}
+
 TEST(Checkpoint, ResumedCantileverKeepsItsBondsScatteredStrengths) {
   // The same cantilever with strengths scattered from bond to bond
   // (strength_weibull_modulus), stopped in stage "sag": each bond's factor

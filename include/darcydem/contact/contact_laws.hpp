@@ -6,6 +6,7 @@
 // templated on the law, which is chosen once per run.
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "darcydem/contact/material.hpp"
@@ -156,6 +157,22 @@ class ContactTable {
   }
   [[nodiscard]] std::size_t materials() const { return n_; }
   [[nodiscard]] const std::vector<PairParameters>& all() const { return pairs_; }
+  /// A new Coulomb coefficient for the pair (a stage's `contacts`): the
+  /// contacts' tangential springs are held to it from the next evaluation.
+  void set_friction(std::size_t a, std::size_t b, double mu) {
+    pairs_[a * n_ + b].friction = mu;
+    pairs_[b * n_ + a].friction = mu;
+  }
+  /// Every pair's Coulomb coefficient, as a checkpoint keeps them.
+  [[nodiscard]] std::vector<double> frictions() const {
+    std::vector<double> mu;
+    for (const auto& p : pairs_) mu.push_back(p.friction);
+    return mu;
+  }
+  void set_frictions(const std::vector<double>& mu) {
+    if (mu.size() != pairs_.size()) throw std::runtime_error("ContactTable: frictions of another scene");
+    for (std::size_t k = 0; k < mu.size(); ++k) pairs_[k].friction = mu[k];
+  }
   [[nodiscard]] bool any_bondable() const {
     for (const auto& p : pairs_) {
       if (p.bondable) return true;

@@ -121,6 +121,15 @@ struct Stage {
   std::optional<int> fluid_steps_per_update;                 ///< a new coupling interval M
   std::optional<bool> fluid_hold_forces;                     ///< hold the grains' fluid forces, or not
   std::vector<std::pair<std::size_t, bool>> inlets;          ///< inlets (index) switched on or off
+  /// New Coulomb coefficients: the two materials (indices) and mu, e.g.
+  /// none while a sample is compacted and the sand's for the test (YADE's
+  /// compaction friction, PFC's contact property changes).
+  struct FrictionChange {
+    std::uint16_t first = 0;
+    std::uint16_t second = 0;
+    double friction = 0.0;
+  };
+  std::vector<FrictionChange> frictions;
   bool make_bonds = false;  ///< bond the pairs that can be bonded at the stage's start
   double bond_gap = 0.0;    ///< m: and those less than this apart
 };

@@ -210,6 +210,10 @@ class Simulation {
     ar(particles, walls, gravity, damping, skin, time_step, time, steps, list_, wall_list_, field_force_,
        block_sums_, removed_count, removed_mass, removed_volume, inserted_count, inserted_mass, broken_bonds,
        energy, force_gravity_);
+    // A stage may have changed the pairs' friction (Stage::frictions).
+    std::vector<double> friction = contact_table.frictions();
+    ar(friction);
+    if constexpr (Archive::loading) contact_table.set_frictions(friction);
     bool from_field = field_forces_from_ != nullptr;
     ar(from_field);
     if constexpr (Archive::loading) field_forces_from_ = from_field ? force_field : nullptr;
