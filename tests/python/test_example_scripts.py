@@ -19,6 +19,7 @@ def load(path):
 
 
 drum_profile = load("examples/dem_cases/drum_profile.py")
+triaxial_plot = load("examples/dem_cases/triaxial_plot.py")
 
 
 def tilted_bed(angle, spacing, drum_radius=8e-3, depth=-2e-3):
@@ -63,6 +64,65 @@ class DrumProfile(unittest.TestCase):
     def test_a_missing_run_is_named(self):
         out = tempfile.mkdtemp()
         r = subprocess.run([sys.executable, os.path.join(SOURCE, "examples/dem_cases/drum_profile.py"), out],
+                           capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn(os.path.join(out, "probes.csv") + " not found", r.stderr)
+
+
+def triaxial_probes(phi_of_strain, psi, steps=200, strain=0.1, start=0.15):
+    """Probe columns of a triaxial test made by hand: the platens close
+    (eps_a = 1 - H / H0 from 0 to `strain`), sigma_3 = 100 kPa, sigma_1 such
+    that sin(phi) = (s1 - s3) / (s1 + s3) with phi = phi_of_strain(eps_a)
+    degrees, and the volume V = V0 (1 - eps_v) with eps_v = r eps_a, r =
+    -2 sin(psi) / (1 - sin(psi)) (a constant dilatancy angle psi). A row
+    before `start` (the compaction) must be left out."""
+    h0, w0 = 0.025, 0.012
+    s3 = 1e5
+    r = -2.0 * math.sin(math.radians(psi)) / (1.0 - math.sin(math.radians(psi)))
+    p = {k: [] for k in triaxial_plot.COLUMNS}
+
+    def row(t, eps_a, s1, volume_factor):
+        h = h0 * (1.0 - eps_a)
+        w = math.sqrt(w0 * w0 * h0 * volume_factor / h)
+        for k, v in (("time", t), ("x_min", -w / 2), ("x_max", w / 2), ("y_min", 0.0), ("y_max", w),
+                     ("bottom", 0.001), ("top", 0.001 + h), ("sigma_x", s3 * 1.01), ("sigma_y", s3 * 0.99),
+                     ("sigma_z", s1)):
+            p[k].append(v)
+
+    row(start - 0.05, 0.2, 5e5, 2.0)  # the compaction: nothing like the test
+    for i in range(steps + 1):
+        eps_a = strain * i / steps
+        sin_phi = math.sin(math.radians(phi_of_strain(eps_a)))
+        row(start + i * 1e-3, eps_a, s3 * (1.0 + sin_phi) / (1.0 - sin_phi), 1.0 - r * eps_a)
+    return p
+
+
+class TriaxialPlot(unittest.TestCase):
+    def test_the_peak_and_dilatancy_of_a_test_made_by_hand(self):
+        # The curves are exact functions of the columns, so the peak angle
+        # and the dilatancy angle come back to round-off (measured 1e-13
+        # degrees): 1e-9 bounds it. Taking sigma_3 as one side wall's stress
+        # (1 % off) gives a peak of 31.76 degrees for 32, the logarithmic
+        # volumetric strain for 1 - V / V0 a psi of 9.90 for 10: both caught.
+        for phi_peak, psi in ((32.0, 10.0), (28.0, -3.0)):
+            c = triaxial_plot.curves(triaxial_probes(lambda e: phi_peak - 2000.0 * (e - 0.03) ** 2, psi), 0.15)
+            k, fitted_psi = triaxial_plot.peak(c, 0.01)
+            print(f"made with phi {phi_peak}, psi {psi}: peak {c['phi'][k]:.12f} at {c['eps_a'][k]:.4f}, "
+                  f"psi {fitted_psi:.12f}")
+            self.assertAlmostEqual(c["phi"][k], phi_peak, delta=1e-9)
+            self.assertAlmostEqual(c["eps_a"][k], 0.03, delta=1e-12)
+            self.assertAlmostEqual(fitted_psi, psi, delta=1e-9)
+            self.assertAlmostEqual(c["eps_v"][0], 0.0, delta=1e-15)
+            self.assertAlmostEqual(c["q"][k] / c["p"][k], 6.0 * math.sin(math.radians(phi_peak)) /
+                                   (3.0 - math.sin(math.radians(phi_peak))), delta=1e-12)
+
+    def test_a_run_too_short_is_refused(self):
+        with self.assertRaisesRegex(ValueError, "fewer than two probe rows from 10.0 s on"):
+            triaxial_plot.curves(triaxial_probes(lambda e: 30.0, 0.0), 10.0)
+
+    def test_a_missing_run_is_named(self):
+        out = tempfile.mkdtemp()
+        r = subprocess.run([sys.executable, os.path.join(SOURCE, "examples/dem_cases/triaxial_plot.py"), out],
                            capture_output=True, text=True)
         self.assertNotEqual(r.returncode, 0)
         self.assertIn(os.path.join(out, "probes.csv") + " not found", r.stderr)
