@@ -5,6 +5,7 @@
 //   model = darcydem.load("scene.toml")         # as `darcydem check`, at the first stage's start
 //   model.apply_stage("settle")                 # a stage's settings, as a run starts it
 //   model.set_wall_motion("drum", angular_velocity=2.0)  # a wall's motion between steps
+//   model.set_wall_servo("top", gain=5e-3, max_speed=0.05, target_stress=1e5)  # a stress-controlled wall
 //   model.step(1000)                            # DEM steps, with the fluid's and inlets' steps among them
 //   model.positions, model.velocities           # numpy arrays (N, D), particles in creation order
 //   model.fluid.pressure                        # numpy array over the cells, indexed [i, j(, k)]
@@ -41,6 +42,7 @@
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/runner.hpp"
 #include "darcydem/version.hpp"
+#include "darcydem/walls/loaded_area.hpp"
 
 namespace py = pybind11;
 
@@ -173,16 +175,22 @@ class Model {
   /// entry does (YADE's state.vel and state.angVel, PFC's wall attribute
   /// velocity and spin): a velocity (which ends a servo) and, for a
   /// cylinder, its spin about its axis.
-  void set_wall_motion(const std::string& name, const std::optional<std::vector<double>>& velocity,
-                       std::optional<double> angular_velocity) {
+  /// The wall called `name`; `who` names the caller in the error.
+  Wall<D>& wall_named(const std::string& name, const char* who) {
     auto& walls = sim().walls;
     auto it = std::find_if(walls.begin(), walls.end(), [&](const Wall<D>& w) { return w.name == name; });
     if (it == walls.end()) {
       std::string names;
       for (const auto& w : walls) names += (names.empty() ? "" : ", ") + ("'" + w.name + "'");
-      throw py::value_error(fmt::format("set_wall_motion: no wall '{}' (the scene's walls: {})", name,
-                                        names.empty() ? "none" : names));
+      throw py::value_error(
+          fmt::format("{}: no wall '{}' (the scene's walls: {})", who, name, names.empty() ? "none" : names));
     }
+    return *it;
+  }
+
+  void set_wall_motion(const std::string& name, const std::optional<std::vector<double>>& velocity,
+                       std::optional<double> angular_velocity) {
+    Wall<D>* it = &wall_named(name, "set_wall_motion");
     if (!velocity && !angular_velocity)
       throw py::value_error(
           "set_wall_motion: give velocity = [D numbers] (m/s), angular_velocity (rad/s), or both");
@@ -204,6 +212,67 @@ class Model {
       it->velocity = v;
     }
     if (angular_velocity) it->spin = *angular_velocity;
+  }
+
+  /// Makes a wall a servo between steps, as a stage's walls.NAME = { servo
+  /// = ... } does: one of target_force (N) and target_stress (Pa, a plane
+  /// whose loaded area the other walls bound), gain and max_speed; a box
+  /// needs its direction (unless it is a servo already).
+  void set_wall_servo(const std::string& name, double gain, double max_speed,
+                      std::optional<double> target_force, std::optional<double> target_stress,
+                      const std::optional<std::vector<double>>& direction) {
+    auto& walls = sim().walls;
+    auto& w = wall_named(name, "set_wall_servo");
+    const std::size_t index = static_cast<std::size_t>(&w - walls.data());
+    if (target_force.has_value() == target_stress.has_value()) {
+      throw py::value_error(
+          "set_wall_servo: give one of target_force (N, the load wanted on the wall) or target_stress (Pa, a "
+          "plane's load over the cross-section the other walls bound)");
+    }
+    const double target = target_force ? *target_force : *target_stress;
+    if (!(target >= 0.0) || !std::isfinite(target))
+      throw py::value_error(
+          fmt::format("set_wall_servo: the target must be finite and >= 0, got {}", target));
+    if (!(gain > 0.0) || !std::isfinite(gain))
+      throw py::value_error(fmt::format("set_wall_servo: gain must be finite and > 0 m/(s N), got {}", gain));
+    if (!(max_speed > 0.0) || !std::isfinite(max_speed))
+      throw py::value_error(
+          fmt::format("set_wall_servo: max_speed must be finite and > 0 m/s, got {}", max_speed));
+    if (w.is_cylinder())
+      throw py::value_error(
+          fmt::format("set_wall_servo: wall '{}' is a cylinder, which keeps its radius", name));
+    if (target_stress) {
+      if (const LoadedArea a = loaded_area(walls, index, sim().periodic); !a.why_not.empty())
+        throw py::value_error(
+            fmt::format("set_wall_servo: wall '{}' has no loaded area: {}", name, a.why_not));
+    }
+    Vec<D> axis = w.servo_axis;
+    if (w.is_box()) {
+      if (direction) {
+        axis = as_vec<D>(*direction, "direction");
+        if (!axis.allFinite() || axis.norm() == 0.0)
+          throw py::value_error("set_wall_servo: direction must be finite and non-zero");
+        axis.normalize();
+      } else if (axis.norm() == 0.0) {
+        throw py::value_error(
+            fmt::format("set_wall_servo: box wall '{}' needs direction = [D numbers], the way it moves to "
+                        "load the grains "
+                        "more",
+                        name));
+      }
+    } else if (direction) {
+      throw py::value_error("set_wall_servo: a plane moves along its normal; direction is for box walls");
+    }
+    // All checked: set.
+    ServoControl servo;
+    servo.by_stress = target_stress.has_value();
+    servo.target_stress = target_stress.value_or(0.0);
+    servo.target_force = target_force.value_or(0.0);
+    servo.gain = gain;
+    servo.max_speed = max_speed;
+    w.motion = WallMotion::servo;
+    w.servo = servo;
+    w.servo_axis = axis;
   }
 
   /// `count` DEM steps, with a fluid step after every steps_per_update of
@@ -530,6 +599,13 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["velocity"] = as_tuple<D>(w.velocity);
               d["angular_velocity"] = w.spin;
               d["torque"] = w.torque;
+              const LoadedArea a = loaded_area(s.sim().walls, walls.size(), s.sim().periodic);
+              d["stress"] = a.why_not.empty() ? py::object(py::float_(-w.force.dot(w.normal) / a.area))
+                                              : py::object(py::none());
+              d["servo"] = w.motion != WallMotion::servo ? py::object(py::none())
+                           : w.servo.by_stress
+                               ? py::object(py::dict(py::arg("target_stress") = w.servo.target_stress))
+                               : py::object(py::dict(py::arg("target_force") = w.servo.target_force));
               walls.append(d);
             }
             return walls;
@@ -539,7 +615,16 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "on a box that displaces the fluid the pore water's thrust, N (zero on other walls), its shape "
           "('plane', 'box', 'cylinder'), velocity, m/s, and a cylinder's angular_velocity about its axis, "
           "rad/s, and torque, the particles' moment on it about its axis, N m (the probe wall_torque; "
-          "zero on other walls)")
+          "zero on other walls); stress, a plane's load over the cross-section the other walls bound, Pa "
+          "(the probe wall_stress; None where they bound none); servo, None or {'target_force': N} or "
+          "{'target_stress': Pa}")
+      .def("set_wall_servo", &M::set_wall_servo, py::arg("name"), py::arg("gain"), py::arg("max_speed"),
+           py::arg("target_force") = py::none(), py::arg("target_stress") = py::none(),
+           py::arg("direction") = py::none(),
+           "makes a wall a servo between steps, as a stage's walls.NAME = { servo = ... } does: one of "
+           "target_force (N) or target_stress (Pa: a plane, its load over the cross-section the other walls "
+           "bound, as a triaxial test's; taken again at every step), gain (m/(s N)), max_speed (m/s); a box "
+           "moves along direction = [D numbers]")
       .def(
           "set_wall_motion", &M::set_wall_motion, py::arg("name"), py::arg("velocity") = py::none(),
           py::arg("angular_velocity") = py::none(),
