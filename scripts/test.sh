@@ -34,9 +34,10 @@ if [ "${1:-}" = "--sanitize" ]; then
   # drum's swings, its scene keys in SceneErrors). So is the rotating drum
   # example (228 000 steps of 450 spheres; a spinning drum's contacts and
   # torque run here in the drum's angular-momentum balance). So is the
-  # triaxial example (237 000 steps of 500 spheres; the stress servos run
-  # here in the lattice tests, the stage's friction in StageFriction).
-  OMP_NUM_THREADS=1 ctest --output-on-failure -j "$(nproc)" -E "SeepageColumn(3D)?Kf1e7|HeaveStarts|Oedometer|SheetPileHeave|PilePenetration|GradedUpwardSeepage|FluidizedBed|SiloDischarges|CylinderCell|RotatingDrumExample|Triaxial\.Example|Reproducibility.*/0\.1"
+  # triaxial and biaxial examples (237 000 steps of 500 spheres, 270 000
+  # of 200 discs; the stress servos run here in the lattice tests, the
+  # stage's friction in StageFriction).
+  OMP_NUM_THREADS=1 ctest --output-on-failure -j "$(nproc)" -E "SeepageColumn(3D)?Kf1e7|HeaveStarts|Oedometer|SheetPileHeave|PilePenetration|GradedUpwardSeepage|FluidizedBed|SiloDischarges|CylinderCell|RotatingDrumExample|Triaxial\.|Reproducibility.*/0\.1"
 else
   "$root/scripts/build.sh" "$root/build" -DDARCYDEM_WERROR=ON
   cd "$root/build"

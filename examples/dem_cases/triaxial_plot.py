@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""The drained triaxial test of triaxial_test.toml: stress and strain.
+"""The drained triaxial test of triaxial_test.toml (or the biaxial test of
+biaxial_test.toml, 2D): stress and strain.
 
     darcydem run examples/dem_cases/triaxial_test.toml --out OUT
     /usr/bin/python3 examples/dem_cases/triaxial_plot.py OUT
@@ -10,7 +11,9 @@ with compression positive:
   and "bottom"); volumetric strain eps_v = 1 - V / V0, V the walls' box;
 - sigma_1 = probe "sigma_z" (the top platen's stress), sigma_3 the mean of
   "sigma_x" and "sigma_y" (the side walls'); the deviator q = sigma_1 -
-  sigma_3, the mean stress p = (sigma_1 + 2 sigma_3) / 3;
+  sigma_3, the mean stress p = (sigma_1 + 2 sigma_3) / 3. In 2D (probes
+  without "y_min": the biaxial test) sigma_1 = "sigma_y", sigma_3 =
+  "sigma_x", p = (sigma_1 + sigma_3) / 2 and V the walls' area;
 - the mobilised friction angle, sin(phi) = (sigma_1 - sigma_3) / (sigma_1 +
   sigma_3) (Mohr-Coulomb without cohesion), at its peak; and the dilatancy
   angle there, sin(psi) = -r / (2 - r), r = d eps_v / d eps_a the slope of a
@@ -27,6 +30,12 @@ import sys
 from pathlib import Path
 
 COLUMNS = ("time", "x_min", "x_max", "y_min", "y_max", "bottom", "top", "sigma_x", "sigma_y", "sigma_z")
+COLUMNS_2D = ("time", "x_min", "x_max", "bottom", "top", "sigma_x", "sigma_y")
+
+
+def dimension(p):
+    """3 for a triaxial test's probes, 2 for a biaxial test's (no y_min)."""
+    return 3 if "y_min" in p else 2
 
 
 def read_columns(path):
@@ -45,9 +54,11 @@ def curves(p, start):
     if len(rows) < 2:
         raise ValueError(f"fewer than two probe rows from {start} s on (the run ends at {p['time'][-1]} s)")
 
+    three = dimension(p) == 3
+
     def box(i):
         w = p["x_max"][i] - p["x_min"][i]
-        d = p["y_max"][i] - p["y_min"][i]
+        d = p["y_max"][i] - p["y_min"][i] if three else 1.0
         h = p["top"][i] - p["bottom"][i]
         return h, w * d * h
 
@@ -55,15 +66,15 @@ def curves(p, start):
     c = {k: [] for k in ("time", "eps_a", "eps_v", "sigma_1", "sigma_3", "q", "p", "phi", "volume")}
     for i in rows:
         h, v = box(i)
-        s1 = p["sigma_z"][i]
-        s3 = 0.5 * (p["sigma_x"][i] + p["sigma_y"][i])
+        s1 = p["sigma_z"][i] if three else p["sigma_y"][i]
+        s3 = 0.5 * (p["sigma_x"][i] + p["sigma_y"][i]) if three else p["sigma_x"][i]
         c["time"].append(p["time"][i])
         c["eps_a"].append(1.0 - h / h0)
         c["eps_v"].append(1.0 - v / v0)
         c["sigma_1"].append(s1)
         c["sigma_3"].append(s3)
         c["q"].append(s1 - s3)
-        c["p"].append((s1 + 2.0 * s3) / 3.0)
+        c["p"].append((s1 + 2.0 * s3) / 3.0 if three else 0.5 * (s1 + s3))
         c["phi"].append(math.degrees(math.asin((s1 - s3) / (s1 + s3))) if s1 + s3 > 0.0 else math.nan)
         c["volume"].append(v)
     return c
@@ -101,9 +112,10 @@ def main():
         p = read_columns(probes)
     except ValueError as e:
         sys.exit(f"triaxial_plot.py: {e}")
-    for key in COLUMNS:
+    for key in COLUMNS if dimension(p) == 3 else COLUMNS_2D:
         if key not in p:
-            sys.exit(f"triaxial_plot.py: {probes} has no column '{key}' (the probes of triaxial_test.toml)")
+            sys.exit(f"triaxial_plot.py: {probes} has no column '{key}' (the probes of triaxial_test.toml, or "
+                     f"in 2D of biaxial_test.toml)")
     try:
         c = curves(p, args.start)
         k, psi = peak(c, args.window)
@@ -118,7 +130,10 @@ def main():
     grains = out / "particles_final.csv"
     if grains.is_file():
         g = read_columns(grains)
-        solid = sum(4.0 / 3.0 * math.pi * r**3 for r in g["radius"])
+        if dimension(p) == 3:
+            solid = sum(4.0 / 3.0 * math.pi * r**3 for r in g["radius"])
+        else:
+            solid = sum(math.pi * r**2 for r in g["radius"])
         print(f"porosity: {1.0 - solid / c['volume'][0]:.4f} at the shear's start, "
               f"{1.0 - solid / c['volume'][-1]:.4f} at the end")
 

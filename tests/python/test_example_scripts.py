@@ -69,24 +69,31 @@ class DrumProfile(unittest.TestCase):
         self.assertIn(os.path.join(out, "probes.csv") + " not found", r.stderr)
 
 
-def triaxial_probes(phi_of_strain, psi, steps=200, strain=0.1, start=0.15):
+def triaxial_probes(phi_of_strain, psi, steps=200, strain=0.1, start=0.15, dim=3):
     """Probe columns of a triaxial test made by hand: the platens close
     (eps_a = 1 - H / H0 from 0 to `strain`), sigma_3 = 100 kPa, sigma_1 such
     that sin(phi) = (s1 - s3) / (s1 + s3) with phi = phi_of_strain(eps_a)
     degrees, and the volume V = V0 (1 - eps_v) with eps_v = r eps_a, r =
     -2 sin(psi) / (1 - sin(psi)) (a constant dilatancy angle psi). A row
-    before `start` (the compaction) must be left out."""
+    before `start` (the compaction) must be left out. With dim = 2 a
+    biaxial test's: no y walls, sigma_1 on the top as "sigma_y", V an area."""
     h0, w0 = 0.025, 0.012
     s3 = 1e5
     r = -2.0 * math.sin(math.radians(psi)) / (1.0 - math.sin(math.radians(psi)))
-    p = {k: [] for k in triaxial_plot.COLUMNS}
+    p = {k: [] for k in (triaxial_plot.COLUMNS if dim == 3 else triaxial_plot.COLUMNS_2D)}
 
     def row(t, eps_a, s1, volume_factor):
         h = h0 * (1.0 - eps_a)
-        w = math.sqrt(w0 * w0 * h0 * volume_factor / h)
-        for k, v in (("time", t), ("x_min", -w / 2), ("x_max", w / 2), ("y_min", 0.0), ("y_max", w),
-                     ("bottom", 0.001), ("top", 0.001 + h), ("sigma_x", s3 * 1.01), ("sigma_y", s3 * 0.99),
-                     ("sigma_z", s1)):
+        if dim == 3:
+            w = math.sqrt(w0 * w0 * h0 * volume_factor / h)
+            values = (("time", t), ("x_min", -w / 2), ("x_max", w / 2), ("y_min", 0.0), ("y_max", w),
+                      ("bottom", 0.001), ("top", 0.001 + h), ("sigma_x", s3 * 1.01), ("sigma_y", s3 * 0.99),
+                      ("sigma_z", s1))
+        else:
+            w = w0 * h0 * volume_factor / h
+            values = (("time", t), ("x_min", -w / 2), ("x_max", w / 2), ("bottom", 0.001), ("top", 0.001 + h),
+                      ("sigma_x", s3), ("sigma_y", s1))
+        for k, v in values:
             p[k].append(v)
 
     row(start - 0.05, 0.2, 5e5, 2.0)  # the compaction: nothing like the test
@@ -104,17 +111,19 @@ class TriaxialPlot(unittest.TestCase):
         # degrees): 1e-9 bounds it. Taking sigma_3 as one side wall's stress
         # (1 % off) gives a peak of 31.76 degrees for 32, the logarithmic
         # volumetric strain for 1 - V / V0 a psi of 9.90 for 10: both caught.
-        for phi_peak, psi in ((32.0, 10.0), (28.0, -3.0)):
-            c = triaxial_plot.curves(triaxial_probes(lambda e: phi_peak - 2000.0 * (e - 0.03) ** 2, psi), 0.15)
+        for phi_peak, psi, dim in ((32.0, 10.0, 3), (28.0, -3.0, 3), (33.0, 12.0, 2)):
+            probes = triaxial_probes(lambda e: phi_peak - 2000.0 * (e - 0.03) ** 2, psi, dim=dim)
+            c = triaxial_plot.curves(probes, 0.15)
             k, fitted_psi = triaxial_plot.peak(c, 0.01)
-            print(f"made with phi {phi_peak}, psi {psi}: peak {c['phi'][k]:.12f} at {c['eps_a'][k]:.4f}, "
+            print(f"made in {dim}D with phi {phi_peak}, psi {psi}: peak {c['phi'][k]:.12f} at {c['eps_a'][k]:.4f}, "
                   f"psi {fitted_psi:.12f}")
             self.assertAlmostEqual(c["phi"][k], phi_peak, delta=1e-9)
             self.assertAlmostEqual(c["eps_a"][k], 0.03, delta=1e-12)
             self.assertAlmostEqual(fitted_psi, psi, delta=1e-9)
             self.assertAlmostEqual(c["eps_v"][0], 0.0, delta=1e-15)
-            self.assertAlmostEqual(c["q"][k] / c["p"][k], 6.0 * math.sin(math.radians(phi_peak)) /
-                                   (3.0 - math.sin(math.radians(phi_peak))), delta=1e-12)
+            sin_phi = math.sin(math.radians(phi_peak))
+            q_over_p = 6.0 * sin_phi / (3.0 - sin_phi) if dim == 3 else 2.0 * sin_phi
+            self.assertAlmostEqual(c["q"][k] / c["p"][k], q_over_p, delta=1e-12)
 
     def test_a_run_too_short_is_refused(self):
         with self.assertRaisesRegex(ValueError, "fewer than two probe rows from 10.0 s on"):
