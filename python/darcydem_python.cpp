@@ -599,9 +599,8 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["velocity"] = as_tuple<D>(w.velocity);
               d["angular_velocity"] = w.spin;
               d["torque"] = w.torque;
-              const LoadedArea a = loaded_area(s.sim().walls, walls.size(), s.sim().periodic);
-              d["stress"] = a.why_not.empty() ? py::object(py::float_(-w.force.dot(w.normal) / a.area))
-                                              : py::object(py::none());
+              const double stress = wall_stress(s.sim().walls, walls.size(), s.sim().periodic);
+              d["stress"] = std::isnan(stress) ? py::object(py::none()) : py::object(py::float_(stress));
               d["servo"] = w.motion != WallMotion::servo ? py::object(py::none())
                            : w.servo.by_stress
                                ? py::object(py::dict(py::arg("target_stress") = w.servo.target_stress))

@@ -118,12 +118,9 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       return pick(sim.walls[probe.wall].force);
     case ProbeQuantity::wall_torque:
       return sim.walls[probe.wall].torque;
-    case ProbeQuantity::wall_stress: {
+    case ProbeQuantity::wall_stress:
       // Walls that have crossed leave no area: nan, as the servo stops the run.
-      const LoadedArea a = loaded_area(sim.walls, probe.wall, sim.periodic);
-      const auto& w = sim.walls[probe.wall];
-      return a.why_not.empty() ? -w.force.dot(w.normal) / a.area : std::numeric_limits<double>::quiet_NaN();
-    }
+      return wall_stress(sim.walls, probe.wall, sim.periodic);
     case ProbeQuantity::wall_fluid_force:
       if (fluid == nullptr) return 0.0;
       return pick(probe.barrier >= 0 ? fluid->barrier_thrust(static_cast<std::size_t>(probe.barrier))

@@ -41,4 +41,17 @@ constexpr double particle_volume(double radius) {
 template <int D>
 inline constexpr double inertia_factor = (D == 2) ? 0.5 : 0.4;
 
+/// The axis a plane wall's normal lies along, or -1 if it lies along none
+/// (its other components not all zero).
+template <int D>
+[[nodiscard]] int grid_axis_of(const Vec<D>& normal) {
+  int axis = -1;
+  for (int k = 0; k < D; ++k) {
+    if (normal[k] == 0.0) continue;
+    if (axis >= 0) return -1;
+    axis = k;
+  }
+  return axis;
+}
+
 }  // namespace darcydem

@@ -35,19 +35,6 @@ struct SolidBox {
   [[nodiscard]] bool grid_aligned() const;
 };
 
-/// The axis a plane wall's normal lies along, or -1 if it lies along none
-/// (its other components not all zero).
-template <int D>
-[[nodiscard]] int grid_axis_of(const Vec<D>& normal) {
-  int axis = -1;
-  for (int k = 0; k < D; ++k) {
-    if (normal[k] == 0.0) continue;
-    if (axis >= 0) return -1;
-    axis = k;
-  }
-  return axis;
-}
-
 /// The solid behind a plane wall normal to a grid axis (its normal points
 /// into the domain, away from the solid), as a box: the half-space behind
 /// the plane over the grid widened by the grid's own length on every side,

@@ -13,6 +13,7 @@
 // A stress-controlled servo loads such a wall with its target stress times
 // this area, and the `wall_stress` probe divides the wall's load by it.
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -28,22 +29,13 @@ struct LoadedArea {
   std::string why_not;  ///< empty when `area` holds
 };
 
-/// The axis a unit vector lies along (to 1e-9 of its length), or -1.
-template <int D>
-int axis_along(const Vec<D>& n) {
-  for (int k = 0; k < D; ++k) {
-    if (std::abs(std::abs(n[k]) - 1.0) <= 1e-9) return k;
-  }
-  return -1;
-}
-
 /// The area walls[i] (a plane) loads, from the walls as they are now.
 template <int D>
 LoadedArea loaded_area(const std::vector<Wall<D>>& walls, std::size_t i, const PeriodicCell<D>& periodic) {
   static constexpr const char* axis_name[] = {"x", "y", "z"};
   const Wall<D>& w = walls[i];
   if (!w.is_plane()) return {0.0, "only a plane wall has a loaded area (its cross-section of the sample)"};
-  const int a = axis_along<D>(w.normal);
+  const int a = grid_axis_of<D>(w.normal);
   if (a < 0) return {0.0, "its normal is not along an axis, so the walls do not bound its cross-section"};
   if constexpr (D == 3) {
     int cylinders = 0;
@@ -68,7 +60,7 @@ LoadedArea loaded_area(const std::vector<Wall<D>>& walls, std::size_t i, const P
     int below = 0, above = 0;
     double lo = 0.0, hi = 0.0;
     for (const auto& o : walls) {
-      if (!o.is_plane() || axis_along<D>(o.normal) != k) continue;
+      if (!o.is_plane() || grid_axis_of<D>(o.normal) != k) continue;
       if (o.normal[k] > 0.0) {
         ++below;
         lo = o.point[k];
@@ -91,6 +83,16 @@ LoadedArea loaded_area(const std::vector<Wall<D>>& walls, std::size_t i, const P
     area *= hi - lo;
   }
   return {area, {}};
+}
+
+/// The particles' load on walls[i] (a plane), the force against its
+/// normal, over its loaded area, Pa (the probe wall_stress); NaN where the
+/// walls bound none.
+template <int D>
+double wall_stress(const std::vector<Wall<D>>& walls, std::size_t i, const PeriodicCell<D>& periodic) {
+  const LoadedArea a = loaded_area(walls, i, periodic);
+  if (!a.why_not.empty()) return std::numeric_limits<double>::quiet_NaN();
+  return -walls[i].force.dot(walls[i].normal) / a.area;
 }
 
 }  // namespace darcydem
