@@ -216,8 +216,8 @@ class Model {
 
   /// Makes a wall a servo between steps, as a stage's walls.NAME = { servo
   /// = ... } does: one of target_force (N) and target_stress (Pa, a plane
-  /// whose loaded area the other walls bound), gain and max_speed; a box
-  /// needs its direction (unless it is a servo already).
+  /// or cylinder whose loaded area the other walls bound), gain and
+  /// max_speed; a box needs its direction (unless it is a servo already).
   void set_wall_servo(const std::string& name, double gain, double max_speed,
                       std::optional<double> target_force, std::optional<double> target_stress,
                       const std::optional<std::vector<double>>& direction) {
@@ -238,9 +238,6 @@ class Model {
     if (!(max_speed > 0.0) || !std::isfinite(max_speed))
       throw py::value_error(
           fmt::format("set_wall_servo: max_speed must be finite and > 0 m/s, got {}", max_speed));
-    if (w.is_cylinder())
-      throw py::value_error(
-          fmt::format("set_wall_servo: wall '{}' is a cylinder, which keeps its radius", name));
     if (target_stress) {
       if (const LoadedArea a = loaded_area(walls, index, sim().periodic); !a.why_not.empty())
         throw py::value_error(
@@ -261,7 +258,10 @@ class Model {
                         name));
       }
     } else if (direction) {
-      throw py::value_error("set_wall_servo: a plane moves along its normal; direction is for box walls");
+      throw py::value_error(
+          w.is_cylinder()
+              ? "set_wall_servo: a cylinder's servo changes its radius; direction is for box walls"
+              : "set_wall_servo: a plane moves along its normal; direction is for box walls");
     }
     // All checked: set.
     ServoControl servo;
@@ -599,6 +599,10 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["velocity"] = as_tuple<D>(w.velocity);
               d["angular_velocity"] = w.spin;
               d["torque"] = w.torque;
+              if (w.is_cylinder()) {
+                d["radius"] = w.radius;
+                d["radial_load"] = w.radial_load;
+              }
               const double stress = wall_stress(s.sim().walls, walls.size(), s.sim().periodic);
               d["stress"] = std::isnan(stress) ? py::object(py::none()) : py::object(py::float_(stress));
               d["servo"] = w.motion != WallMotion::servo ? py::object(py::none())
@@ -613,8 +617,10 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "the particles exert on it, N, "
           "on a box that displaces the fluid the pore water's thrust, N (zero on other walls), its shape "
           "('plane', 'box', 'cylinder'), velocity, m/s, and a cylinder's angular_velocity about its axis, "
-          "rad/s, and torque, the particles' moment on it about its axis, N m (the probe wall_torque; "
-          "zero on other walls); stress, a plane's load over the cross-section the other walls bound, Pa "
+          "rad/s, torque, the particles' moment on it about its axis, N m (the probe wall_torque; "
+          "zero on other walls), radius, m, and radial_load, the sum of the particles' pushes normal to "
+          "it, N (cylinders only); stress, a plane's load over the cross-section the other walls bound or "
+          "a cylinder's over its lateral surface, Pa "
           "(the probe wall_stress; None where they bound none); servo, None or {'target_force': N} or "
           "{'target_stress': Pa}")
       .def("set_wall_servo", &M::set_wall_servo, py::arg("name"), py::arg("gain"), py::arg("max_speed"),
@@ -622,7 +628,8 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            py::arg("direction") = py::none(),
            "makes a wall a servo between steps, as a stage's walls.NAME = { servo = ... } does: one of "
            "target_force (N) or target_stress (Pa: a plane, its load over the cross-section the other walls "
-           "bound, as a triaxial test's; taken again at every step), gain (m/(s N)), max_speed (m/s); a box "
+           "bound, as a triaxial test's; a cylinder, over its lateral surface; taken again at every step; a "
+           "cylinder's servo changes its radius), gain (m/(s N)), max_speed (m/s); a box "
            "moves along direction = [D numbers]")
       .def(
           "set_wall_motion", &M::set_wall_motion, py::arg("name"), py::arg("velocity") = py::none(),

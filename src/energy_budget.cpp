@@ -57,17 +57,22 @@ void Simulation<D>::account_kick(std::size_t i, const Vec<D>& v, const AngVec<D>
 }
 
 template <int D>
-void Simulation<D>::account_walls(const std::vector<Vec<D>>& points, const std::vector<Vec<D>>& forces,
-                                  const std::vector<double>& torques) {
+void Simulation<D>::account_walls(const std::vector<Wall<D>>& before) {
   // The grains' force on a wall, taken as the mean of the step's start and
   // end (exact for a linear spring), times the wall's move: the work the
   // grains did on it, which the wall did on them with the other sign. A
   // spinning cylinder's likewise from their moment about its axis times
-  // the angle it turned.
+  // the angle it turned, and a servo cylinder's from their push normal to
+  // it times its change of radius (outward when touched from inside).
   for (std::size_t k = 0; k < walls.size(); ++k) {
     const Wall<D>& w = walls[k];
-    energy.boundary_work -= 0.5 * (forces[k] + w.force).dot(w.point - points[k]);
-    if (w.spin != 0.0) energy.boundary_work -= 0.5 * (torques[k] + w.torque) * w.spin * time_step;
+    const Wall<D>& b = before[k];
+    energy.boundary_work -= 0.5 * (b.force + w.force).dot(w.point - b.point);
+    if (w.spin != 0.0) energy.boundary_work -= 0.5 * (b.torque + w.torque) * w.spin * time_step;
+    if (w.radius != b.radius) {
+      const double outward = w.from_inside ? 1.0 : -1.0;
+      energy.boundary_work -= outward * 0.5 * (b.radial_load + w.radial_load) * (w.radius - b.radius);
+    }
   }
 }
 
@@ -85,10 +90,8 @@ template void Simulation<2>::account_kick(std::size_t, const Vec<2>&, const AngV
                                           EnergyBudget&) const;
 template void Simulation<3>::account_kick(std::size_t, const Vec<3>&, const AngVec<3>&, double,
                                           EnergyBudget&) const;
-template void Simulation<2>::account_walls(const std::vector<Vec<2>>&, const std::vector<Vec<2>>&,
-                                           const std::vector<double>&);
-template void Simulation<3>::account_walls(const std::vector<Vec<3>>&, const std::vector<Vec<3>>&,
-                                           const std::vector<double>&);
+template void Simulation<2>::account_walls(const std::vector<Wall<2>>&);
+template void Simulation<3>::account_walls(const std::vector<Wall<3>>&);
 template double Simulation<2>::contact_dissipation() const;
 template double Simulation<3>::contact_dissipation() const;
 template double Simulation<2>::unaccounted_energy() const;

@@ -232,7 +232,7 @@ void read_cylinder(TableReader& r, const toml::table& table, Wall<D>& w) {
 
 /// A wall's motion: `velocity`, `servo` or `fixed`, and a cylinder's
 /// `angular_velocity`. A servo moves a plane along its normal and a box
-/// along its `direction` (a cylinder has none);
+/// along its `direction`, and changes a cylinder's radius;
 /// its load may count the pore water's thrust (`load = "total"`) on a wall
 /// that displaces the fluid (`displaces_fluid`).
 template <int D>
@@ -258,11 +258,6 @@ void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec
     motion = WallMotion::velocity;
     velocity = to_vec<D>(r.numbers("velocity", D));
   } else if (const toml::table* s = r.optional_table("servo")) {
-    if (shape == WallShape::cylinder) {
-      r.fail("servo",
-             "a cylinder wall keeps its radius, so no servo can load the grains through it; give it a "
-             "'velocity' or leave it fixed (load through a plane or box wall instead)");
-    }
     TableReader sr(*s, r.where() + " servo", r.file());
     motion = WallMotion::servo;
     servo = ServoControl{};
@@ -272,15 +267,18 @@ void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec
           "plane wall's load over the cross-section the other walls bound: a triaxial or biaxial test)");
     }
     if (sr.has("target_stress")) {
-      if (shape != WallShape::plane) {
+      if (shape == WallShape::box) {
         sr.fail("target_stress",
-                "is for a plane wall, whose loaded area the other walls bound; give a box wall a "
-                "'target_force'");
+                "is for a plane wall (its cross-section of the sample) or a cylinder (its lateral surface), "
+                "whose loaded area the other walls bound; give a box wall a 'target_force'");
       }
       servo.by_stress = true;
       servo.target_stress = sr.check("target_stress", sr.number("target_stress"), is_non_negative, ">= 0 Pa");
     } else {
-      servo.target_force = sr.check("target_force", sr.number("target_force"), is_non_negative, ">= 0 N");
+      servo.target_force = sr.check("target_force", sr.number("target_force"), is_non_negative,
+                                    shape == WallShape::cylinder
+                                        ? ">= 0 N, the sum of the grains' pushes normal to the cylinder"
+                                        : ">= 0 N");
     }
     servo.gain = sr.check("gain", sr.number("gain"), is_positive, "> 0 m/(s N)");
     servo.max_speed = sr.check("max_speed", sr.number("max_speed"), is_positive, "> 0 m/s");
@@ -293,7 +291,10 @@ void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec
       }
       servo_axis = read_direction<D>(sr, "direction", std::nullopt);
     } else if (sr.has("direction")) {
-      sr.fail("direction", "a plane wall's servo moves it along its normal; 'direction' is for box walls");
+      sr.fail("direction",
+              shape == WallShape::cylinder
+                  ? "a cylinder's servo changes its radius; 'direction' is for box walls"
+                  : "a plane wall's servo moves it along its normal; 'direction' is for box walls");
     }
     servo.with_pore_water = sr.optional_choice("load", {"grains", "total"}) == "total";
     if (servo.with_pore_water && !displaces_fluid) {
@@ -317,10 +318,10 @@ void require_loaded_area(TableReader& r, const std::vector<Wall<D>>& walls, std:
   const LoadedArea a = loaded_area(walls, i, cell);
   if (a.why_not.empty()) return;
   TableReader sr(*r.optional_table("servo"), r.where() + " servo", r.file());
-  sr.fail("target_stress",
-          fmt::format("loads wall \"{}\" over the sample's cross-section, and {}; give 'target_force' (N) "
-                      "instead",
-                      walls[i].name, a.why_not));
+  sr.fail(
+      "target_stress",
+      fmt::format("loads wall \"{}\" over the sample's {}, and {}; give 'target_force' (N) instead",
+                  walls[i].name, walls[i].is_cylinder() ? "lateral surface" : "cross-section", a.why_not));
 }
 
 template <int D>
@@ -1354,7 +1355,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         r.fail("wall",
                fmt::format("wall \"{}\" has no loaded area to divide its load by: {} (allowed: a plane "
                            "wall normal to an axis, its cross-section bounded by a pair of plane walls "
-                           "or a period along each other axis, or in 3D by a cylinder along its normal)",
+                           "or a period along each other axis, or in 3D by a cylinder along its normal; "
+                           "a cylinder, in 3D along an axis whose walls or period bound its height)",
                            sim.walls[p.wall].name, a.why_not));
       }
       if (r.has("component")) r.fail("component", "does not apply: the stress is normal to the wall");

@@ -60,28 +60,26 @@ void Simulation<D>::advance(std::uint64_t count) {
   }
   // With tracking the same operations, in separate sweeps.
   double moved = tracked ? tracked_kick(true) : kick_drift();
-  std::vector<Vec<D>> wall_points, wall_forces;
-  std::vector<double> wall_torques;
+  std::vector<Wall<D>> walls_before;
   for (std::uint64_t s = 0; s < count; ++s) {
-    if (tracked) {
-      wall_points.clear();
-      wall_forces.clear();
-      wall_torques.clear();
-      for (const auto& w : walls) {
-        wall_points.push_back(w.point);
-        wall_forces.push_back(w.force);
-        wall_torques.push_back(w.torque);
+    if (tracked) walls_before = walls;
+    update_stress_servos();
+    for (auto& w : walls) {
+      w.advance(time_step);
+      if (w.is_cylinder() && !(w.radius > 0.0)) {
+        throw std::runtime_error(fmt::format(
+            "wall \"{}\": its servo has shrunk the cylinder to radius {} m at t = {} s: the grains it should "
+            "load are not inside it (check its target and the grains' place)",
+            w.name, w.radius, time));
       }
     }
-    update_stress_servos();
-    for (auto& w : walls) w.advance(time_step);
     time += time_step;
     rebuild_if_needed(moved);
     recording_ = record_contact_forces && s + 1 == count;
     if (recording_) pair_force_.assign(list_.pair_count(), Vec<D>::Zero());
     if (tracked) {
       compute_forces(Finish::none);
-      account_walls(wall_points, wall_forces, wall_torques);
+      account_walls(walls_before);
       tracked_kick(false);
       moved = s + 1 < count ? tracked_kick(true) : 0.0;
     } else {
@@ -806,6 +804,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
   for (auto& w : walls) {
     w.force.setZero();
     w.torque = 0.0;
+    w.radial_load = 0.0;
     cylinders = cylinders || w.is_cylinder();
   }
   for (std::int64_t i = 0; i < n; ++i) {
@@ -813,9 +812,13 @@ double Simulation<D>::compute_forces_with(Finish finish) {
       Wall<D>& w = walls[W.wall[k]];
       w.force -= W.force_on_particle[k];
       // The contact's action on the particle about the axis: its force at
-      // the particle's centre and its torque about that centre.
-      if (cylinders && w.is_cylinder())
+      // the particle's centre and its torque about that centre; and its
+      // push on the surface, along the normal from the wall to the particle.
+      if (cylinders && w.is_cylinder()) {
         w.torque -= w.moment_about_axis(p.position[i], W.force_on_particle[k], W.torque_on_particle[k]);
+        if (W.force_on_particle[k] != Vec<D>::Zero())
+          w.radial_load += W.force_on_particle[k].dot(w.cylinder_touch(p.position[i]).normal);
+      }
     }
   }
   return std::sqrt(moved2);

@@ -41,7 +41,7 @@ void WallContactList<D>::build(const std::vector<Vec<D>>& position, const std::v
   rolling = std::move(next_rolling);
   force_on_particle.assign(wall.size(), Vec<D>::Zero());
   torque_on_particle.assign(wall.size(), AngVec<D>::Zero());
-  for (auto& w : walls) w.point_at_build = w.point;
+  for (auto& w : walls) w.mark_build();
 }
 
 template struct WallContactList<2>;

@@ -828,6 +828,51 @@ class StressServo(unittest.TestCase):
         m.set_wall_servo("lid", gain=1.0, max_speed=1.0, target_force=2.0)
         self.assertEqual(next(w for w in m.walls if w["name"] == "lid")["servo"], {"target_force": 2.0})
 
+    def test_a_drum_made_a_servo_from_python_closes_on_a_ring_as_by_hand(self):
+        """A drum of 3 mm round a central disc and a ring of 5 discs of 1 mm
+        touching it, made a stress servo at 10 kPa from Python (as
+        test_triaxial.cpp's DrumClosingOnARingOfDiscs): each ring disc
+        carries F = stress x 2 pi R / 5 through two contacts in series, so
+        R = 3 mm / (1 + 4 pi stress / (5 k_n))."""
+        import math
+        folder = tempfile.mkdtemp()
+        with open(os.path.join(folder, "ring.csv"), "w") as f:
+            f.write("x,y,radius\n0,0,0.001\n")
+            for j in range(5):
+                a = 2.0 * math.pi * j / 5 + 0.3
+                f.write(f"{0.002 * math.cos(a)},{0.002 * math.sin(a)},0.001\n")
+        text = LATTICE.split("[[wall]]")[0] + """
+[[wall]]
+name = "drum"
+material = "glass"
+cylinder = { centre = [0.0, 0.0], radius = 0.003 }
+
+[[particles]]
+generator = "csv"
+file = "ring.csv"
+material = "glass"
+
+[[stage]]
+name = "load"
+duration = 0.06
+local_damping = 0.7
+"""
+        m = darcydem.load(write_scene(folder, text))
+        with self.assertRaisesRegex(ValueError, "a cylinder's servo changes its radius"):
+            m.set_wall_servo("drum", gain=1.0, max_speed=1.0, target_force=1.0, direction=[1.0, 0.0])
+        gain = 2.0 / (5 * 1e8 * 1e-3)  # settles in about 1 ms
+        m.set_wall_servo("drum", gain=gain, max_speed=0.01, target_stress=1e4)
+        m.apply_stage("load")
+        m.step(round(0.06 / m.time_step))
+        drum = m.walls[0]
+        expected = 0.003 / (1.0 + 4.0 * math.pi * 1e4 / (5 * 1e8))
+        print(f"drum from python: squeeze {(0.003 - drum['radius']) / (0.003 - expected) - 1:+.2e}")
+        # As in the C++ test (2e-10 there): round-off is left; 1e-6.
+        self.assertAlmostEqual((0.003 - drum["radius"]) / (0.003 - expected), 1.0, delta=1e-6)
+        self.assertAlmostEqual(drum["stress"] / 1e4, 1.0, delta=1e-6)
+        self.assertAlmostEqual(drum["radial_load"] / (1e4 * 2.0 * math.pi * drum["radius"]), 1.0, delta=1e-6)
+        self.assertEqual(drum["servo"], {"target_stress": 1e4})
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

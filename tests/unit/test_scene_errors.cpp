@@ -316,10 +316,12 @@ TEST(SceneErrors, StressServosAreChecked) {
   EXPECT_EQ(scene.simulation.walls[1].servo.target_stress, 1000.0);
   // The sides may come after the lid; without one, the lid has no area.
   std::string msg = load_error(replace(kGood, "[[particles]]", lid + "\n[[particles]]"));
-  EXPECT_NE(msg.find("[[wall]] #2 servo key 'target_stress': loads wall \"lid\" over the sample's "
-                     "cross-section, and its cross-section needs, along x, one plane wall facing +x and one "
-                     "facing -x (or a periodic x); there are 0 and 0; give 'target_force' (N) instead"),
-            std::string::npos)
+  EXPECT_NE(
+      msg.find("[[wall]] #2 servo key 'target_stress': loads wall \"lid\" over the sample's "
+               "cross-section, and its cross-section is not bounded: the sample's extent along x needs one "
+               "plane wall facing +x and one facing -x (or a periodic x); there are 0 and 0; give "
+               "'target_force' (N) instead"),
+      std::string::npos)
       << msg;
   msg = load_error(replace(good, "target_stress = 1000.0", "target_stress = 1000.0, target_force = 1.0"));
   EXPECT_NE(
@@ -336,8 +338,11 @@ TEST(SceneErrors, StressServosAreChecked) {
   // A box has no loaded area: give it a force.
   msg = load_error(replace(good, "point = [0.0, 0.004]\nnormal = [0.0, -1.0]",
                            "box = { min = [-0.001, 0.004], max = [0.001, 0.005] }"));
-  EXPECT_NE(msg.find("key 'target_stress': is for a plane wall, whose loaded area the other walls bound"),
-            std::string::npos)
+  EXPECT_NE(
+      msg.find("key 'target_stress': is for a plane wall (its cross-section of the sample) or a "
+               "cylinder (its lateral surface), whose loaded area the other walls bound; give a box wall "
+               "a 'target_force'"),
+      std::string::npos)
       << msg;
   // A stage that makes the floor a stress servo: the side walls bound it;
   // two walls facing +x and none facing -x do not; nor do no side walls.
@@ -366,7 +371,7 @@ TEST(SceneErrors, StressServosAreChecked) {
   msg = load_error(replace(replace(kGood, "[[particles]]", probe + "\n[[particles]]"), "wall = \"lid\"",
                            "wall = \"floor\""));
   EXPECT_NE(msg.find("key 'wall': wall \"floor\" has no loaded area to divide its load by: its cross-section "
-                     "needs, along x"),
+                     "is not bounded: the sample's extent along x needs"),
             std::string::npos)
       << msg;
   msg = load_error(replace(good, "wall = \"lid\"", "wall = \"lid\"\ncomponent = \"y\""));
@@ -440,10 +445,34 @@ TEST(SceneErrors, CylinderWallsAreChecked) {
   EXPECT_NE(msg.find("centre"), std::string::npos) << msg;
   msg = load_error(replace(good, "cylinder = {", "point = [0.0, 0.0]\ncylinder = {"));
   EXPECT_NE(msg.find("key 'point': a cylinder wall is placed by 'cylinder' alone"), std::string::npos) << msg;
-  msg = load_error(replace(good, "radius = 0.003 }\nmaterial = \"sand\"",
-                           "radius = 0.003 }\nmaterial = \"sand\"\nservo = { target_force = 1.0, gain = 1.0, "
-                           "max_speed = 1.0 }"));
-  EXPECT_NE(msg.find("[[wall]] #2 key 'servo': a cylinder wall keeps its radius"), std::string::npos) << msg;
+  // A servo changes its radius: by force, or by stress over its
+  // perimeter (2D: times 1 m); no direction.
+  const std::string servo =
+      replace(good, "radius = 0.003 }\nmaterial = \"sand\"",
+              "radius = 0.003 }\nmaterial = \"sand\"\nservo = { target_stress = 1000.0, gain = 1.0, "
+              "max_speed = 1.0 }");
+  ASSERT_EQ(load_error(servo), "");
+  EXPECT_EQ(built_scene<2>(servo).simulation.walls.back().motion, WallMotion::servo);
+  EXPECT_EQ(load_error(replace(servo, "target_stress = 1000.0", "target_force = 1.0")), "");
+  msg = load_error(replace(servo, "max_speed = 1.0", "max_speed = 1.0, direction = [1.0, 0.0]"));
+  EXPECT_NE(msg.find("servo key 'direction': a cylinder's servo changes its radius"), std::string::npos)
+      << msg;
+  // 3D: the height its lateral surface has needs walls or a period along
+  // the axis; the column's floor alone does not bound it.
+  const std::string servo3 =
+      replace(replace(in_3d(servo), "centre = [0.0, 0.002]", "centre = [0.0, 0.0, 0.002]"),
+              "radius = 0.003 }", "radius = 0.003, axis = [0.0, 0.0, 1.0] }");
+  msg = load_error(servo3);
+  EXPECT_NE(
+      msg.find("[[wall]] #2 servo key 'target_stress': loads wall \"drum\" over the sample's lateral "
+               "surface, and its height is not bounded: the sample's extent along z needs one plane wall "
+               "facing +z and one facing -z (or a periodic z); there are 1 and 0"),
+      std::string::npos)
+      << msg;
+  EXPECT_EQ(load_error(replace(servo3, "[[particles]]",
+                               "[[wall]]\nname = \"lid\"\npoint = [0.0, 0.0, 0.02]\nnormal = [0.0, 0.0, "
+                               "-1.0]\nmaterial = \"sand\"\n\n[[particles]]")),
+            "");
   // Touched from outside, the discs would start inside the solid: refused
   // as any overlap at the start is.
   msg = load_error(replace(good, "radius = 0.003", "radius = 0.003, touched_from = \"outside\""));

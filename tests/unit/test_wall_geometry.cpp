@@ -133,9 +133,36 @@ TEST(WallTouch, ACylinderIsTouchedAcrossItsAxisFromTheSideItFaces) {
   EXPECT_NEAR(on_axis.normal.dot(axis), 0.0, kTol);
   // Moving along its axis it has not moved towards any particle.
   auto moved = drum;
-  moved.point_at_build = moved.point;
+  moved.mark_build();
   moved.point += 2.0 * axis + Vec<3>(0.3, 0.4 * 0.8, -0.4 * 0.6);
   EXPECT_NEAR(moved.moved_since_build(), 0.5, kTol);
+  // A change of radius moves its surface by as much, added to the shift.
+  moved.radius -= 0.25;
+  EXPECT_NEAR(moved.moved_since_build(), 0.75, kTol);
+}
+
+// A cylinder's servo changes its radius, not its place: touched from
+// inside it shrinks while the load is short of the target, from outside
+// it grows, at gain x the shortfall (clamped at max_speed).
+TEST(WallTouch, ACylindersServoChangesItsRadiusTowardsTheGrains) {
+  for (const bool inside : {true, false}) {
+    auto w = cylinder<3>(Vec<3>(1, 1, 1), 5.0, Vec<3>(0, 0, 1), inside);
+    w.motion = WallMotion::servo;
+    w.servo.target_force = 10.0;
+    w.servo.gain = 0.01;
+    w.servo.max_speed = 1.0;
+    w.radial_load = 4.0;
+    w.advance(0.5);  // speed 0.06 m/s for 0.5 s
+    EXPECT_NEAR(w.radius, inside ? 4.97 : 5.03, kTol);
+    EXPECT_NEAR((w.point - Vec<3>(1, 1, 1)).norm(), 0.0, kTol);
+    EXPECT_NEAR(w.radial_speed, inside ? -0.06 : 0.06, kTol);
+    // Its surface at (1, 1, 1) + 5 x, anywhere along the axis, moves
+    // along the radius.
+    EXPECT_NEAR((w.surface_velocity(Vec<3>(6, 1, 7)) - Vec<3>(w.radial_speed, 0, 0)).norm(), 0.0, kTol);
+    w.radial_load = 10.0 + 1e4;  // far over: at max_speed the other way
+    w.advance(0.5);
+    EXPECT_NEAR(w.radial_speed, inside ? 1.0 : -1.0, kTol);
+  }
 }
 
 TEST(WallTouch, A2DCylinderIsACircle) {
@@ -174,8 +201,9 @@ TEST(LoadedArea, IsTheCrossSectionTheOtherWallsBound) {
   PeriodicCell<3> none;
   EXPECT_DOUBLE_EQ(loaded_area(walls, 0, none).area, 6.0);
   // A side wall's area: the lid and an absent floor leave z unbounded.
-  EXPECT_NE(loaded_area(walls, 1, none).why_not.find("along z, one plane wall facing +z and one facing -z"),
-            std::string::npos);
+  EXPECT_NE(
+      loaded_area(walls, 1, none).why_not.find("along z needs one plane wall facing +z and one facing -z"),
+      std::string::npos);
   walls.push_back(plane3(Vec<3>(0, 0, 0), Vec<3>(0, 0, 1)));  // the floor
   EXPECT_DOUBLE_EQ(loaded_area(walls, 1, none).area, 3.0 * 4.0);
   EXPECT_DOUBLE_EQ(loaded_area(walls, 3, none).area, 2.0 * 4.0);
@@ -191,6 +219,18 @@ TEST(LoadedArea, IsTheCrossSectionTheOtherWallsBound) {
   cylinder.radius = 2.0;
   std::vector<Wall<3>> cell_walls = {walls[0], cylinder};
   EXPECT_DOUBLE_EQ(loaded_area(cell_walls, 0, none).area, std::numbers::pi * 4.0);
+  // The cylinder's own: its lateral surface, 2 pi R times the height the
+  // lid and a floor bound (4), or the period along its axis (3).
+  EXPECT_NE(loaded_area(cell_walls, 1, none).why_not.find("its height is not bounded"), std::string::npos);
+  cell_walls.push_back(walls[5]);  // the floor
+  EXPECT_DOUBLE_EQ(loaded_area(cell_walls, 1, none).area, 2.0 * std::numbers::pi * 2.0 * 4.0);
+  PeriodicCell<3> along_z;
+  along_z.set_axis(2, 1.0, 4.0);
+  EXPECT_DOUBLE_EQ(loaded_area(std::vector<Wall<3>>{cylinder}, 0, along_z).area,
+                   2.0 * std::numbers::pi * 2.0 * 3.0);
+  cylinder.axis = Vec<3>(0.6, 0.8, 0.0);
+  EXPECT_NE(loaded_area(std::vector<Wall<3>>{cylinder}, 0, along_z).why_not.find("not along x, y or z"),
+            std::string::npos);
   // Crossed: the +x wall moved past the -x one.
   walls[2].point.x() = -1.5;
   EXPECT_NE(loaded_area(walls, 0, none).why_not.find("have crossed"), std::string::npos);

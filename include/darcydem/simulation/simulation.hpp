@@ -250,10 +250,9 @@ class Simulation {
   /// velocities it had before (v, w).
   void account_kick(std::size_t i, const Vec<D>& v, const AngVec<D>& w, double half_dt,
                     EnergyBudget& sum) const;
-  /// Adds the walls' work to `energy` over a step in which each moved from
-  /// `points` with the forces `forces` on it at the step's start.
-  void account_walls(const std::vector<Vec<D>>& points, const std::vector<Vec<D>>& forces,
-                     const std::vector<double>& torques);
+  /// Adds the walls' work to `energy` over a step that began with the
+  /// walls as `before` (their places and loads).
+  void account_walls(const std::vector<Wall<D>>& before);
   /// Calls visit(contact, list slot k, first selected, second selected) for
   /// each contact between two particles of which one at least is selected
   /// (selected(p) holds), its geometry only: force and moments left zero

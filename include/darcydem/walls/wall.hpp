@@ -13,7 +13,9 @@
 // (a pile, a pipe in a bed). A wall is fixed, moves at a
 // prescribed velocity, or is servo-controlled so that the load on it
 // approaches a target force: a plane along its normal, a box along its
-// servo_axis; the load is what the particles put on it, and with
+// servo_axis, a cylinder by changing its radius (a triaxial cell's
+// confining wall, PFC's radial servo); the load is what the particles put
+// on it (a cylinder's: the sum of their pushes normal to it), and with
 // `with_pore_water` also the pore water's thrust (a wall that displaces the
 // fluid: an impermeable piston or platen).
 #include <algorithm>
@@ -66,6 +68,13 @@ struct Wall {
   double radius = 0.0;
   Vec<D> axis = Vec<D>::Zero();
   bool from_inside = true;
+  /// A servo-controlled cylinder's rate of change of radius, m/s (the
+  /// servo sets it; zero otherwise), and the particles' compressive load on
+  /// it, N: the sum over its contacts of the force normal to its surface,
+  /// pressing it outward when touched from inside and inward from outside.
+  double radial_speed = 0.0;
+  double radial_load = 0.0;
+  double radius_at_build = 0.0;
   /// A box's own axes, as the columns of a rotation (from the scene).
   Eigen::Matrix<double, D, D> axes = Eigen::Matrix<double, D, D>::Identity();
   std::uint16_t material = 0;
@@ -94,18 +103,25 @@ struct Wall {
   template <class Archive>
   void checkpoint(Archive& ar) {
     ar(point, normal, material, motion, velocity, servo, servo_axis, force, water_force, point_at_build, spin,
-       torque);
+       torque, radius, radial_speed, radial_load, radius_at_build);
   }
 
   /// The wall's velocity at a point c of its surface: its translation, and
-  /// a cylinder's spin.
+  /// a cylinder's spin and change of radius.
   [[nodiscard]] Vec<D> surface_velocity(const Vec<D>& c) const {
-    if (spin == 0.0) return velocity;
-    const Vec<D> arm = c - point;
+    if (spin == 0.0 && radial_speed == 0.0) return velocity;
+    Vec<D> arm = c - point;
+    if constexpr (D == 3) arm -= arm.dot(axis) * axis;
+    Vec<D> v = velocity;
+    if (radial_speed != 0.0) {
+      const double rho = arm.norm();
+      if (rho > 0.0) v += (radial_speed / rho) * arm;
+    }
+    if (spin == 0.0) return v;
     if constexpr (D == 2) {
-      return velocity + spin * Vec<D>(-arm[1], arm[0]);
+      return v + spin * Vec<D>(-arm[1], arm[0]);
     } else {
-      return velocity + spin * cross(axis, arm);
+      return v + spin * cross(axis, arm);
     }
   }
   /// Its angular velocity, rad/s: a cylinder's spin about its axis.
@@ -179,35 +195,54 @@ struct Wall {
   [[nodiscard]] double gap(const Vec<D>& x) const { return touch(x).gap; }
   /// How far the wall has come towards particles since the last contact
   /// list build: along its normal for a plane, any way for a box, across
-  /// its axis for a cylinder.
+  /// its axis for a cylinder, plus the change of its radius.
   [[nodiscard]] double moved_since_build() const {
     Vec<D> shift = point - point_at_build;
     if (shape == WallShape::plane) return std::abs(shift.dot(normal));
-    if (shape == WallShape::cylinder && D == 3) shift -= shift.dot(axis) * axis;
+    if (shape == WallShape::cylinder) {
+      if constexpr (D == 3) shift -= shift.dot(axis) * axis;
+      return shift.norm() + std::abs(radius - radius_at_build);
+    }
     return shift.norm();
   }
+  /// Marks the wall's place at a contact list build.
+  void mark_build() {
+    point_at_build = point;
+    radius_at_build = radius;
+  }
   /// The direction the wall moves in to load the particles more: a
-  /// plane's normal, a box's servo_axis (a cylinder has no servo).
+  /// plane's normal, a box's servo_axis (a cylinder's servo changes its
+  /// radius instead).
   [[nodiscard]] Vec<D> push_direction() const { return shape == WallShape::plane ? normal : servo_axis; }
-  /// Compressive load on the wall (N): the force's component against
-  /// push_direction(), the particles' and, with servo.with_pore_water, the
-  /// pore water's.
+  /// Compressive load on the wall (N): a cylinder's radial_load; otherwise
+  /// the force's component against push_direction(), the particles' and,
+  /// with servo.with_pore_water, the pore water's.
   [[nodiscard]] double load() const {
+    if (shape == WallShape::cylinder) return radial_load;
     const Vec<D> f = servo.with_pore_water ? Vec<D>(force + water_force) : force;
     return -f.dot(push_direction());
   }
 
-  /// Updates the servo velocity from the last load and moves the wall.
+  /// Updates the servo velocity from the last load and moves the wall. A
+  /// cylinder's servo shrinks it (touched from inside) or grows it (from
+  /// outside) while the load is short of the target.
   void advance(double dt) {
     if (motion == WallMotion::servo) {
       double speed = servo.gain * (servo.target_force - load());
       if (speed > servo.max_speed) speed = servo.max_speed;
       if (speed < -servo.max_speed) speed = -servo.max_speed;
-      velocity = speed * push_direction();
-    } else if (motion == WallMotion::fixed) {
-      velocity.setZero();
+      if (shape == WallShape::cylinder) {
+        velocity.setZero();
+        radial_speed = from_inside ? -speed : speed;
+      } else {
+        velocity = speed * push_direction();
+      }
+    } else {
+      radial_speed = 0.0;
+      if (motion == WallMotion::fixed) velocity.setZero();
     }
     point += velocity * dt;
+    radius += radial_speed * dt;
   }
 };
 
