@@ -118,6 +118,8 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       return pick(sim.walls[probe.wall].force);
     case ProbeQuantity::wall_torque:
       return sim.walls[probe.wall].torque;
+    case ProbeQuantity::wall_radius:
+      return sim.walls[probe.wall].radius;
     case ProbeQuantity::wall_stress:
       // Walls that have crossed leave no area: nan, as the servo stops the run.
       return wall_stress(sim.walls, probe.wall, sim.periodic);

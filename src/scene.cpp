@@ -1153,6 +1153,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "wall_force",
                                                 "wall_fluid_force",
                                                 "wall_torque",
+                                                "wall_radius",
                                                 "wall_stress",
                                                 "kinetic_energy",
                                                 "elastic_energy",
@@ -1360,8 +1361,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                            sim.walls[p.wall].name, a.why_not));
       }
       if (r.has("component")) r.fail("component", "does not apply: the stress is normal to the wall");
-    } else if (q == "wall_torque") {
-      p.quantity = ProbeQuantity::wall_torque;
+    } else if (q == "wall_torque" || q == "wall_radius") {
+      const bool torque = q == "wall_torque";
+      p.quantity = torque ? ProbeQuantity::wall_torque : ProbeQuantity::wall_radius;
       const std::string w = r.string("wall");
       auto it = wall_index.find(w);
       if (it == wall_index.end() || !sim.walls[it->second].is_cylinder()) {
@@ -1369,12 +1371,15 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         for (const auto& wall : sim.walls) {
           if (wall.is_cylinder()) cylinders.push_back("\"" + wall.name + "\"");
         }
-        r.fail("wall", fmt::format("must name a cylinder wall (the moment about its axis); the scene's: {}",
+        r.fail("wall", fmt::format("must name a cylinder wall ({}); the scene's: {}",
+                                   torque ? "the moment about its axis" : "its radius",
                                    cylinders.empty() ? std::string("none")
                                                      : fmt::format("{}", fmt::join(cylinders, ", "))));
       }
       p.wall = it->second;
-      if (r.has("component")) r.fail("component", "does not apply: the moment is about the cylinder's axis");
+      if (r.has("component"))
+        r.fail("component", torque ? "does not apply: the moment is about the cylinder's axis"
+                                   : "does not apply: the radius is a length");
     } else {
       for (auto k : {"particle", "component", "wall"}) {
         if (r.has(k)) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));

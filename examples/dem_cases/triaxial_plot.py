@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""The drained triaxial test of triaxial_test.toml (or the biaxial test of
-biaxial_test.toml, 2D): stress and strain.
+"""The drained triaxial test of triaxial_test.toml or triaxial_cell.toml (or
+the biaxial test of biaxial_test.toml, 2D): stress and strain.
 
     darcydem run examples/dem_cases/triaxial_test.toml --out OUT
     /usr/bin/python3 examples/dem_cases/triaxial_plot.py OUT
@@ -10,7 +10,9 @@ with compression positive:
 - axial strain eps_a = 1 - H / H0, H the platens' distance (probes "top"
   and "bottom"); volumetric strain eps_v = 1 - V / V0, V the walls' box;
 - sigma_1 = probe "sigma_z" (the top platen's stress), sigma_3 the mean of
-  "sigma_x" and "sigma_y" (the side walls'); the deviator q = sigma_1 -
+  "sigma_x" and "sigma_y" (the side walls'). In a cylindrical cell (a
+  probe "radius", the cell's radius R) sigma_3 = "sigma_r", the cell's
+  stress, and V = pi R^2 H. The deviator q = sigma_1 -
   sigma_3, the mean stress p = (sigma_1 + 2 sigma_3) / 3. In 2D (probes
   without "y_min": the biaxial test) sigma_1 = "sigma_y", sigma_3 =
   "sigma_x", p = (sigma_1 + sigma_3) / 2 and V the walls' area;
@@ -31,11 +33,18 @@ from pathlib import Path
 
 COLUMNS = ("time", "x_min", "x_max", "y_min", "y_max", "bottom", "top", "sigma_x", "sigma_y", "sigma_z")
 COLUMNS_2D = ("time", "x_min", "x_max", "bottom", "top", "sigma_x", "sigma_y")
+COLUMNS_CELL = ("time", "radius", "bottom", "top", "sigma_r", "sigma_z")
 
 
 def dimension(p):
-    """3 for a triaxial test's probes, 2 for a biaxial test's (no y_min)."""
-    return 3 if "y_min" in p else 2
+    """3 for a triaxial test's probes (a box's or a cell's), 2 for a biaxial
+    test's (neither y_min nor radius)."""
+    return 3 if "y_min" in p or "radius" in p else 2
+
+
+def cell(p):
+    """Whether the probes are a cylindrical cell's (a column "radius")."""
+    return "radius" in p
 
 
 def read_columns(path):
@@ -55,8 +64,12 @@ def curves(p, start):
         raise ValueError(f"fewer than two probe rows from {start} s on (the run ends at {p['time'][-1]} s)")
 
     three = dimension(p) == 3
+    cylinder = cell(p)
 
     def box(i):
+        h = p["top"][i] - p["bottom"][i]
+        if cylinder:
+            return h, math.pi * p["radius"][i] ** 2 * h
         w = p["x_max"][i] - p["x_min"][i]
         d = p["y_max"][i] - p["y_min"][i] if three else 1.0
         h = p["top"][i] - p["bottom"][i]
@@ -67,7 +80,10 @@ def curves(p, start):
     for i in rows:
         h, v = box(i)
         s1 = p["sigma_z"][i] if three else p["sigma_y"][i]
-        s3 = 0.5 * (p["sigma_x"][i] + p["sigma_y"][i]) if three else p["sigma_x"][i]
+        if cylinder:
+            s3 = p["sigma_r"][i]
+        else:
+            s3 = 0.5 * (p["sigma_x"][i] + p["sigma_y"][i]) if three else p["sigma_x"][i]
         c["time"].append(p["time"][i])
         c["eps_a"].append(1.0 - h / h0)
         c["eps_v"].append(1.0 - v / v0)
@@ -112,10 +128,10 @@ def main():
         p = read_columns(probes)
     except ValueError as e:
         sys.exit(f"triaxial_plot.py: {e}")
-    for key in COLUMNS if dimension(p) == 3 else COLUMNS_2D:
+    for key in COLUMNS_CELL if cell(p) else COLUMNS if dimension(p) == 3 else COLUMNS_2D:
         if key not in p:
-            sys.exit(f"triaxial_plot.py: {probes} has no column '{key}' (the probes of triaxial_test.toml, or "
-                     f"in 2D of biaxial_test.toml)")
+            sys.exit(f"triaxial_plot.py: {probes} has no column '{key}' (the probes of triaxial_test.toml or "
+                     f"triaxial_cell.toml, or in 2D of biaxial_test.toml)")
     try:
         c = curves(p, args.start)
         k, psi = peak(c, args.window)

@@ -69,22 +69,29 @@ class DrumProfile(unittest.TestCase):
         self.assertIn(os.path.join(out, "probes.csv") + " not found", r.stderr)
 
 
-def triaxial_probes(phi_of_strain, psi, steps=200, strain=0.1, start=0.15, dim=3):
+def triaxial_probes(phi_of_strain, psi, steps=200, strain=0.1, start=0.15, dim=3, cell=False):
     """Probe columns of a triaxial test made by hand: the platens close
     (eps_a = 1 - H / H0 from 0 to `strain`), sigma_3 = 100 kPa, sigma_1 such
     that sin(phi) = (s1 - s3) / (s1 + s3) with phi = phi_of_strain(eps_a)
     degrees, and the volume V = V0 (1 - eps_v) with eps_v = r eps_a, r =
     -2 sin(psi) / (1 - sin(psi)) (a constant dilatancy angle psi). A row
     before `start` (the compaction) must be left out. With dim = 2 a
-    biaxial test's: no y walls, sigma_1 on the top as "sigma_y", V an area."""
+    biaxial test's: no y walls, sigma_1 on the top as "sigma_y", V an area.
+    With cell = True a cylindrical cell's: its radius R and stress sigma_r,
+    V = pi R^2 H."""
     h0, w0 = 0.025, 0.012
     s3 = 1e5
     r = -2.0 * math.sin(math.radians(psi)) / (1.0 - math.sin(math.radians(psi)))
-    p = {k: [] for k in (triaxial_plot.COLUMNS if dim == 3 else triaxial_plot.COLUMNS_2D)}
+    columns = triaxial_plot.COLUMNS_CELL if cell else triaxial_plot.COLUMNS if dim == 3 else triaxial_plot.COLUMNS_2D
+    p = {k: [] for k in columns}
 
     def row(t, eps_a, s1, volume_factor):
         h = h0 * (1.0 - eps_a)
-        if dim == 3:
+        if cell:
+            radius = math.sqrt(w0 * w0 * h0 * volume_factor / (math.pi * h))
+            values = (("time", t), ("radius", radius), ("bottom", 0.001), ("top", 0.001 + h), ("sigma_r", s3),
+                      ("sigma_z", s1))
+        elif dim == 3:
             w = math.sqrt(w0 * w0 * h0 * volume_factor / h)
             values = (("time", t), ("x_min", -w / 2), ("x_max", w / 2), ("y_min", 0.0), ("y_max", w),
                       ("bottom", 0.001), ("top", 0.001 + h), ("sigma_x", s3 * 1.01), ("sigma_y", s3 * 0.99),
@@ -111,12 +118,17 @@ class TriaxialPlot(unittest.TestCase):
         # degrees): 1e-9 bounds it. Taking sigma_3 as one side wall's stress
         # (1 % off) gives a peak of 31.76 degrees for 32, the logarithmic
         # volumetric strain for 1 - V / V0 a psi of 9.90 for 10: both caught.
-        for phi_peak, psi, dim in ((32.0, 10.0, 3), (28.0, -3.0, 3), (33.0, 12.0, 2)):
-            probes = triaxial_probes(lambda e: phi_peak - 2000.0 * (e - 0.03) ** 2, psi, dim=dim)
+        # A cylindrical cell's (its radius and sigma_r for the box's sides)
+        # likewise; a volume linear in R (the lateral surface's) or without
+        # H would not give psi back.
+        for phi_peak, psi, dim, cell in ((32.0, 10.0, 3, False), (28.0, -3.0, 3, False), (33.0, 12.0, 2, False),
+                                         (31.0, 8.0, 3, True)):
+            probes = triaxial_probes(lambda e: phi_peak - 2000.0 * (e - 0.03) ** 2, psi, dim=dim, cell=cell)
+            self.assertEqual(triaxial_plot.dimension(probes), dim)
             c = triaxial_plot.curves(probes, 0.15)
             k, fitted_psi = triaxial_plot.peak(c, 0.01)
-            print(f"made in {dim}D with phi {phi_peak}, psi {psi}: peak {c['phi'][k]:.12f} at {c['eps_a'][k]:.4f}, "
-                  f"psi {fitted_psi:.12f}")
+            print(f"made in {dim}D{' (cell)' if cell else ''} with phi {phi_peak}, psi {psi}: peak "
+                  f"{c['phi'][k]:.12f} at {c['eps_a'][k]:.4f}, psi {fitted_psi:.12f}")
             self.assertAlmostEqual(c["phi"][k], phi_peak, delta=1e-9)
             self.assertAlmostEqual(c["eps_a"][k], 0.03, delta=1e-12)
             self.assertAlmostEqual(fitted_psi, psi, delta=1e-9)

@@ -492,6 +492,17 @@ TEST(SceneErrors, CylinderWallsAreChecked) {
       msg.find("key 'wall': must name a cylinder wall (the moment about its axis); the scene's: \"drum\""),
       std::string::npos)
       << msg;
+  // Its radius: a length, of a cylinder only.
+  const std::string radius_probe =
+      "[[probe]]\nname = \"r\"\nquantity = \"wall_radius\"\nwall = \"drum\"\n\n[[stage]]";
+  EXPECT_EQ(load_error(replace(good, "[[stage]]", radius_probe)), "");
+  msg = load_error(replace(good, "[[stage]]", replace(radius_probe, "wall = \"drum\"", "wall = \"floor\"")));
+  EXPECT_NE(msg.find("key 'wall': must name a cylinder wall (its radius); the scene's: \"drum\""),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "[[stage]]",
+                           replace(radius_probe, "wall = \"drum\"", "wall = \"drum\"\ncomponent = \"x\"")));
+  EXPECT_NE(msg.find("key 'component': does not apply: the radius is a length"), std::string::npos) << msg;
   // The pore water passes through it.
   msg = load_error(replace(good, "radius = 0.003 }\nmaterial = \"sand\"",
                            "radius = 0.003 }\nmaterial = \"sand\"\ndisplaces_fluid = true"));

@@ -412,6 +412,21 @@ TEST(Checkpoint, ResumedCementedChainKeepsItsBonds) {
   expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 3000, 0);
 }
 
+/// expect_resumed_run_writes_the_same_files on a variant of an example
+/// (testing::scene_variant's `swaps`), written as dir/scene.toml.
+template <int D>
+void expect_resumed_variant_writes_the_same_files(
+    const std::string& example, const std::vector<std::pair<std::string, std::string>>& swaps,
+    const std::string& name, std::size_t stages, std::uint64_t stop, std::size_t stages_before) {
+  const fs::path dir = fresh_dir(name);
+  fs::create_directories(dir);
+  const fs::path scene = dir / "scene.toml";
+  std::ofstream(scene) << darcydem::testing::scene_variant(example, swaps);
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  expect_resumed_run_writes_the_same_files<D>(scene.string(), out, stages, stop, stages_before);
+}
+
 TEST(Checkpoint, ResumedBondedCantileverKeepsItsBondsBending) {
   // examples/dem_cases/bonded_cantilever.toml, stopped at step 3000 of stage
   // "sag" (the cantilever still bending): each bond's turn must come back,
@@ -427,17 +442,11 @@ TEST(Checkpoint, ResumedRotatingDrumKeepsTurning) {
   // settling (about 11 400 steps) and 0.1 s of turning, stopped at step 17 000,
   // the drum turning: its spin and the torque its probe reads must come
   // back, or the grains after the resume meet a still drum.
-  const fs::path dir = fresh_dir("rotating_drum");
-  fs::create_directories(dir);
-  const std::string text = darcydem::testing::scene_variant("examples/dem_cases/rotating_drum.toml",
-                                                            {{"count = 450", "count = 150"},
-                                                             {"duration = 0.6", "duration = 0.1"},
-                                                             {"duration = 3.0", "duration = 0.1"}});
-  const fs::path scene = dir / "drum.toml";
-  std::ofstream(scene) << text;
-  const fs::path out = dir / "out";
-  fs::create_directories(out);
-  expect_resumed_run_writes_the_same_files<3>(scene.string(), out, 2, 17000, 1);
+  expect_resumed_variant_writes_the_same_files<3>("examples/dem_cases/rotating_drum.toml",
+                                                  {{"count = 450", "count = 150"},
+                                                   {"duration = 0.6", "duration = 0.1"},
+                                                   {"duration = 3.0", "duration = 0.1"}},
+                                                  "rotating_drum", 2, 17000, 1);
 }
 
 TEST(Checkpoint, ResumedStageKeepsItsFriction) {
@@ -446,19 +455,25 @@ TEST(Checkpoint, ResumedStageKeepsItsFriction) {
   // in the second at step 26 000 (about 22 ms), still sliding: its
   // friction must come back with the checkpoint, or the sphere slows at
   // the first stage's or the scene's friction after the resume.
-  const fs::path dir = fresh_dir("stage_friction");
-  fs::create_directories(dir);
-  const std::string text = darcydem::testing::scene_variant(
+  expect_resumed_variant_writes_the_same_files<3>(
       "examples/dem_cases/slip_to_roll.toml",
       {{"[[stage]]\nname = \"roll\"\nduration = 0.1\n",
         "[[stage]]\nname = \"slide\"\nduration = 0.02\ncontacts = [{ materials = [\"glass\", \"glass\"], "
         "friction = 0.1 }]\ngravity = [0.0, 0.0, -9.81]\n\n[[stage]]\nname = \"roll\"\nduration = 0.02\n"
-        "contacts = [{ materials = [\"glass\", \"glass\"], friction = 0.2 }]\n"}});
-  const fs::path scene = dir / "slide.toml";
-  std::ofstream(scene) << text;
-  const fs::path out = dir / "out";
-  fs::create_directories(out);
-  expect_resumed_run_writes_the_same_files<3>(scene.string(), out, 2, 26000, 1);
+        "contacts = [{ materials = [\"glass\", \"glass\"], friction = 0.2 }]\n"}},
+      "stage_friction", 2, 26000, 1);
+}
+
+TEST(Checkpoint, ResumedCellKeepsItsServosRadius) {
+  // examples/dem_cases/triaxial_cell.toml with 150 spheres, 0.03 s of
+  // compaction and 0.01 s of shear, stopped at step 30 000 (about 20 ms),
+  // the cell closing at its max_speed: its radius must come back, and the
+  // list's mark of it, or the resumed run's grains meet another cell.
+  expect_resumed_variant_writes_the_same_files<3>("examples/dem_cases/triaxial_cell.toml",
+                                                  {{"count = 500", "count = 150"},
+                                                   {"duration = 0.15", "duration = 0.03"},
+                                                   {"duration = 0.3", "duration = 0.01"}},
+                                                  "triaxial_cell", 2, 30000, 0);
 }
 
 TEST(Checkpoint, ResumedCantileverKeepsItsBondsScatteredStrengths) {

@@ -24,6 +24,7 @@ enum class ProbeQuantity {
   wall_force,
   wall_fluid_force,  ///< the excess pore water's thrust on a wall, N (PoreFluid::wall_thrust, barrier_thrust)
   wall_torque,       ///< the particles' moment on a cylinder about its axis, N m (Wall::torque)
+  wall_radius,       ///< a cylinder's radius, m (a servo changes it)
   wall_stress,       ///< the particles' load on a plane over its loaded area, Pa (walls/loaded_area.hpp)
   kinetic_energy,
   elastic_energy,        ///< J, stored in the contacts' and bonds' springs (Simulation::elastic_energy)
