@@ -174,7 +174,8 @@ class Model {
   /// A wall's motion changed between steps, as a stage's `walls.NAME`
   /// entry does (YADE's state.vel and state.angVel, PFC's wall attribute
   /// velocity and spin): a velocity (which ends a servo) and, for a
-  /// cylinder, its spin about its axis.
+  /// cylinder, its spin about its axis and the rate of change of its
+  /// radius (which ends a servo).
   /// The wall called `name`; `who` names the caller in the error.
   Wall<D>& wall_named(const std::string& name, const char* who) {
     auto& walls = sim().walls;
@@ -189,11 +190,20 @@ class Model {
   }
 
   void set_wall_motion(const std::string& name, const std::optional<std::vector<double>>& velocity,
-                       std::optional<double> angular_velocity) {
+                       std::optional<double> angular_velocity, std::optional<double> radial_velocity) {
     Wall<D>* it = &wall_named(name, "set_wall_motion");
-    if (!velocity && !angular_velocity)
+    if (!velocity && !angular_velocity && !radial_velocity)
       throw py::value_error(
-          "set_wall_motion: give velocity = [D numbers] (m/s), angular_velocity (rad/s), or both");
+          "set_wall_motion: give velocity = [D numbers] (m/s), and or instead a cylinder's angular_velocity "
+          "(rad/s) or radial_velocity (m/s)");
+    if (radial_velocity) {
+      if (!it->is_cylinder()) {
+        throw py::value_error(fmt::format(
+            "set_wall_motion: wall '{}' is not a cylinder, and only a cylinder changes its radius", name));
+      }
+      if (!std::isfinite(*radial_velocity))
+        throw py::value_error("set_wall_motion: radial_velocity must be a finite number, m/s");
+    }
     if (angular_velocity) {
       if (!it->is_cylinder()) {
         throw py::value_error(fmt::format(
@@ -212,6 +222,11 @@ class Model {
       it->velocity = v;
     }
     if (angular_velocity) it->spin = *angular_velocity;
+    if (radial_velocity) {
+      // Its radius now follows the rate: a servo ends.
+      if (it->motion == WallMotion::servo) it->motion = WallMotion::velocity;
+      it->radius_rate = *radial_velocity;
+    }
   }
 
   /// Makes a wall a servo between steps, as a stage's walls.NAME = { servo
@@ -631,12 +646,11 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "bound, as a triaxial test's; a cylinder, over its lateral surface; taken again at every step; a "
            "cylinder's servo changes its radius), gain (m/(s N)), max_speed (m/s); a box "
            "moves along direction = [D numbers]")
-      .def(
-          "set_wall_motion", &M::set_wall_motion, py::arg("name"), py::arg("velocity") = py::none(),
-          py::arg("angular_velocity") = py::none(),
-          "sets a wall's velocity, m/s (ending a servo), and a cylinder's angular_velocity about its axis, "
-          "rad/s (right-handed about it; 2D counter-clockwise), between steps, as a stage's walls.NAME entry "
-          "does")
+      .def("set_wall_motion", &M::set_wall_motion, py::arg("name"), py::arg("velocity") = py::none(),
+           py::arg("angular_velocity") = py::none(), py::arg("radial_velocity") = py::none(),
+           "sets a wall's velocity, m/s (ending a servo), a cylinder's angular_velocity about its axis, "
+           "rad/s (right-handed about it; 2D counter-clockwise), and a cylinder's radial_velocity, the rate "
+           "of change of its radius, m/s (ending a servo), between steps, as a stage's walls.NAME entry does")
       .def(
           "kinetic_energy", [](const M& s) { return s.sim().kinetic_energy(); }, "J")
       .def(

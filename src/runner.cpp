@@ -270,6 +270,7 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
     w.servo = c.servo;
     w.servo_axis = c.servo_axis;
     w.spin = c.spin;
+    w.radius_rate = c.radius_rate;
   }
 }
 

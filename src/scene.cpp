@@ -237,9 +237,27 @@ void read_cylinder(TableReader& r, const toml::table& table, Wall<D>& w) {
 /// that displaces the fluid (`displaces_fluid`).
 template <int D>
 void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec<D>& velocity,
-                      WallMotion& motion, ServoControl& servo, Vec<D>& servo_axis, double& spin) {
+                      WallMotion& motion, ServoControl& servo, Vec<D>& servo_axis, double& spin,
+                      double& radius_rate) {
   const bool box = shape == WallShape::box;
-  r.allow({"velocity", "servo", "fixed", "angular_velocity"});
+  r.allow({"velocity", "servo", "fixed", "angular_velocity", "radial_velocity"});
+  // A cylinder's rate of change of radius, whatever its translation; a
+  // servo sets its own.
+  if (auto v = r.optional_number("radial_velocity")) {
+    if (shape != WallShape::cylinder) {
+      r.fail(
+          "radial_velocity",
+          "changes a cylinder wall's radius (a cavity expansion, a strain-controlled cell); a plane or box "
+          "wall keeps its shape: give it a 'velocity'");
+    }
+    if (r.has("servo")) {
+      r.fail("radial_velocity",
+             "a servo sets the cylinder's radius from its load; give one of 'servo' or 'radial_velocity'");
+    }
+    radius_rate = r.check(
+        "radial_velocity", *v, [](double x) { return std::isfinite(x); },
+        "a number, m/s, the radius's rate of change (negative: the cylinder closes)");
+  }
   // A cylinder's spin about its axis, whatever its translation.
   if (auto w = r.optional_number("angular_velocity")) {
     if (shape != WallShape::cylinder) {
@@ -804,7 +822,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
              "its curve); leave this out, and bound the water with the grid's sides, barriers or impermeable "
              "box walls");
     }
-    read_wall_motion<D>(r, w.shape, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis, w.spin);
+    read_wall_motion<D>(r, w.shape, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis, w.spin,
+                        w.radius_rate);
     if (impermeable && plate) {
       wall_barriers.push_back(plate_barrier<D>(r, w, box_lo, box_hi));
     }
@@ -1486,7 +1505,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         c.wall = it->second;
         const bool displaces = std::find(solid_walls.begin(), solid_walls.end(), c.wall) != solid_walls.end();
         read_wall_motion<D>(cr, sim.walls[c.wall].shape, displaces, c.velocity, c.motion, c.servo,
-                            c.servo_axis, c.spin);
+                            c.servo_axis, c.spin, c.radius_rate);
         if (c.motion == WallMotion::servo && c.servo.by_stress) {
           require_loaded_area<D>(cr, sim.walls, c.wall, sim.periodic);
         }

@@ -773,6 +773,35 @@ local_damping = 0.7
 """
 
 
+def ring_in_a_drum():
+    """A model: a drum of 3 mm round a central disc and a ring of 5 discs of
+    1 mm touching it (2D), the glass of LATTICE."""
+    import math
+    folder = tempfile.mkdtemp()
+    with open(os.path.join(folder, "ring.csv"), "w") as f:
+        f.write("x,y,radius\n0,0,0.001\n")
+        for j in range(5):
+            a = 2.0 * math.pi * j / 5 + 0.3
+            f.write(f"{0.002 * math.cos(a)},{0.002 * math.sin(a)},0.001\n")
+    text = LATTICE.split("[[wall]]")[0] + """
+[[wall]]
+name = "drum"
+material = "glass"
+cylinder = { centre = [0.0, 0.0], radius = 0.003 }
+
+[[particles]]
+generator = "csv"
+file = "ring.csv"
+material = "glass"
+
+[[stage]]
+name = "load"
+duration = 0.06
+local_damping = 0.7
+"""
+    return darcydem.load(write_scene(folder, text))
+
+
 class StressServo(unittest.TestCase):
     """A square lattice of 4 x 4 discs between four walls made stress servos
     from Python (10 kPa along x, 20 along y), as in test_triaxial.cpp: each
@@ -835,29 +864,7 @@ class StressServo(unittest.TestCase):
         carries F = stress x 2 pi R / 5 through two contacts in series, so
         R = 3 mm / (1 + 4 pi stress / (5 k_n))."""
         import math
-        folder = tempfile.mkdtemp()
-        with open(os.path.join(folder, "ring.csv"), "w") as f:
-            f.write("x,y,radius\n0,0,0.001\n")
-            for j in range(5):
-                a = 2.0 * math.pi * j / 5 + 0.3
-                f.write(f"{0.002 * math.cos(a)},{0.002 * math.sin(a)},0.001\n")
-        text = LATTICE.split("[[wall]]")[0] + """
-[[wall]]
-name = "drum"
-material = "glass"
-cylinder = { centre = [0.0, 0.0], radius = 0.003 }
-
-[[particles]]
-generator = "csv"
-file = "ring.csv"
-material = "glass"
-
-[[stage]]
-name = "load"
-duration = 0.06
-local_damping = 0.7
-"""
-        m = darcydem.load(write_scene(folder, text))
+        m = ring_in_a_drum()
         with self.assertRaisesRegex(ValueError, "a cylinder's servo changes its radius"):
             m.set_wall_servo("drum", gain=1.0, max_speed=1.0, target_force=1.0, direction=[1.0, 0.0])
         gain = 2.0 / (5 * 1e8 * 1e-3)  # settles in about 1 ms
@@ -872,6 +879,21 @@ local_damping = 0.7
         self.assertAlmostEqual(drum["stress"] / 1e4, 1.0, delta=1e-6)
         self.assertAlmostEqual(drum["radial_load"] / (1e4 * 2.0 * math.pi * drum["radius"]), 1.0, delta=1e-6)
         self.assertEqual(drum["servo"], {"target_stress": 1e4})
+
+    def test_a_drum_opened_at_a_set_rate_from_python(self):
+        """radial_velocity: the radius grows at the rate, and a servo ends."""
+        with self.assertRaisesRegex(ValueError, "wall 'lid' is not a cylinder, and only a cylinder changes its"):
+            self.model.set_wall_motion("lid", radial_velocity=0.01)
+        m = ring_in_a_drum()
+        with self.assertRaisesRegex(ValueError, "radial_velocity must be a finite number"):
+            m.set_wall_motion("drum", radial_velocity=float("inf"))
+        m.set_wall_servo("drum", gain=1.0, max_speed=0.01, target_stress=1e4)
+        m.set_wall_motion("drum", radial_velocity=0.002)
+        self.assertIsNone(m.walls[0]["servo"])
+        steps = 1000
+        m.step(steps)
+        # The radius is summed step by step: round-off, 1e-15 m of 3 mm.
+        self.assertAlmostEqual(m.walls[0]["radius"], 0.003 + 0.002 * steps * m.time_step, delta=1e-15)
 
 
 if __name__ == "__main__":

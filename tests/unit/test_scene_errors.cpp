@@ -457,6 +457,25 @@ TEST(SceneErrors, CylinderWallsAreChecked) {
   msg = load_error(replace(servo, "max_speed = 1.0", "max_speed = 1.0, direction = [1.0, 0.0]"));
   EXPECT_NE(msg.find("servo key 'direction': a cylinder's servo changes its radius"), std::string::npos)
       << msg;
+  // Or its radius changes at a set rate: a cylinder's only, not with a
+  // servo; a stage sets it (zero unless the entry gives it).
+  const std::string expanding = replace(good, "radius = 0.003 }\nmaterial = \"sand\"",
+                                        "radius = 0.003 }\nmaterial = \"sand\"\nradial_velocity = -0.01");
+  ASSERT_EQ(load_error(expanding), "");
+  EXPECT_EQ(built_scene<2>(expanding).simulation.walls.back().radius_rate, -0.01);
+  msg = load_error(replace(servo, "max_speed = 1.0 }", "max_speed = 1.0 }\nradial_velocity = 0.01"));
+  EXPECT_NE(msg.find("key 'radial_velocity': a servo sets the cylinder's radius from its load"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "normal = [0.0, 1.0]\nmaterial = \"sand\"",
+                           "normal = [0.0, 1.0]\nmaterial = \"sand\"\nradial_velocity = 0.01"));
+  EXPECT_NE(msg.find("key 'radial_velocity': changes a cylinder wall's radius"), std::string::npos) << msg;
+  msg = load_error(replace(expanding, "radial_velocity = -0.01", "radial_velocity = \"fast\""));
+  EXPECT_NE(msg.find("key 'radial_velocity'"), std::string::npos) << msg;
+  const std::string staged = replace(good, "gravity = [0.0, -9.81]",
+                                     "gravity = [0.0, -9.81]\nwalls.drum = { radial_velocity = 0.002 }");
+  ASSERT_EQ(load_error(staged), "");
+  EXPECT_EQ(built_scene<2>(staged).stages[0].walls[0].radius_rate, 0.002);
   // 3D: the height its lateral surface has needs walls or a period along
   // the axis; the column's floor alone does not bound it.
   const std::string servo3 =

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "dem_setup.hpp"
 #include "scene_loading.hpp"
@@ -298,8 +299,9 @@ TEST(EnergyBudget, AMovingBoundaryDoesTheWorkItGivesTheGrain) {
 /// the boundary did the work 2 m V^2 (AMovingBoundary... above); the budget
 /// counts it from the wall's radial load times its change of radius. With
 /// restitution e the disc leaves at (1 + e) V, which holds only if the
-/// contact's damping sees the wall's surface moving.
-TEST(EnergyBudget, AServoCylindersChangeOfRadiusDoesTheWorkItGivesTheGrain) {
+/// contact's damping sees the wall's surface moving. The same with the
+/// radius's rate prescribed (radial_velocity) instead of a servo's.
+TEST(EnergyBudget, ACylindersChangeOfRadiusDoesTheWorkItGivesTheGrain) {
   const double r = 5e-4;
   const double speed = 0.05;
   const double m = 2650.0 * particle_volume<2>(r);
@@ -307,8 +309,10 @@ TEST(EnergyBudget, AServoCylindersChangeOfRadiusDoesTheWorkItGivesTheGrain) {
     ContactSpec spec;
     spec.normal_stiffness = m * speed * speed / (1e-3 * r * 1e-3 * r);
     spec.restitution = e;
-    for (const bool inside : {true, false}) {
+    for (const auto& [inside, servo] :
+         {std::pair{true, true}, std::pair{false, true}, std::pair{true, false}, std::pair{false, false}}) {
       SCOPED_TRACE(inside ? "drum, from inside" : "pipe, from outside");
+      SCOPED_TRACE(servo ? "servo" : "radial_velocity");
       SCOPED_TRACE(e);
       auto sim = single_material<2>(2650.0, spec);
       Wall<2> wall;
@@ -316,10 +320,14 @@ TEST(EnergyBudget, AServoCylindersChangeOfRadiusDoesTheWorkItGivesTheGrain) {
       wall.shape = WallShape::cylinder;
       wall.radius = inside ? 20.0 * r : 4.0 * r;
       wall.from_inside = inside;
-      wall.motion = WallMotion::servo;
-      wall.servo.target_force = 1e6;  // N: 1e5 x the contact's peak, m V^2 / (1e-3 r)
-      wall.servo.gain = 1.0;
-      wall.servo.max_speed = speed;
+      if (servo) {
+        wall.motion = WallMotion::servo;
+        wall.servo.target_force = 1e6;  // N: 1e5 x the contact's peak, m V^2 / (1e-3 r)
+        wall.servo.gain = 1.0;
+        wall.servo.max_speed = speed;
+      } else {
+        wall.radius_rate = inside ? -speed : speed;
+      }
       sim.walls.push_back(wall);
       // A gap of r between the disc and the wall, along +x.
       const double x = inside ? wall.radius - 2.0 * r : wall.radius + 2.0 * r;
@@ -331,10 +339,10 @@ TEST(EnergyBudget, AServoCylindersChangeOfRadiusDoesTheWorkItGivesTheGrain) {
       const double vx = sim.particles.velocity[0].x();
       const double ke = 0.5 * m * vx * vx;
       std::printf(
-          "servo cylinder (%s, e %.1f): disc leaves at %.6f m/s ((1 + e) V = %.3f), boundary work "
+          "%s cylinder (%s, e %.1f): disc leaves at %.6f m/s ((1 + e) V = %.3f), boundary work "
           "%.6e J/m, kinetic %.6e, dissipated %.6e\n",
-          inside ? "inside" : "outside", e, vx, (1.0 + e) * speed, sim.energy.boundary_work, ke,
-          sim.contact_dissipation());
+          servo ? "servo" : "radial_velocity", inside ? "inside" : "outside", e, vx, (1.0 + e) * speed,
+          sim.energy.boundary_work, ke, sim.contact_dissipation());
       EXPECT_NEAR(std::abs(sim.walls[0].radius - wall.radius), 4.0 * r, 1e-9 * r) << "it moved at max_speed";
       // Elastic, as for the plate: (omega dt)^2 = 1e-4 at most. The dashpot
       // (e = 0.5) meets the leapfrog's first-order error, omega dt = 0.01

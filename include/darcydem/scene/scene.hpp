@@ -98,6 +98,7 @@ struct WallChange {
   ServoControl servo;
   Vec<D> servo_axis = Vec<D>::Zero();  ///< a box's (Wall::servo_axis)
   double spin = 0.0;                   ///< rad/s, a cylinder's (Wall::spin)
+  double radius_rate = 0.0;            ///< m/s, a cylinder's (Wall::radius_rate)
 };
 
 template <int D>

@@ -74,6 +74,10 @@ struct Wall {
   /// pressing it outward when touched from inside and inward from outside.
   double radial_speed = 0.0;
   double radial_load = 0.0;
+  /// m/s, a cylinder's prescribed rate of change of radius when no servo
+  /// sets it (the scene's radial_velocity: a cavity expansion, a
+  /// strain-controlled cell).
+  double radius_rate = 0.0;
   double radius_at_build = 0.0;
   /// A box's own axes, as the columns of a rotation (from the scene).
   Eigen::Matrix<double, D, D> axes = Eigen::Matrix<double, D, D>::Identity();
@@ -103,7 +107,7 @@ struct Wall {
   template <class Archive>
   void checkpoint(Archive& ar) {
     ar(point, normal, material, motion, velocity, servo, servo_axis, force, water_force, point_at_build, spin,
-       torque, radius, radial_speed, radial_load, radius_at_build);
+       torque, radius, radial_speed, radial_load, radius_at_build, radius_rate);
   }
 
   /// The wall's velocity at a point c of its surface: its translation, and
@@ -238,7 +242,7 @@ struct Wall {
         velocity = speed * push_direction();
       }
     } else {
-      radial_speed = 0.0;
+      radial_speed = shape == WallShape::cylinder ? radius_rate : 0.0;
       if (motion == WallMotion::fixed) velocity.setZero();
     }
     point += velocity * dt;
