@@ -14,7 +14,8 @@
 // prescribed velocity, or is servo-controlled so that the load on it
 // approaches a target force: a plane along its normal, a box along its
 // servo_axis, a cylinder by changing its radius (a triaxial cell's
-// confining wall, PFC's radial servo); the load is what the particles put
+// confining wall, PFC's radial servo; without a servo its radius may change
+// at a set rate); the load is what the particles put
 // on it (a cylinder's: the sum of their pushes normal to it), and with
 // `with_pore_water` also the pore water's thrust (a wall that displaces the
 // fluid: an impermeable piston or platen).
@@ -68,8 +69,8 @@ struct Wall {
   double radius = 0.0;
   Vec<D> axis = Vec<D>::Zero();
   bool from_inside = true;
-  /// A servo-controlled cylinder's rate of change of radius, m/s (the
-  /// servo sets it; zero otherwise), and the particles' compressive load on
+  /// A cylinder's rate of change of radius in the last advance, m/s (its
+  /// servo's, or else radius_rate), and the particles' compressive load on
   /// it, N: the sum over its contacts of the force normal to its surface,
   /// pressing it outward when touched from inside and inward from outside.
   double radial_speed = 0.0;
