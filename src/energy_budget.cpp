@@ -62,8 +62,9 @@ void Simulation<D>::account_walls(const std::vector<Wall<D>>& before) {
   // end (exact for a linear spring), times the wall's move: the work the
   // grains did on it, which the wall did on them with the other sign. A
   // spinning cylinder's likewise from their moment about its axis times
-  // the angle it turned, and a servo cylinder's from their push normal to
-  // it times its change of radius (outward when touched from inside).
+  // the angle it turned, and a cylinder's whose radius changes (a servo's
+  // or radial_velocity) from their push normal to it times the change
+  // (outward when touched from inside).
   for (std::size_t k = 0; k < walls.size(); ++k) {
     const Wall<D>& w = walls[k];
     const Wall<D>& b = before[k];

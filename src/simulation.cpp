@@ -68,8 +68,9 @@ void Simulation<D>::advance(std::uint64_t count) {
       w.advance(time_step);
       if (w.is_cylinder() && !(w.radius > 0.0)) {
         throw std::runtime_error(fmt::format(
-            "wall \"{}\": its servo has shrunk the cylinder to radius {} m at t = {} s: the grains it should "
-            "load are not inside it (check its target and the grains' place)",
+            "wall \"{}\": the cylinder's radius has come to {} m at t = {} s: its servo or radial_velocity "
+            "has "
+            "closed it past the grains it should hold (check its target or rate and the grains' place)",
             w.name, w.radius, time));
       }
     }

@@ -46,6 +46,11 @@ restitution = 0.5
                      dim, stiffness(dim));
 }
 
+/// Probes every 10 ms; one stage of 60 ms, damped, in which the servos
+/// settle (about 1 ms each).
+constexpr const char* kSettle =
+    "[output]\nprobe_interval = 0.01\n[[stage]]\nduration = 0.06\nlocal_damping = 0.7\n";
+
 /// A lattice of n grains per side (cubic in 3D, square in 2D), frictionless,
 /// between plane walls touching it, each pair servo-loaded with its axis's
 /// stress in kStress, no gravity.
@@ -60,14 +65,10 @@ material = "glass"
 min = [{0}]
 max = [{1}]
 radius = {2}
-[output]
-probe_interval = 0.01
-[[stage]]
-duration = 0.06
-local_damping = 0.7
 )",
                   dim == 2 ? "0, 0" : "0, 0, 0",
-                  dim == 2 ? fmt::format("{0}, {0}", side) : fmt::format("{0}, {0}, {0}", side), kRadius);
+                  dim == 2 ? fmt::format("{0}, {0}", side) : fmt::format("{0}, {0}, {0}", side), kRadius) +
+      kSettle;
   const char* axes = "xyz";
   for (int k = 0; k < dim; ++k) {
     for (int s = 0; s < 2; ++s) {
@@ -182,8 +183,8 @@ void check_cylinder_servo(bool from_inside, int n) {
   // Gain: the servo's stiffness against the ring is n contacts of kn / 2,
   // so this gain settles it in about a millisecond (as the lattice's).
   const double gain = 2.0 / (n * stiffness(D) * 1e-3);
-  std::string text =
-      glass_scene(D) + fmt::format(R"(
+  std::string text = glass_scene(D) +
+                     fmt::format(R"(
 [[particles]]
 generator = "csv"
 file = "grains.csv"
@@ -197,13 +198,9 @@ servo = {{ target_stress = {4}, gain = {5}, max_speed = 0.01 }}
 name = "confining"
 quantity = "wall_stress"
 wall = "cell"
-[output]
-probe_interval = 0.01
-[[stage]]
-duration = 0.06
-local_damping = 0.7
 )",
-                                   centre, touching, axis, from_inside ? "inside" : "outside", stress, gain);
+                                 centre, touching, axis, from_inside ? "inside" : "outside", stress, gain) +
+                     kSettle;
   if (!from_inside) {
     text += fmt::format(
         "[[wall]]\nname = \"drum\"\nmaterial = \"glass\"\ncylinder = {{ centre = [{}], radius = "
