@@ -5,6 +5,7 @@
 //   model = darcydem.load("scene.toml")         # as `darcydem check`, at the first stage's start
 //   model.apply_stage("settle")                 # a stage's settings, as a run starts it
 //   model.set_wall_motion("drum", angular_velocity=2.0)  # a wall's motion between steps
+//   model.set_wall_motion("table", angular_velocity=[0.0, 0.1, 0.0])  # a 3D plane or box turns
 //   model.set_wall_servo("top", gain=5e-3, max_speed=0.05, target_stress=1e5)  # a stress-controlled wall
 //   model.step(1000)                            # DEM steps, with the fluid's and inlets' steps among them
 //   model.positions, model.velocities           # numpy arrays (N, D), particles in creation order
@@ -190,12 +191,13 @@ class Model {
   }
 
   void set_wall_motion(const std::string& name, const std::optional<std::vector<double>>& velocity,
-                       std::optional<double> angular_velocity, std::optional<double> radial_velocity) {
+                       const py::object& angular_velocity, std::optional<double> radial_velocity) {
     Wall<D>* it = &wall_named(name, "set_wall_motion");
-    if (!velocity && !angular_velocity && !radial_velocity)
+    const bool turn = !angular_velocity.is_none();
+    if (!velocity && !turn && !radial_velocity)
       throw py::value_error(
-          "set_wall_motion: give velocity = [D numbers] (m/s), and or instead a cylinder's angular_velocity "
-          "(rad/s) or radial_velocity (m/s)");
+          "set_wall_motion: give velocity = [D numbers] (m/s), and or instead an angular_velocity (rad/s) or "
+          "a cylinder's radial_velocity (m/s)");
     if (radial_velocity) {
       if (!it->is_cylinder()) {
         throw py::value_error(fmt::format(
@@ -204,15 +206,35 @@ class Model {
       if (!std::isfinite(*radial_velocity))
         throw py::value_error("set_wall_motion: radial_velocity must be a finite number, m/s");
     }
-    if (angular_velocity) {
-      if (!it->is_cylinder()) {
-        throw py::value_error(fmt::format(
-            "set_wall_motion: wall '{}' is not a cylinder, and only a cylinder turns about its axis "
-            "(a drum); give a plane or box wall a velocity",
-            name));
+    // A cylinder's spin about its axis (a number); a plane's or box's turn
+    // about its rotation centre: 2D a number, 3D a vector.
+    double spin = 0.0;
+    Vec<D> spin_axis = Vec<D>::Zero();
+    if (turn) {
+      const bool number =
+          py::isinstance<py::float_>(angular_velocity) || py::isinstance<py::int_>(angular_velocity);
+      if (D == 3 && !it->is_cylinder() && !(number && angular_velocity.cast<double>() == 0.0)) {
+        if (number || !py::isinstance<py::sequence>(angular_velocity))
+          throw py::value_error(fmt::format(
+              "set_wall_motion: wall '{}' is a plane or box, which turns about the axis of its angular "
+              "velocity through its rotation centre: give angular_velocity = [wx, wy, wz], rad/s (or 0 to "
+              "stop "
+              "it)",
+              name));
+        const Vec<D> w = as_vec<D>(angular_velocity.cast<std::vector<double>>(), "angular_velocity");
+        if (!w.allFinite()) throw py::value_error("set_wall_motion: angular_velocity must be finite, rad/s");
+        spin = w.norm();
+        if (spin > 0.0) spin_axis = w / spin;
+      } else if (number) {
+        spin = angular_velocity.cast<double>();
+        if (!std::isfinite(spin))
+          throw py::value_error("set_wall_motion: angular_velocity must be a finite number, rad/s");
+      } else {
+        throw py::value_error(
+            fmt::format("set_wall_motion: wall '{}' turns about {}: give angular_velocity as a number, rad/s",
+                        name, it->is_cylinder() ? "its axis" : "the normal to the plane of the discs"));
       }
-      if (!std::isfinite(*angular_velocity))
-        throw py::value_error("set_wall_motion: angular_velocity must be a finite number, rad/s");
+      if (!it->is_cylinder() && spin != 0.0) check_can_turn(*it);
     }
     // Both checked before either is set.
     const Vec<D> v = velocity ? as_vec<D>(*velocity, "velocity") : Vec<D>::Zero();
@@ -221,11 +243,43 @@ class Model {
       it->motion = WallMotion::velocity;
       it->velocity = v;
     }
-    if (angular_velocity) it->spin = *angular_velocity;
+    if (turn) {
+      it->spin = spin;
+      if (!it->is_cylinder() && spin != 0.0) it->axis = spin_axis;
+    }
     if (radial_velocity) {
       // Its radius now follows the rate: a servo ends.
       if (it->motion == WallMotion::servo) it->motion = WallMotion::velocity;
       it->radius_rate = *radial_velocity;
+    }
+  }
+
+  /// A plane or box may turn unless a servo drives it, the pore fluid needs
+  /// it along the grid's axes (it displaces the fluid or bars it) or the
+  /// boundaries are periodic (walls are not repeated across them).
+  void check_can_turn(const Wall<D>& w) {
+    const std::size_t index = static_cast<std::size_t>(&w - sim().walls.data());
+    if (w.motion == WallMotion::servo)
+      throw py::value_error(fmt::format(
+          "set_wall_motion: wall '{}' has a servo, which moves it along a fixed direction: give it a "
+          "velocity too (which ends the servo) to turn it",
+          w.name));
+    if (const auto* f = fluid(); f != nullptr) {
+      const bool solid =
+          std::find(f->solid_walls.begin(), f->solid_walls.end(), index) != f->solid_walls.end();
+      const bool barrier = std::any_of(f->barriers.begin(), f->barriers.end(),
+                                       [&](const auto& b) { return b.name == w.name; });
+      if (solid || barrier)
+        throw py::value_error(fmt::format(
+            "set_wall_motion: wall '{}' displaces or bars the pore fluid, so it stays along the fluid "
+            "grid's axes: it cannot turn",
+            w.name));
+    }
+    for (int k = 0; k < D; ++k) {
+      if (sim().periodic.periodic[k])
+        throw py::value_error(
+            "set_wall_motion: a plane or box wall cannot turn with periodic boundaries (walls are not "
+            "repeated across them)");
     }
   }
 
@@ -278,6 +332,11 @@ class Model {
               ? "set_wall_servo: a cylinder's servo changes its radius; direction is for box walls"
               : "set_wall_servo: a plane moves along its normal; direction is for box walls");
     }
+    if (!w.is_cylinder() && w.spin != 0.0)
+      throw py::value_error(fmt::format(
+          "set_wall_servo: wall '{}' turns, and a servo moves a wall along a fixed direction: stop its turn "
+          "first (set_wall_motion(\"{}\", angular_velocity=0))",
+          name, name));
     // All checked: set.
     ServoControl servo;
     servo.by_stress = target_stress.has_value();
@@ -612,7 +671,19 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["water_force"] = as_tuple<D>(w.water_force);
               d["shape"] = w.is_cylinder() ? "cylinder" : (w.is_box() ? "box" : "plane");
               d["velocity"] = as_tuple<D>(w.velocity);
-              d["angular_velocity"] = w.spin;
+              if (D == 3 && !w.is_cylinder()) {
+                d["angular_velocity"] = as_tuple<D>(Vec<D>(w.spin * w.axis));
+                d["rotation_centre"] = as_tuple<D>(w.pivot);
+              } else {
+                d["angular_velocity"] = w.spin;
+                if (!w.is_cylinder()) d["rotation_centre"] = as_tuple<D>(w.pivot);
+              }
+              if (w.is_box()) {
+                py::list axes;
+                for (int k = 0; k < D; ++k) axes.append(as_tuple<D>(Vec<D>(w.axes.col(k))));
+                d["axes"] = axes;
+              }
+              if (w.is_plane()) d["normal"] = as_tuple<D>(w.normal);
               d["torque"] = w.torque;
               if (w.is_cylinder()) {
                 d["radius"] = w.radius;
@@ -648,9 +719,10 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "moves along direction = [D numbers]")
       .def("set_wall_motion", &M::set_wall_motion, py::arg("name"), py::arg("velocity") = py::none(),
            py::arg("angular_velocity") = py::none(), py::arg("radial_velocity") = py::none(),
-           "sets a wall's velocity, m/s (ending a servo), a cylinder's angular_velocity about its axis, "
-           "rad/s (right-handed about it; 2D counter-clockwise), and a cylinder's radial_velocity, the rate "
-           "of change of its radius, m/s (ending a servo), between steps, as a stage's walls.NAME entry does")
+           "sets a wall's velocity, m/s (ending a servo); its angular_velocity, rad/s: a cylinder's about "
+           "its axis (a number, right-handed about it), a plane's or box's about its rotation centre (3D: "
+           "[wx, wy, wz]; 2D: a number, counter-clockwise); and a cylinder's radial_velocity, the rate of "
+           "change of its radius, m/s (ending a servo); between steps, as a stage's walls.NAME entry does")
       .def(
           "kinetic_energy", [](const M& s) { return s.sim().kinetic_energy(); }, "J")
       .def(

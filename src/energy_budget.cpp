@@ -60,15 +60,16 @@ template <int D>
 void Simulation<D>::account_walls(const std::vector<Wall<D>>& before) {
   // The grains' force on a wall, taken as the mean of the step's start and
   // end (exact for a linear spring), times the wall's move: the work the
-  // grains did on it, which the wall did on them with the other sign. A
-  // spinning cylinder's likewise from their moment about its axis times
-  // the angle it turned, and a cylinder's whose radius changes (a servo's
+  // grains did on it, which the wall did on them with the other sign (the
+  // move of its centre of rotation, the forces' moments being about it). A
+  // turning wall's likewise from their moment about its axis times the
+  // angle it turned, and a cylinder's whose radius changes (a servo's
   // or radial_velocity) from their push normal to it times the change
   // (outward when touched from inside).
   for (std::size_t k = 0; k < walls.size(); ++k) {
     const Wall<D>& w = walls[k];
     const Wall<D>& b = before[k];
-    energy.boundary_work -= 0.5 * (b.force + w.force).dot(w.point - b.point);
+    energy.boundary_work -= 0.5 * (b.force + w.force).dot(w.centre_of_rotation() - b.centre_of_rotation());
     if (w.spin != 0.0) energy.boundary_work -= 0.5 * (b.torque + w.torque) * w.spin * time_step;
     if (w.radius != b.radius) {
       const double outward = w.from_inside ? 1.0 : -1.0;

@@ -270,6 +270,8 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
     w.servo = c.servo;
     w.servo_axis = c.servo_axis;
     w.spin = c.spin;
+    // A plane or box keeps its last axis when it stops turning.
+    if (!w.is_cylinder() && c.spin != 0.0) w.axis = c.spin_axis;
     w.radius_rate = c.radius_rate;
   }
 }

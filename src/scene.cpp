@@ -188,7 +188,7 @@ WallBarrier<D> plate_barrier(TableReader& r, const Wall<D>& w, const Vec<D>& box
   if (w.axes != Eigen::Matrix<double, D, D>::Identity()) {
     r.fail("impermeable", "an impermeable plate lies on the fluid grid's faces: it cannot be rotated");
   }
-  if (w.motion != WallMotion::fixed) {
+  if (w.motion != WallMotion::fixed || w.spin != 0.0) {
     r.fail("impermeable", "an impermeable wall cannot move: its barrier is fixed in the fluid grid");
   }
   WallBarrier<D> b;
@@ -230,15 +230,18 @@ void read_cylinder(TableReader& r, const toml::table& table, Wall<D>& w) {
   cr.finish();
 }
 
-/// A wall's motion: `velocity`, `servo` or `fixed`, and a cylinder's
-/// `angular_velocity`. A servo moves a plane along its normal and a box
-/// along its `direction`, and changes a cylinder's radius;
-/// its load may count the pore water's thrust (`load = "total"`) on a wall
-/// that displaces the fluid (`displaces_fluid`).
+/// A wall's motion: `velocity`, `servo` or `fixed`, and its
+/// `angular_velocity` (a cylinder's spin about its axis; a plane's or
+/// box's turn about its rotation centre: 2D a number, 3D a vector, whose
+/// length is `spin` and whose direction is `spin_axis`). A servo moves a
+/// plane along its normal and a box along its `direction`, and changes a
+/// cylinder's radius; its load may count the pore water's thrust
+/// (`load = "total"`) on a wall that displaces the fluid
+/// (`displaces_fluid`).
 template <int D>
 void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec<D>& velocity,
                       WallMotion& motion, ServoControl& servo, Vec<D>& servo_axis, double& spin,
-                      double& radius_rate) {
+                      Vec<D>& spin_axis, double& radius_rate) {
   const bool box = shape == WallShape::box;
   r.allow({"velocity", "servo", "fixed", "angular_velocity", "radial_velocity"});
   // A cylinder's rate of change of radius, whatever its translation; a
@@ -258,17 +261,35 @@ void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec
         "radial_velocity", *v, [](double x) { return std::isfinite(x); },
         "a number, m/s, the radius's rate of change (negative: the cylinder closes)");
   }
-  // A cylinder's spin about its axis, whatever its translation.
-  if (auto w = r.optional_number("angular_velocity")) {
-    if (shape != WallShape::cylinder) {
+  // A cylinder's spin about its axis, a plane's or box's turn about its
+  // rotation centre, whatever its translation.
+  if (r.has("angular_velocity")) {
+    if (shape != WallShape::cylinder && displaces_fluid) {
       r.fail("angular_velocity",
-             "turns a cylinder wall about its axis (a drum); a plane or box wall does not turn: give it a "
-             "'velocity'");
+             "a wall that displaces the pore fluid or is impermeable stays along the fluid grid's axes: it "
+             "cannot turn (leave 'impermeable' and 'displaces_fluid' out of a turning wall)");
     }
-    spin = r.check(
-        "angular_velocity", *w, [](double x) { return std::isfinite(x); },
-        D == 3 ? "a number, rad/s, right-handed about the cylinder's axis"
-               : "a number, rad/s, counter-clockwise");
+    if (shape != WallShape::cylinder && r.has("servo")) {
+      r.fail("angular_velocity",
+             "a servo moves a wall along a fixed direction; a wall that turns cannot have one");
+    }
+    if (D == 3 && shape != WallShape::cylinder) {
+      const auto* node = r.raw("angular_velocity");
+      if (node != nullptr && !node->is_array()) {
+        r.fail("angular_velocity",
+               "a plane or box wall turns about the axis of its angular velocity through its "
+               "'rotation_centre': give [wx, wy, wz], rad/s, right-handed");
+      }
+      const Vec<D> w = to_vec<D>(r.numbers("angular_velocity", D));
+      if (!w.allFinite()) r.fail("angular_velocity", "must be finite, rad/s");
+      spin = w.norm();
+      spin_axis = spin > 0.0 ? Vec<D>(w / spin) : Vec<D>::Zero();
+    } else {
+      spin = r.check(
+          "angular_velocity", r.number("angular_velocity"), [](double x) { return std::isfinite(x); },
+          D == 3 ? "a number, rad/s, right-handed about the cylinder's axis"
+                 : "a number, rad/s, counter-clockwise");
+    }
   }
   const int given = int(r.has("velocity")) + int(r.has("servo")) + int(r.has("fixed"));
   if (given > 1) r.fail_table("give only one of 'velocity', 'servo' or 'fixed'");
@@ -386,8 +407,23 @@ void read_periodic(TableReader& r, PeriodicCell<D>& cell) {
 /// Walls are not repeated: a plane must run along every periodic axis and a
 /// box lie within the period, so that no particle meets a wall across a
 /// periodic boundary.
+/// Walls are not repeated across periodic boundaries, and a plane or box
+/// that turns would cross them.
+template <int D>
+void check_turning_wall_in_period(TableReader& r, const PeriodicCell<D>& cell) {
+  for (int k = 0; k < D; ++k) {
+    if (cell.periodic[k]) {
+      r.fail("angular_velocity",
+             fmt::format("a plane or box wall cannot turn with periodic boundaries (along {}): walls are not "
+                         "repeated across them, and a turning wall would cross them",
+                         "xyz"[k]));
+    }
+  }
+}
+
 template <int D>
 void check_wall_in_period(TableReader& r, const Wall<D>& w, const PeriodicCell<D>& cell) {
+  if (w.spin != 0.0 && !w.is_cylinder()) check_turning_wall_in_period<D>(r, cell);
   for (int k = 0; k < D; ++k) {
     if (!cell.periodic[k]) continue;
     if (w.is_cylinder() && !(D == 3 && std::abs(w.axis[k]) == 1.0)) {
@@ -802,6 +838,18 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       w.point = to_vec<D>(r.numbers("point", D));
       w.normal = read_direction<D>(r, "normal", std::nullopt);
     }
+    // A plane or box turns about its rotation centre: by default its point
+    // (a box's centre).
+    w.pivot = w.point;
+    if (r.has("rotation_centre")) {
+      if (w.is_cylinder()) {
+        r.fail("rotation_centre",
+               "a cylinder turns about its own axis (its 'angular_velocity'); a rotation centre is for a "
+               "plane or box wall");
+      }
+      w.pivot = to_vec<D>(r.numbers("rotation_centre", D));
+      if (!w.pivot.allFinite()) r.fail("rotation_centre", "must be finite, m");
+    }
     w.material = materials.lookup(r, "material", r.string("material"));
     // An impermeable plate is a barrier; an impermeable box with a
     // thickness, or plane, displaces the fluid and closes the faces it
@@ -822,8 +870,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
              "its curve); leave this out, and bound the water with the grid's sides, barriers or impermeable "
              "box walls");
     }
+    Vec<D> spin_axis = Vec<D>::Zero();
     read_wall_motion<D>(r, w.shape, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis, w.spin,
-                        w.radius_rate);
+                        spin_axis, w.radius_rate);
+    if (!w.is_cylinder() && D == 3) w.axis = spin_axis;
     if (impermeable && plate) {
       wall_barriers.push_back(plate_barrier<D>(r, w, box_lo, box_hi));
     }
@@ -1385,19 +1435,29 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       p.quantity = torque ? ProbeQuantity::wall_torque : ProbeQuantity::wall_radius;
       const std::string w = r.string("wall");
       auto it = wall_index.find(w);
-      if (it == wall_index.end() || !sim.walls[it->second].is_cylinder()) {
-        std::vector<std::string> cylinders;
+      // The moment is about an axis: a cylinder's, a 3D plane's or box's
+      // turn's (through its rotation centre), or in 2D the normal to the
+      // plane of the discs through the wall's centre of rotation.
+      auto fits = [&](const Wall<D>& wall) {
+        return wall.is_cylinder() || (torque && (D == 2 || wall.axis != Vec<D>::Zero()));
+      };
+      if (it == wall_index.end() || !fits(sim.walls[it->second])) {
+        std::vector<std::string> names;
         for (const auto& wall : sim.walls) {
-          if (wall.is_cylinder()) cylinders.push_back("\"" + wall.name + "\"");
+          if (fits(wall)) names.push_back("\"" + wall.name + "\"");
         }
-        r.fail("wall", fmt::format("must name a cylinder wall ({}); the scene's: {}",
-                                   torque ? "the moment about its axis" : "its radius",
-                                   cylinders.empty() ? std::string("none")
-                                                     : fmt::format("{}", fmt::join(cylinders, ", "))));
+        r.fail("wall",
+               fmt::format("must name {}; the scene's: {}",
+                           !torque  ? "a cylinder wall (its radius)"
+                           : D == 2 ? "a wall (the moment about its centre of rotation)"
+                                    : "a cylinder (the moment about its axis) or a plane or box wall "
+                                      "given an angular_velocity in its [[wall]] (about that axis through "
+                                      "its rotation_centre)",
+                           names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", "))));
       }
       p.wall = it->second;
       if (r.has("component"))
-        r.fail("component", torque ? "does not apply: the moment is about the cylinder's axis"
+        r.fail("component", torque ? "does not apply: the moment is about the wall's axis"
                                    : "does not apply: the radius is a length");
     } else {
       for (auto k : {"particle", "component", "wall"}) {
@@ -1505,11 +1565,14 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         c.wall = it->second;
         const bool displaces = std::find(solid_walls.begin(), solid_walls.end(), c.wall) != solid_walls.end();
         read_wall_motion<D>(cr, sim.walls[c.wall].shape, displaces, c.velocity, c.motion, c.servo,
-                            c.servo_axis, c.spin, c.radius_rate);
+                            c.servo_axis, c.spin, c.spin_axis, c.radius_rate);
+        if (c.spin != 0.0 && !sim.walls[c.wall].is_cylinder()) {
+          check_turning_wall_in_period<D>(cr, sim.periodic);
+        }
         if (c.motion == WallMotion::servo && c.servo.by_stress) {
           require_loaded_area<D>(cr, sim.walls, c.wall, sim.periodic);
         }
-        if (wall_is_barrier[c.wall] && c.motion != WallMotion::fixed) {
+        if (wall_is_barrier[c.wall] && (c.motion != WallMotion::fixed || c.spin != 0.0)) {
           cr.fail(c.motion == WallMotion::velocity ? "velocity" : "servo",
                   "an impermeable wall cannot move: its barrier is fixed in the fluid grid");
         }

@@ -801,12 +801,10 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     moved2 = run_blocks(0, blocks, [] {});
   }
 
-  bool cylinders = false;
   for (auto& w : walls) {
     w.force.setZero();
     w.torque = 0.0;
     w.radial_load = 0.0;
-    cylinders = cylinders || w.is_cylinder();
   }
   for (std::int64_t i = 0; i < n; ++i) {
     for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
@@ -814,12 +812,11 @@ double Simulation<D>::compute_forces_with(Finish finish) {
       w.force -= W.force_on_particle[k];
       // The contact's action on the particle about the axis: its force at
       // the particle's centre and its torque about that centre; and its
-      // push on the surface, along the normal from the wall to the particle.
-      if (cylinders && w.is_cylinder()) {
-        w.torque -= w.moment_about_axis(p.position[i], W.force_on_particle[k], W.torque_on_particle[k]);
-        if (W.force_on_particle[k] != Vec<D>::Zero())
-          w.radial_load += W.force_on_particle[k].dot(w.cylinder_touch(p.position[i]).normal);
-      }
+      // push on a cylinder's surface, along the normal from the wall to the
+      // particle.
+      w.torque -= w.moment_about_axis(p.position[i], W.force_on_particle[k], W.torque_on_particle[k]);
+      if (w.is_cylinder() && W.force_on_particle[k] != Vec<D>::Zero())
+        w.radial_load += W.force_on_particle[k].dot(w.cylinder_touch(p.position[i]).normal);
     }
   }
   return std::sqrt(moved2);

@@ -1,3 +1,7 @@
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "darcydem/neighbour/verlet_list.hpp"
 #include "darcydem/walls/wall.hpp"
 
@@ -41,7 +45,17 @@ void WallContactList<D>::build(const std::vector<Vec<D>>& position, const std::v
   rolling = std::move(next_rolling);
   force_on_particle.assign(wall.size(), Vec<D>::Zero());
   torque_on_particle.assign(wall.size(), AngVec<D>::Zero());
-  for (auto& w : walls) w.mark_build();
+  for (auto& w : walls) {
+    w.mark_build();
+    // A turning plane sweeps further the further out it is: its reach.
+    if (w.is_plane()) {
+      double far2 = 0.0;
+      if (w.spin != 0.0) {
+        for (const auto& x : position) far2 = std::max(far2, (x - w.pivot).squaredNorm());
+      }
+      w.reach = w.spin != 0.0 ? std::sqrt(far2) + skin : std::numeric_limits<double>::infinity();
+    }
+  }
 }
 
 template struct WallContactList<2>;

@@ -496,21 +496,14 @@ TEST(SceneErrors, CylinderWallsAreChecked) {
   // as any overlap at the start is.
   msg = load_error(replace(good, "radius = 0.003", "radius = 0.003, touched_from = \"outside\""));
   EXPECT_NE(msg.find("overlaps wall \"drum\""), std::string::npos) << msg;
-  // Only a cylinder turns, and only a cylinder has a torque probe.
+  // It turns about its axis, and has a torque probe (turning planes and
+  // boxes: TurningWallsAreChecked).
   EXPECT_EQ(load_error(replace(good, "radius = 0.003 }\nmaterial = \"sand\"",
                                "radius = 0.003 }\nmaterial = \"sand\"\nangular_velocity = 2.0")),
             "");
-  msg = load_error(replace(good, "normal = [0.0, 1.0]\nmaterial = \"sand\"",
-                           "normal = [0.0, 1.0]\nmaterial = \"sand\"\nangular_velocity = 2.0"));
-  EXPECT_NE(msg.find("key 'angular_velocity': turns a cylinder wall about its axis"), std::string::npos)
-      << msg;
-  msg = load_error(
-      replace(good, "[[stage]]",
-              "[[probe]]\nname = \"t\"\nquantity = \"wall_torque\"\nwall = \"floor\"\n\n[[stage]]"));
-  EXPECT_NE(
-      msg.find("key 'wall': must name a cylinder wall (the moment about its axis); the scene's: \"drum\""),
-      std::string::npos)
-      << msg;
+  msg = load_error(replace(good, "radius = 0.003 }\nmaterial = \"sand\"",
+                           "radius = 0.003 }\nmaterial = \"sand\"\nrotation_centre = [0.0, 0.0]"));
+  EXPECT_NE(msg.find("key 'rotation_centre': a cylinder turns about its own axis"), std::string::npos) << msg;
   // Its radius: a length, of a cylinder only.
   const std::string radius_probe =
       "[[probe]]\nname = \"r\"\nquantity = \"wall_radius\"\nwall = \"drum\"\n\n[[stage]]";
@@ -526,6 +519,89 @@ TEST(SceneErrors, CylinderWallsAreChecked) {
   msg = load_error(replace(good, "radius = 0.003 }\nmaterial = \"sand\"",
                            "radius = 0.003 }\nmaterial = \"sand\"\ndisplaces_fluid = true"));
   EXPECT_NE(msg.find("key 'displaces_fluid': a cylinder wall lets the pore water through"), std::string::npos)
+      << msg;
+}
+
+std::string with_fluid(const std::string& extra);  // below, with the fluid's errors
+
+TEST(SceneErrors, TurningWallsAreChecked) {
+  // 2D: a plane or box turns counter-clockwise at a number of rad/s about
+  // its rotation_centre (by default its point or centre).
+  const std::string turning = "normal = [0.0, 1.0]\nmaterial = \"sand\"\nangular_velocity = 2.0";
+  const std::string good = replace(kGood, "normal = [0.0, 1.0]\nmaterial = \"sand\"", turning);
+  ASSERT_EQ(load_error(good), "");
+  {
+    const auto scene =
+        built_scene<2>(replace(good, "angular_velocity", "rotation_centre = [0.01, 0.0]\nangular_velocity"));
+    const auto& w = scene.simulation.walls[0];
+    EXPECT_EQ(w.spin, 2.0);
+    EXPECT_EQ(w.pivot, Vec<2>(0.01, 0.0));
+  }
+  EXPECT_EQ(built_scene<2>(good).simulation.walls[0].pivot, Vec<2>(0.0, 0.0));
+  // A 2D wall's torque probe: the moment about its centre of rotation.
+  const std::string probe =
+      "[[probe]]\nname = \"t\"\nquantity = \"wall_torque\"\nwall = \"floor\"\n\n[[stage]]";
+  EXPECT_EQ(load_error(replace(kGood, "[[stage]]", probe)), "");
+  // 3D: a vector, its direction the axis, right-handed.
+  const std::string good3 =
+      replace(in_3d(good), "angular_velocity = 2.0", "angular_velocity = [0.0, 0.0, -2.0]");
+  ASSERT_EQ(load_error(good3), "");
+  {
+    const auto scene = built_scene<3>(good3);
+    const auto& w = scene.simulation.walls[0];
+    EXPECT_EQ(w.spin, 2.0);
+    EXPECT_EQ(w.axis, Vec<3>(0.0, 0.0, -1.0));
+  }
+  EXPECT_EQ(load_error(replace(good3, "[[stage]]", probe)), "");
+  auto msg = load_error(in_3d(good));
+  EXPECT_NE(msg.find("[[wall]] #1 key 'angular_velocity': a plane or box wall turns about the axis of its "
+                     "angular velocity through its 'rotation_centre': give [wx, wy, wz], rad/s"),
+            std::string::npos)
+      << msg;
+  // Without a turn a 3D plane has no axis for its moment.
+  msg = load_error(replace(in_3d(kGood), "[[stage]]", probe));
+  EXPECT_NE(msg.find("key 'wall': must name a cylinder (the moment about its axis) or a plane or box wall "
+                     "given an angular_velocity"),
+            std::string::npos)
+      << msg;
+  msg = load_error(
+      replace(good, "angular_velocity = 2.0",
+              "angular_velocity = 2.0\nservo = { target_force = 1.0, gain = 1e-3, max_speed = 0.01 }"));
+  EXPECT_NE(msg.find("key 'angular_velocity': a servo moves a wall along a fixed direction"),
+            std::string::npos)
+      << msg;
+  msg =
+      load_error(replace(good, "angular_velocity = 2.0", "angular_velocity = 2.0\nrotation_centre = [0.0]"));
+  EXPECT_NE(msg.find("key 'rotation_centre'"), std::string::npos) << msg;
+  // The pore fluid needs the walls it meets along its grid.
+  msg = load_error(replace(with_fluid(""), "normal = [0.0, 1.0]\nmaterial = \"sand\"",
+                           turning + "\ndisplaces_fluid = true"));
+  EXPECT_NE(msg.find("key 'angular_velocity': a wall that displaces the pore fluid or is impermeable stays "
+                     "along the fluid grid's axes: it cannot turn"),
+            std::string::npos)
+      << msg;
+  // Walls are not repeated across periodic boundaries.
+  const std::string periodic = "\n[periodic]\nx = [-0.003, 0.003]\n";
+  msg = load_error(replace(good, "\n[[material]]", periodic + "\n[[material]]"));
+  EXPECT_NE(
+      msg.find("key 'angular_velocity': a plane or box wall cannot turn with periodic boundaries (along x)"),
+      std::string::npos)
+      << msg;
+  // A stage turns it, or stops it; in 3D with a vector too.
+  const std::string staged = replace(kGood, "gravity = [0.0, -9.81]",
+                                     "gravity = [0.0, -9.81]\nwalls.floor = { angular_velocity = 1.0 }");
+  EXPECT_EQ(load_error(staged), "");
+  msg = load_error(in_3d(staged));
+  EXPECT_NE(msg.find("walls.floor key 'angular_velocity': a plane or box wall turns about the axis"),
+            std::string::npos)
+      << msg;
+  EXPECT_EQ(
+      load_error(replace(in_3d(staged), "angular_velocity = 1.0", "angular_velocity = [1.0, 0.0, 0.0]")), "");
+  msg = load_error(replace(replace(kGood, "\n[[material]]", periodic + "\n[[material]]"),
+                           "gravity = [0.0, -9.81]",
+                           "gravity = [0.0, -9.81]\nwalls.floor = { angular_velocity = 1.0 }"));
+  EXPECT_NE(msg.find("walls.floor key 'angular_velocity': a plane or box wall cannot turn with periodic"),
+            std::string::npos)
       << msg;
 }
 

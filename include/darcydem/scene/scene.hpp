@@ -97,7 +97,8 @@ struct WallChange {
   Vec<D> velocity = Vec<D>::Zero();
   ServoControl servo;
   Vec<D> servo_axis = Vec<D>::Zero();  ///< a box's (Wall::servo_axis)
-  double spin = 0.0;                   ///< rad/s, a cylinder's (Wall::spin)
+  double spin = 0.0;                   ///< rad/s (Wall::spin)
+  Vec<D> spin_axis = Vec<D>::Zero();   ///< a 3D plane's or box's axis of turn (Wall::axis), unit or zero
   double radius_rate = 0.0;            ///< m/s, a cylinder's (Wall::radius_rate)
 };
 

@@ -15,7 +15,10 @@
 // approaches a target force: a plane along its normal, a box along its
 // servo_axis, a cylinder by changing its radius (a triaxial cell's
 // confining wall, PFC's radial servo; without a servo its radius may change
-// at a set rate); the load is what the particles put
+// at a set rate). A cylinder may spin about its axis (a drum); a plane or box
+// may turn about its rotation centre, which moves with it (PFC's wall spin
+// about its centre of rotation, YADE's RotationEngine: a tilting table, a
+// paddle, a turntable). The load is what the particles put
 // on it (a cylinder's: the sum of their pushes normal to it), and with
 // `with_pore_water` also the pore water's thrust (a wall that displaces the
 // fluid: an impermeable piston or platen).
@@ -24,6 +27,8 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "darcydem/core/vec.hpp"
 
@@ -98,24 +103,43 @@ struct Wall {
   Vec<D> point_at_build = Vec<D>::Zero();
   /// A cylinder's spin about its axis, rad/s (right-handed about `axis`;
   /// 2D counter-clockwise): its surface moves, its shape stays (a drum).
+  /// A plane's or box's rate of turn about its rotation centre `pivot`, in
+  /// 3D about `axis` (unit; zero until it is first given one; it stays when
+  /// the wall stops turning): its surface moves and it turns.
   double spin = 0.0;
-  /// N m, the moment about a cylinder's axis of the particles' contacts on
-  /// it, forces and couples (zero on other walls): turning a drum takes
-  /// the power -torque x spin.
+  /// A plane's or box's rotation centre, m: it moves with the wall's
+  /// velocity (a cylinder turns about its axis through `point`).
+  Vec<D> pivot = Vec<D>::Zero();
+  /// N m, the moment of the particles' contacts on the wall, forces and
+  /// couples, about its axis (3D; a plane's or box's: the axis of its turn
+  /// through `pivot`, zero without one) or about the 2D normal through its
+  /// centre of rotation: turning it takes the power -torque x spin.
   double torque = 0.0;
+  /// Since the last contact list build: the angle a plane or box has
+  /// turned, rad; and a plane's reach at that build, m: the farthest
+  /// particle centre from its pivot plus the skin (the particles' own move
+  /// rebuilds the list before that), infinite when it was not turning then.
+  double turned_since_build = 0.0;
+  double reach = 0.0;
+  Vec<D> pivot_at_build = Vec<D>::Zero();
 
   /// The state a checkpoint keeps (the name comes from the scene).
   template <class Archive>
   void checkpoint(Archive& ar) {
     ar(point, normal, material, motion, velocity, servo, servo_axis, force, water_force, point_at_build, spin,
-       torque, radius, radial_speed, radial_load, radius_at_build, radius_rate);
+       torque, radius, radial_speed, radial_load, radius_at_build, radius_rate, axis, axes, pivot,
+       turned_since_build, reach, pivot_at_build);
   }
 
-  /// The wall's velocity at a point c of its surface: its translation, and
-  /// a cylinder's spin and change of radius.
+  /// The point its turn is about: a cylinder's axis point, or a plane's or
+  /// box's pivot.
+  [[nodiscard]] Vec<D> centre_of_rotation() const { return shape == WallShape::cylinder ? point : pivot; }
+
+  /// The wall's velocity at a point c of its surface: its translation, a
+  /// cylinder's spin and change of radius, a plane's or box's turn.
   [[nodiscard]] Vec<D> surface_velocity(const Vec<D>& c) const {
     if (spin == 0.0 && radial_speed == 0.0) return velocity;
-    Vec<D> arm = c - point;
+    Vec<D> arm = c - centre_of_rotation();
     if constexpr (D == 3) arm -= arm.dot(axis) * axis;
     Vec<D> v = velocity;
     if (radial_speed != 0.0) {
@@ -129,7 +153,8 @@ struct Wall {
       return v + spin * cross(axis, arm);
     }
   }
-  /// Its angular velocity, rad/s: a cylinder's spin about its axis.
+  /// Its angular velocity, rad/s: spin about its axis (2D: about the
+  /// normal to the plane of the discs).
   [[nodiscard]] AngVec<D> angular_velocity() const {
     if constexpr (D == 2) {
       return AngVec<D>(spin);
@@ -137,9 +162,10 @@ struct Wall {
       return spin * axis;
     }
   }
-  /// The moment about a cylinder's axis of a force f at x and a couple t.
+  /// The moment about its axis through its centre of rotation of a force f
+  /// at x and a couple t (3D: zero while it has no axis).
   [[nodiscard]] double moment_about_axis(const Vec<D>& x, const Vec<D>& f, const AngVec<D>& t) const {
-    const Vec<D> arm = x - point;
+    const Vec<D> arm = x - centre_of_rotation();
     if constexpr (D == 2) {
       return arm[0] * f[1] - arm[1] * f[0] + t[0];
     } else {
@@ -200,9 +226,17 @@ struct Wall {
   [[nodiscard]] double gap(const Vec<D>& x) const { return touch(x).gap; }
   /// How far the wall has come towards particles since the last contact
   /// list build: along its normal for a plane, any way for a box, across
-  /// its axis for a cylinder, plus the change of its radius.
+  /// its axis for a cylinder, plus the change of its radius. A plane or box
+  /// that has turned: its pivot's move plus the angle times the farthest a
+  /// point of it that a particle can touch stands from the pivot (a box's
+  /// corner; a plane's reach, plus the pivot's move).
   [[nodiscard]] double moved_since_build() const {
     Vec<D> shift = point - point_at_build;
+    if (turned_since_build > 0.0 && shape != WallShape::cylinder) {
+      const double drift = (pivot - pivot_at_build).norm();
+      const double arm = shape == WallShape::box ? (point - pivot).norm() + half.norm() : reach + drift;
+      return drift + turned_since_build * arm;
+    }
     if (shape == WallShape::plane) return std::abs(shift.dot(normal));
     if (shape == WallShape::cylinder) {
       if constexpr (D == 3) shift -= shift.dot(axis) * axis;
@@ -214,6 +248,33 @@ struct Wall {
   void mark_build() {
     point_at_build = point;
     radius_at_build = radius;
+    pivot_at_build = pivot;
+    turned_since_build = 0.0;
+  }
+  /// Turns a plane or box by `angle` (rad) about its pivot: right-handed
+  /// about `axis` in 3D, counter-clockwise in 2D. Its point, normal and
+  /// axes turn with it; the axes are kept orthonormal and right-handed.
+  void turn(double angle) {
+    Eigen::Matrix<double, D, D> r;
+    if constexpr (D == 2) {
+      r = Eigen::Rotation2Dd(angle).toRotationMatrix();
+    } else {
+      r = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+    }
+    point = pivot + r * (point - pivot);
+    if (shape == WallShape::plane) normal = (r * normal).normalized();
+    if (shape == WallShape::box) {
+      axes = r * axes;
+      axes.col(0).normalize();
+      if constexpr (D == 2) {
+        axes.col(1) = Vec<D>(-axes(1, 0), axes(0, 0));
+      } else {
+        axes.col(1) -= axes.col(1).dot(axes.col(0)) * axes.col(0);
+        axes.col(1).normalize();
+        axes.col(2) = axes.col(0).cross(axes.col(1));
+      }
+    }
+    turned_since_build += std::abs(angle);
   }
   /// The direction the wall moves in to load the particles more: a
   /// plane's normal, a box's servo_axis (a cylinder's servo changes its
@@ -247,7 +308,9 @@ struct Wall {
       if (motion == WallMotion::fixed) velocity.setZero();
     }
     point += velocity * dt;
+    pivot += velocity * dt;
     radius += radial_speed * dt;
+    if (spin != 0.0 && shape != WallShape::cylinder) turn(spin * dt);
   }
 };
 
