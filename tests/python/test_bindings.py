@@ -704,8 +704,9 @@ class SpinningDrum(unittest.TestCase):
         m = self.model
         with self.assertRaisesRegex(ValueError, "no wall 'lid'.*'drum', 'floor'"):
             m.set_wall_motion("lid", velocity=[0.0, 1.0])
-        with self.assertRaisesRegex(ValueError, "'floor' is not a cylinder"):
-            m.set_wall_motion("floor", angular_velocity=1.0)
+        with self.assertRaisesRegex(ValueError, "'floor' turns about the normal to the plane of the discs: give "
+                                                "angular_velocity as a number"):
+            m.set_wall_motion("floor", angular_velocity=[1.0])
         with self.assertRaisesRegex(ValueError, "give velocity"):
             m.set_wall_motion("drum")
         with self.assertRaisesRegex(ValueError, "finite"):
@@ -719,6 +720,95 @@ class SpinningDrum(unittest.TestCase):
         m.set_wall_motion("floor", velocity=[0.0, -0.1])
         floor = next(w for w in m.walls if w["name"] == "floor")
         self.assertEqual(floor["velocity"], (0.0, -0.1))
+
+
+TABLE_3D = """
+[simulation]
+dimension = 3
+time_step = 1e-5
+
+[[material]]
+name = "sand"
+density = 2650.0
+
+[[contact]]
+materials = ["sand", "sand"]
+law = "linear"
+normal_stiffness = 1e3
+restitution = 0.5
+
+[[wall]]
+name = "table"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+material = "sand"
+rotation_centre = [0.01, 0.0, 0.0]
+
+[[particles]]
+generator = "csv"
+material = "sand"
+file = "one.csv"
+
+[[stage]]
+name = "rest"
+duration = 0.1
+"""
+
+
+class TiltingTable(unittest.TestCase):
+    """examples/dem_cases/tilting_table.toml with the table set turning
+    from Python at twice its stage's rate: the block rides up with it, and
+    the table's moment about its pivot is the block's weight on the
+    vertical through its centre of mass, -M g (19 cos - 3 sin) mm
+    (tests/verification/test_turning_walls.cpp, the same run by its
+    stage: within 2.5e-5 after the start's jolt)."""
+
+    def test_the_table_turned_from_python_carries_the_block(self):
+        m = darcydem.load(os.path.join(SOURCE, "examples/dem_cases/tilting_table.toml"))
+        m.step(round(0.05 / m.time_step))
+        start = m.time
+        table = next(w for w in m.walls if w["name"] == "table")
+        self.assertEqual((table["shape"], table["angular_velocity"], table["rotation_centre"]),
+                         ("box", 0.0, (0.0, 0.0)))
+        # The tilt stage's damping (none), and twice its rate.
+        m.apply_stage("tilt")
+        m.set_wall_motion("table", angular_velocity=0.2)
+        m.step(round(1.0 / m.time_step))
+        table = next(w for w in m.walls if w["name"] == "table")
+        tilt = 0.2 * (m.time - start)
+        # Its axes turned by the tilt; the sum of a 1.2e5 steps' angles, so
+        # 1e-10.
+        self.assertAlmostEqual(table["axes"][0][0], math.cos(tilt), delta=1e-10)
+        self.assertAlmostEqual(table["axes"][0][1], math.sin(tilt), delta=1e-10)
+        self.assertAlmostEqual(table["point"][0], 0.02 * math.cos(tilt) + 0.001 * math.sin(tilt), delta=1e-12)
+        mass = 15 * 2650.0 * math.pi * 1e-6
+        expected = -mass * 9.81 * (0.019 * math.cos(tilt) - 0.003 * math.sin(tilt))
+        print(f"tilting table from python: tilt {tilt:.4f} rad, torque {table['torque'] / expected - 1:+.2e}")
+        self.assertAlmostEqual(table["torque"] / expected, 1.0, delta=2e-4)
+        with self.assertRaisesRegex(ValueError, "'table' turns, and a servo moves a wall along a fixed direction"):
+            m.set_wall_servo("table", gain=1e-3, max_speed=0.01, target_force=1.0, direction=[0.0, -1.0])
+
+    def test_a_3d_plane_turns_about_its_vector(self):
+        folder = tempfile.mkdtemp()
+        with open(os.path.join(folder, "one.csv"), "w") as f:
+            f.write("x,y,z,radius\n0.0,0.0,0.01,0.0005\n")
+        m = darcydem.load(write_scene(folder, TABLE_3D))
+        with self.assertRaisesRegex(ValueError, r"'table' is a plane or box, which turns about the axis of its "
+                                                r"angular velocity through its rotation centre: give "
+                                                r"angular_velocity = \[wx, wy, wz\]"):
+            m.set_wall_motion("table", angular_velocity=0.5)
+        m.set_wall_motion("table", angular_velocity=[0.0, 0.5, 0.0])
+        m.step(1000)
+        table = m.walls[0]
+        self.assertEqual(table["angular_velocity"], (0.0, 0.5, 0.0))
+        self.assertEqual(table["rotation_centre"], (0.01, 0.0, 0.0))
+        # About +y the normal z goes to (sin, 0, cos); the point stays on
+        # the plane through the pivot.
+        tilt = 0.5 * m.time
+        for got, want in zip(table["normal"], (math.sin(tilt), 0.0, math.cos(tilt))):
+            self.assertAlmostEqual(got, want, delta=1e-12)
+        m.set_wall_motion("table", angular_velocity=0)
+        self.assertEqual(m.walls[0]["angular_velocity"], (0.0, 0.0, 0.0))
 
 
 LATTICE = """

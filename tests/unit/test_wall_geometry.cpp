@@ -4,6 +4,8 @@
 // against the nearest point worked out by hand.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -193,6 +195,91 @@ Wall<3> plane3(const Vec<3>& point, const Vec<3>& normal) {
 // The loaded area of a plane (walls/loaded_area.hpp), by hand: a box of
 // planes 2 x 3 (x, y) under a lid normal to z; the same with y periodic
 // over 5; in a cylinder of radius 2 along z; and the walls crossed.
+// A box turned step by step about a pivot is the box placed turned: its
+// axes are the rotation's, its centre has gone round the pivot; the
+// surface's velocity is omega x (x - pivot) plus the translation; and the
+// contact list's bound on its move covers every point of it.
+TEST(WallTouch, ABoxThatTurnsIsTheBoxPlacedTurned) {
+  const double omega = 0.7;
+  const double dt = 1e-3;
+  const int steps = 1000;
+  const double angle = omega * dt * steps;
+  const Vec<3> axis = Vec<3>(1.0, 2.0, 2.0) / 3.0;
+  Wall<3> w = box<3>(Vec<3>(0.0, 0.0, 0.0), Vec<3>(0.4, 0.2, 0.1));
+  w.pivot = Vec<3>(-0.1, 0.05, 0.0);
+  w.axis = axis;
+  w.spin = omega;
+  w.velocity = Vec<3>(0.01, 0.0, -0.02);
+  w.motion = WallMotion::velocity;
+  const Vec<3> centre0 = w.point;
+  const Vec<3> pivot0 = w.pivot;
+  // Sample points round the box, in its own axes at the start.
+  std::vector<Vec<3>> local;
+  for (double a : {-0.3, 0.0, 0.25})
+    for (double b : {-0.2, 0.03, 0.15})
+      for (double c : {-0.12, 0.0, 0.09}) local.emplace_back(a, b, c);
+  std::vector<double> gap0;
+  for (const auto& d : local) gap0.push_back(w.gap(centre0 + d));
+  w.mark_build();
+  double max_move = 0.0;
+  for (int s = 0; s < steps; ++s) {
+    w.advance(dt);
+    // Every point the particles may touch has moved no more than the bound.
+    for (const auto& d : local) {
+      const Vec<3> x = centre0 + d;
+      max_move = std::max(max_move, std::abs(w.gap(x) - gap0[&d - local.data()]));
+      EXPECT_LE(std::abs(w.gap(x) - gap0[&d - local.data()]), w.moved_since_build() + 1e-15);
+    }
+  }
+  EXPECT_GT(max_move, 0.05);  // it did sweep through the points
+  // Placed: turned by the angle about the axis through the pivot, which
+  // has moved with the wall's velocity; the axes orthonormal.
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+  const Vec<3> pivot = pivot0 + w.velocity * dt * steps;
+  EXPECT_NEAR((w.pivot - pivot).norm(), 0.0, 1e-13);  // 1000 additions
+  const Vec<3> centre = pivot + r * (centre0 - pivot0);
+  EXPECT_NEAR((w.point - centre).norm(), 0.0, 1e-13);
+  EXPECT_NEAR((w.axes - r).norm(), 0.0, 1e-13);
+  EXPECT_NEAR((w.axes.transpose() * w.axes - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-15);
+  Wall<3> placed = box<3>(centre - w.half, centre + w.half);
+  placed.axes = r;
+  for (const auto& d : local) {
+    const Vec<3> x = centre + r * d;
+    EXPECT_NEAR(w.gap(x), placed.gap(x), 1e-13);
+    EXPECT_NEAR(w.gap(x), gap0[&d - local.data()], 1e-13);  // it carried the points with it
+  }
+  const Vec<3> c(0.3, -0.2, 0.4);
+  EXPECT_NEAR((w.surface_velocity(c) - (w.velocity + omega * axis.cross(c - w.pivot))).norm(), 0.0, 1e-16);
+  EXPECT_NEAR((w.angular_velocity() - omega * axis).norm(), 0.0, 1e-16);
+}
+
+// A 2D plane (a line) turned counter-clockwise about a pivot: its normal is
+// the rotation's, its point stays on it; its bound on the move is the
+// angle times the reach its last build measured, and before a build that
+// saw it turn, the bound is infinite (rebuild at once).
+TEST(WallTouch, APlaneThatTurnsSweepsByItsReach) {
+  Wall<2> w;
+  w.point = Vec<2>(0.3, 0.0);
+  w.normal = Vec<2>(0.0, 1.0);
+  w.pivot = Vec<2>(0.1, 0.0);
+  w.reach = std::numeric_limits<double>::infinity();
+  w.spin = -0.5;
+  w.advance(1e-3);
+  EXPECT_TRUE(std::isinf(w.moved_since_build()));
+  w.mark_build();
+  w.reach = 2.0;  // as WallContactList::build measures it: farthest centre + skin
+  for (int s = 0; s < 999; ++s) w.advance(1e-3);
+  const double angle = -0.5;
+  EXPECT_NEAR((w.normal - Vec<2>(-std::sin(angle), std::cos(angle))).norm(), 0.0, 1e-14);
+  EXPECT_NEAR((w.point - w.pivot).dot(w.normal), 0.0, 1e-15);
+  EXPECT_NEAR(w.moved_since_build(), 0.5 * 0.999 * 2.0, 1e-13);
+  // 2D: counter-clockwise, omega x arm = omega (-arm_y, arm_x).
+  EXPECT_NEAR((w.surface_velocity(Vec<2>(0.1, 1.0)) - Vec<2>(0.5, 0.0)).norm(), 0.0, 1e-16);
+  // Its moment about the pivot: a force (0, 1) at (1.1, 0) turns it
+  // counter-clockwise by 1 N m, and a couple adds.
+  EXPECT_NEAR(w.moment_about_axis(Vec<2>(1.1, 0.0), Vec<2>(0.0, 1.0), AngVec<2>(0.25)), 1.25, 1e-15);
+}
+
 TEST(LoadedArea, IsTheCrossSectionTheOtherWallsBound) {
   std::vector<Wall<3>> walls = {
       plane3(Vec<3>(0, 0, 4), Vec<3>(0, 0, -1)),  // the lid

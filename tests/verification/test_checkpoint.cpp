@@ -476,6 +476,16 @@ TEST(Checkpoint, ResumedCellKeepsItsServosRadius) {
                                                   "triaxial_cell", 2, 30000, 0);
 }
 
+TEST(Checkpoint, ResumedTiltingTableKeepsTurning) {
+  // examples/dem_cases/tilting_table.toml, its tilt cut to 2 s, stopped at
+  // step 200 000 (about 1.6 s into the tilt, 0.16 rad): the table's turn
+  // (its axes, the point it turns about, its spin) must come back, or the
+  // block would sit on a level table after the resume.
+  expect_resumed_variant_writes_the_same_files<2>("examples/dem_cases/tilting_table.toml",
+                                                  {{"duration = 4.5", "duration = 2.0"}}, "tilting_table", 2,
+                                                  200000, 1);
+}
+
 TEST(Checkpoint, ResumedCantileverKeepsItsBondsScatteredStrengths) {
   // The same cantilever with strengths scattered from bond to bond
   // (strength_weibull_modulus), stopped in stage "sag": each bond's factor

@@ -5,14 +5,17 @@
 // omega^2 r < mu g, and flings it outwards above that; a turning paddle
 // throws a free grain at (1 + e) times the speed of its face, and the
 // energy budget counts the paddle's work as the moment on it times the
-// angle it turned.
+// angle it turned. And examples/dem_cases/tilting_table.toml: a bonded
+// block slides at atan(mu), and the table carries its weight.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 
 #include "dem_setup.hpp"
+#include "scene_loading.hpp"
 
 using namespace darcydem;
 using darcydem::testing::particle_on_floor;
@@ -261,4 +264,57 @@ TEST(TurningWalls, ATurningPaddleThrowsAGrainAtItsFacesSpeedAndTheBudgetCountsIt
     EXPECT_NEAR(sim.walls[0].axes(1, 0), std::sin(angle), 1e-10);
     EXPECT_NEAR(sim.walls[0].point.x(), 12.5e-3 * std::cos(angle), 1e-10 * 12.5e-3);
   }
+}
+
+TEST(TurningWalls, TheTiltingTableExampleSlidesItsBlockAtTheInterfacesFrictionAngle) {
+  // examples/dem_cases/tilting_table.toml: a rigid block of 15 bonded discs
+  // on a table turning at 0.1 rad/s about its left end from t = 0.05 s,
+  // friction 0.4 between them.
+  const std::string text = darcydem::testing::scene_variant("examples/dem_cases/tilting_table.toml", {});
+  const auto probes = darcydem::testing::run_scene_probes<2>("tilting_table", text);
+  const auto& time = probes.at("time");
+  const auto& x0 = probes.at("x0");
+  const auto& y0 = probes.at("y0");
+  const auto& torque = probes.at("torque");
+  const double omega = 0.1;
+  const double start = 0.05;  // the settling stage, to a step (8e-6 s)
+  const double mu = 0.4;
+  // While it holds, the table carries the block's weight on the vertical
+  // through its centre of mass, which turns with the table from (19, 3) mm:
+  // the moment about the pivot is -M g (19 cos - 3 sin) mm. Off by the
+  // contacts' give under the weight (2.4e-7 m of the 19 mm) and the
+  // block's own turn (omega^2 x 19 mm = 2e-5 g): 2e-4.
+  const double mass = 15.0 * 2650.0 * std::numbers::pi * 1e-6;
+  double worst = 0.0;
+  double onset = std::nan("");
+  double s_held = 0.0;
+  for (std::size_t k = 0; k < time.size(); ++k) {
+    const double tilt = std::max(0.0, omega * (time[k] - start));
+    if (time[k] < 0.04) continue;  // settling
+    const double expected = -mass * g * (19e-3 * std::cos(tilt) - 3e-3 * std::sin(tilt));
+    // The table's start jolts the block (its surface under it starts at
+    // 2 mm/s), which rings for about 0.05 s, its contacts' damping: from
+    // 0.1 s on.
+    if (tilt < 0.35 && (time[k] < start || time[k] > start + 0.1)) {
+      worst = std::max(worst, std::abs(torque[k] / expected - 1.0));
+      EXPECT_NEAR(torque[k], expected, 2e-4 * std::abs(expected)) << "at a tilt of " << tilt;
+    }
+    // The first disc's place along the table, from the pivot; its slip
+    // down it past the onset as in sliding_tilt (a rigid block slides as a
+    // grain does).
+    const double s = x0[k] * std::cos(tilt) + y0[k] * std::sin(tilt);
+    if (time[k] < start) s_held = s;
+    if (s_held - s > 2e-5) {
+      const double tau = std::cbrt(6.0 * 2e-5 / (g * std::sqrt(1.0 + mu * mu) * omega));
+      onset = tilt - omega * tau;
+      break;
+    }
+  }
+  std::printf(
+      "tilting table example: the block slides at a tilt of %.5f rad (atan(mu) = %.5f); the "
+      "table's moment within %.1e of -M g x_cm before\n",
+      onset, std::atan(mu), worst);
+  // As for the grain (sliding_tilt), and the probes' interval (1e-3 s,
+  // 1e-4 rad): 1e-3 rad.
+  EXPECT_NEAR(onset, std::atan(mu), 1e-3);
 }
