@@ -218,8 +218,7 @@ class Model {
           throw py::value_error(fmt::format(
               "set_wall_motion: wall '{}' is a plane or box, which turns about the axis of its angular "
               "velocity through its rotation centre: give angular_velocity = [wx, wy, wz], rad/s (or 0 to "
-              "stop "
-              "it)",
+              "stop it)",
               name));
         const Vec<D> w = as_vec<D>(angular_velocity.cast<std::vector<double>>(), "angular_velocity");
         if (!w.allFinite()) throw py::value_error("set_wall_motion: angular_velocity must be finite, rad/s");

@@ -404,9 +404,6 @@ void read_periodic(TableReader& r, PeriodicCell<D>& cell) {
   }
 }
 
-/// Walls are not repeated: a plane must run along every periodic axis and a
-/// box lie within the period, so that no particle meets a wall across a
-/// periodic boundary.
 /// Walls are not repeated across periodic boundaries, and a plane or box
 /// that turns would cross them.
 template <int D>
@@ -421,6 +418,9 @@ void check_turning_wall_in_period(TableReader& r, const PeriodicCell<D>& cell) {
   }
 }
 
+/// Walls are not repeated: a plane must run along every periodic axis and a
+/// box lie within the period, so that no particle meets a wall across a
+/// periodic boundary.
 template <int D>
 void check_wall_in_period(TableReader& r, const Wall<D>& w, const PeriodicCell<D>& cell) {
   if (w.spin != 0.0 && !w.is_cylinder()) check_turning_wall_in_period<D>(r, cell);
@@ -1438,9 +1438,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       // The moment is about an axis: a cylinder's, a 3D plane's or box's
       // turn's (through its rotation centre), or in 2D the normal to the
       // plane of the discs through the wall's centre of rotation.
-      auto fits = [&](const Wall<D>& wall) {
-        return wall.is_cylinder() || (torque && (D == 2 || wall.axis != Vec<D>::Zero()));
-      };
+      auto fits = [&](const Wall<D>& wall) { return wall.is_cylinder() || (torque && wall.has_axis()); };
       if (it == wall_index.end() || !fits(sim.walls[it->second])) {
         std::vector<std::string> names;
         for (const auto& wall : sim.walls) {
@@ -1573,7 +1571,9 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
           require_loaded_area<D>(cr, sim.walls, c.wall, sim.periodic);
         }
         if (wall_is_barrier[c.wall] && (c.motion != WallMotion::fixed || c.spin != 0.0)) {
-          cr.fail(c.motion == WallMotion::velocity ? "velocity" : "servo",
+          cr.fail(c.motion == WallMotion::velocity ? "velocity"
+                  : c.motion == WallMotion::servo  ? "servo"
+                                                   : "angular_velocity",
                   "an impermeable wall cannot move: its barrier is fixed in the fluid grid");
         }
         cr.finish();

@@ -69,8 +69,7 @@ void Simulation<D>::advance(std::uint64_t count) {
       if (w.is_cylinder() && !(w.radius > 0.0)) {
         throw std::runtime_error(fmt::format(
             "wall \"{}\": the cylinder's radius has come to {} m at t = {} s: its servo or radial_velocity "
-            "has "
-            "closed it past the grains it should hold (check its target or rate and the grains' place)",
+            "has closed it past the grains it should hold (check its target or rate and the grains' place)",
             w.name, w.radius, time));
       }
     }
@@ -801,10 +800,16 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     moved2 = run_blocks(0, blocks, [] {});
   }
 
+  // A moment only about an axis (a 3D plane or box never turned has none:
+  // its torque stays 0), a radial load only on a cylinder.
+  bool moments = false;
+  bool cylinders = false;
   for (auto& w : walls) {
     w.force.setZero();
     w.torque = 0.0;
     w.radial_load = 0.0;
+    moments = moments || w.has_axis();
+    cylinders = cylinders || w.is_cylinder();
   }
   for (std::int64_t i = 0; i < n; ++i) {
     for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
@@ -814,8 +819,9 @@ double Simulation<D>::compute_forces_with(Finish finish) {
       // the particle's centre and its torque about that centre; and its
       // push on a cylinder's surface, along the normal from the wall to the
       // particle.
-      w.torque -= w.moment_about_axis(p.position[i], W.force_on_particle[k], W.torque_on_particle[k]);
-      if (w.is_cylinder() && W.force_on_particle[k] != Vec<D>::Zero())
+      if (moments && w.has_axis())
+        w.torque -= w.moment_about_axis(p.position[i], W.force_on_particle[k], W.torque_on_particle[k]);
+      if (cylinders && w.is_cylinder() && W.force_on_particle[k] != Vec<D>::Zero())
         w.radial_load += W.force_on_particle[k].dot(w.cylinder_touch(p.position[i]).normal);
     }
   }

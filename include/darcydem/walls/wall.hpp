@@ -162,6 +162,16 @@ struct Wall {
       return spin * axis;
     }
   }
+  /// Whether it has an axis to take moments about: in 2D the normal to the
+  /// plane of the discs; in 3D a cylinder's, or a plane's or box's once it
+  /// was given a turn.
+  [[nodiscard]] bool has_axis() const {
+    if constexpr (D == 2) {
+      return true;
+    } else {
+      return axis != Vec<D>::Zero();
+    }
+  }
   /// The moment about its axis through its centre of rotation of a force f
   /// at x and a couple t (3D: zero while it has no axis).
   [[nodiscard]] double moment_about_axis(const Vec<D>& x, const Vec<D>& f, const AngVec<D>& t) const {
