@@ -28,6 +28,7 @@
 #include <csignal>
 #include <cstdint>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -36,6 +37,7 @@
 
 #include <fmt/format.h>
 
+#include "contact_view.hpp"
 #include "darcydem/analysis/seepage_analytic.hpp"
 #include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/particles/grading.hpp"
@@ -359,6 +361,8 @@ class Model {
       {
         py::gil_scoped_release unlocked;
         run = std::min(run, insert_due_grains());
+        // The last step keeps the forces it applies, for model.contacts.
+        sim().record_contact_forces = true;
         sim().advance(run);
         since_update_ += run;
         if (fluid() != nullptr && since_update_ >= static_cast<std::uint64_t>(fluid()->steps_per_update))
@@ -367,6 +371,61 @@ class Model {
       count -= run;
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     }
+  }
+
+  /// A particle's velocity and angular velocity set between steps (YADE's
+  /// state.vel and state.angVel, PFC's ball velocity and spin). A free
+  /// grain then moves on from it; a fixed one keeps it (a grain driven at
+  /// a set velocity). The kinetic energy it gives a free grain is work done
+  /// on it from outside, which the energy budget counts as external work.
+  void set_particle_velocity(std::int64_t number, const std::optional<std::vector<double>>& velocity,
+                             const py::object& angular_velocity) {
+    auto& s = sim();
+    auto& p = s.particles;
+    const std::size_t i = number >= 0 && number <= std::numeric_limits<std::uint32_t>::max()
+                              ? p.index_of(static_cast<std::uint32_t>(number))
+                              : p.size();
+    if (i == p.size())
+      throw py::value_error(fmt::format(
+          "set_particle_velocity: there is no particle {} (the numbers are model.ids: {} particles{})",
+          number, p.size(), s.removed_count > 0 ? ", some removed outside the [domain]" : ""));
+    if (!velocity && angular_velocity.is_none())
+      throw py::value_error(
+          "set_particle_velocity: give velocity = [D numbers] (m/s) and or angular_velocity (rad/s: a number "
+          "in 2D, counter-clockwise; [wx, wy, wz] in 3D)");
+    Vec<D> v = p.velocity[i];
+    AngVec<D> w = p.angular_velocity[i];
+    if (velocity) {
+      v = as_vec<D>(*velocity, "set_particle_velocity: velocity");
+      if (!v.allFinite()) throw py::value_error("set_particle_velocity: velocity must be finite, m/s");
+    }
+    if (!angular_velocity.is_none()) {
+      const bool number_given =
+          py::isinstance<py::float_>(angular_velocity) || py::isinstance<py::int_>(angular_velocity);
+      if constexpr (D == 2) {
+        if (!number_given)
+          throw py::value_error(
+              "set_particle_velocity: a disc turns in the plane: give angular_velocity as a number, rad/s, "
+              "counter-clockwise");
+        w[0] = angular_velocity.cast<double>();
+      } else {
+        if (number_given || !py::isinstance<py::sequence>(angular_velocity))
+          throw py::value_error(
+              "set_particle_velocity: a sphere's angular_velocity is a vector: give [wx, wy, wz], rad/s");
+        w = as_vec<3>(angular_velocity.cast<std::vector<double>>(),
+                      "set_particle_velocity: angular_velocity");
+      }
+      if (!w.allFinite())
+        throw py::value_error("set_particle_velocity: angular_velocity must be finite, rad/s");
+    }
+    if (s.energy.started && p.inv_mass[i] > 0.0) {
+      auto kinetic = [&](const Vec<D>& u, const AngVec<D>& spin) {
+        return 0.5 * u.squaredNorm() / p.inv_mass[i] + 0.5 * spin.squaredNorm() / p.inv_inertia[i];
+      };
+      s.energy.external_work += kinetic(v, w) - kinetic(p.velocity[i], p.angular_velocity[i]);
+    }
+    p.velocity[i] = v;
+    p.angular_velocity[i] = w;
   }
 
   /// A free particle added between steps (YADE's O.bodies.append, PFC's
@@ -603,6 +662,39 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           [](const M& s) { return per_particle<D>(s.sim().particles, s.sim().particles.velocity, D); },
           "particle velocities, m/s, (N, D), in creation order")
       .def_property_readonly(
+          "angular_velocities",
+          [](const M& s) {
+            const auto& p = s.sim().particles;
+            py::array_t<double> w = per_particle<D>(p, p.angular_velocity, rotation_dim<D>);
+            return D == 2 ? py::array_t<double>(w.attr("reshape")(-1)) : w;
+          },
+          "particle angular velocities, rad/s, in creation order: (N,) counter-clockwise in 2D, (N, 3) in 3D")
+      .def_property_readonly(
+          "forces", [](const M& s) { return per_particle<D>(s.sim().particles, s.sim().particles.force, D); },
+          "the resultant force on each particle at the last step, N (2D: per metre), (N, D), in creation "
+          "order: its contacts', its weight, the pore water's force and any load, before damping (zero "
+          "for a grain in equilibrium)")
+      .def_property_readonly(
+          "torques",
+          [](const M& s) {
+            const auto& p = s.sim().particles;
+            py::array_t<double> t = per_particle<D>(p, p.torque, rotation_dim<D>);
+            return D == 2 ? py::array_t<double>(t.attr("reshape")(-1)) : t;
+          },
+          "the contacts' moment on each particle about its centre at the last step, N m (2D: per metre), "
+          "(N,) in 2D, (N, 3) in 3D, in creation order: their forces' and couples' (rolling resistance, "
+          "a bond's moment)")
+      .def_property_readonly(
+          "contacts", [](const M& s) { return contact_arrays<D>(s.sim()); },
+          "the contacts of the last step, one row per contact, sorted by particle number (YADE's "
+          "O.interactions): particles (M, 2), the pair's numbers, the lower first, -1 second for a wall; "
+          "wall (M,), the wall's index in model.walls, -1 between particles; point (M, D), m; normal "
+          "(M, D), unit, from the first particle towards the second or the wall; overlap (M,), m "
+          "(negative for a bond whose grains are apart); force (M, D), on the first particle, N (2D: per "
+          "metre; on the second, its opposite); normal_force (M,), -force . normal, compression "
+          "positive; shear_force (M, D), the force's part across the normal; bonded (M,); bending_moment "
+          "and twisting_moment (M,), a bond's, N m")
+      .def_property_readonly(
           "fluid_forces",
           [](const M& s) {
             const auto& p = s.sim().particles;
@@ -746,6 +838,7 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
             d["gravitational"] = sim.gravitational_energy();
             d["gravity_work"] = sim.energy.gravity_work;
             d["fluid_work"] = sim.energy.field_work;
+            d["external_work"] = sim.energy.external_work;
             d["boundary_work"] = sim.energy.boundary_work;
             d["damping_dissipation"] = sim.energy.damping_dissipation();
             d["contact_dissipation"] = sim.contact_dissipation();
@@ -789,6 +882,12 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "adds a free particle between steps (its weight as its force, the others' contact histories kept) "
            "and returns its id; the material one the scene's grains use, the centre inside the [domain] and "
            "period, the grain outside the fluid grid, its critical time step above the scene's")
+      .def("set_particle_velocity", &M::set_particle_velocity, py::arg("particle"),
+           py::arg("velocity") = py::none(), py::arg("angular_velocity") = py::none(),
+           "sets a particle's velocity (m/s, D numbers) and or angular velocity (rad/s: 2D a number, "
+           "counter-clockwise; 3D [wx, wy, wz]) between steps, particle by its number (model.ids): a free "
+           "grain moves on from it (the kinetic energy it gains is external work in the energy budget), a "
+           "fixed one keeps it")
       .def("step", &M::step, py::arg("count") = 1,
            "advances count DEM steps, with the pore fluid's steps among them as in a run")
       .def_property_readonly(
