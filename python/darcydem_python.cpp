@@ -30,6 +30,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
@@ -193,13 +194,17 @@ class Model {
   }
 
   void set_wall_motion(const std::string& name, const std::optional<std::vector<double>>& velocity,
-                       const py::object& angular_velocity, std::optional<double> radial_velocity) {
+                       const py::object& angular_velocity, std::optional<double> radial_velocity,
+                       const py::object& oscillation) {
     Wall<D>* it = &wall_named(name, "set_wall_motion");
     const bool turn = !angular_velocity.is_none();
-    if (!velocity && !turn && !radial_velocity)
+    if (!velocity && !turn && !radial_velocity && oscillation.is_none())
       throw py::value_error(
-          "set_wall_motion: give velocity = [D numbers] (m/s), and or instead an angular_velocity (rad/s) or "
-          "a cylinder's radial_velocity (m/s)");
+          "set_wall_motion: give velocity = [D numbers] (m/s), and or instead an angular_velocity (rad/s), "
+          "a cylinder's radial_velocity (m/s) or an oscillation");
+    const std::optional<WallOscillation<D>> shake =
+        oscillation.is_none() ? std::nullopt
+                              : std::optional(read_oscillation(*it, oscillation, velocity.has_value()));
     if (radial_velocity) {
       if (!it->is_cylinder()) {
         throw py::value_error(fmt::format(
@@ -253,6 +258,58 @@ class Model {
       if (it->motion == WallMotion::servo) it->motion = WallMotion::velocity;
       it->radius_rate = *radial_velocity;
     }
+    if (shake) it->oscillation = *shake;
+  }
+
+  /// set_wall_motion's oscillation: {"amplitude": [D numbers] (m),
+  /// "frequency": Hz, "phase": degrees (optional, 0)}, starting now, or
+  /// False to stop one. Refused on a servo (unless a velocity is given too,
+  /// which ends it) and on an impermeable plate (fixed in the fluid grid).
+  WallOscillation<D> read_oscillation(const Wall<D>& w, const py::object& given, bool with_velocity) {
+    const std::string form = fmt::format(
+        "give oscillation = {{'amplitude': [{} numbers] (m), 'frequency': Hz, 'phase': degrees (optional, "
+        "0)}}, or False to stop one",
+        D);
+    if (py::isinstance<py::bool_>(given)) {
+      if (given.cast<bool>()) throw py::value_error("set_wall_motion: " + form);
+      return WallOscillation<D>{};
+    }
+    if (!py::isinstance<py::dict>(given)) throw py::value_error("set_wall_motion: " + form);
+    if (w.motion == WallMotion::servo && !with_velocity)
+      throw py::value_error(
+          fmt::format("set_wall_motion: wall '{}' has a servo, which sets its place from its load: give it a "
+                      "velocity too "
+                      "(which ends the servo) to shake it",
+                      w.name));
+    if (const auto* f = fluid(); f != nullptr) {
+      if (std::any_of(f->barriers.begin(), f->barriers.end(),
+                      [&](const auto& b) { return b.name == w.name; }))
+        throw py::value_error(fmt::format(
+            "set_wall_motion: wall '{}' is an impermeable plate, fixed in the fluid grid: it cannot move",
+            w.name));
+    }
+    const auto d = given.cast<py::dict>();
+    for (const auto& [key, value] : d) {
+      const auto k = py::str(key).cast<std::string>();
+      if (k != "amplitude" && k != "frequency" && k != "phase")
+        throw py::value_error(fmt::format("set_wall_motion: oscillation has no key '{}': {}", k, form));
+    }
+    if (!d.contains("amplitude") || !d.contains("frequency"))
+      throw py::value_error("set_wall_motion: " + form);
+    WallOscillation<D> o;
+    o.amplitude = as_vec<D>(d["amplitude"].cast<std::vector<double>>(), "oscillation amplitude");
+    o.frequency = d["frequency"].cast<double>();
+    const double phase = d.contains("phase") ? d["phase"].cast<double>() : 0.0;
+    if (!o.amplitude.allFinite() || o.amplitude.isZero(0.0))
+      throw py::value_error(
+          "set_wall_motion: the oscillation's amplitude must be finite and not all zero, m");
+    if (!(std::isfinite(o.frequency) && o.frequency > 0.0))
+      throw py::value_error("set_wall_motion: the oscillation's frequency must be > 0 Hz");
+    if (!std::isfinite(phase))
+      throw py::value_error("set_wall_motion: the oscillation's phase must be finite");
+    o.phase = phase * std::numbers::pi / 180.0;
+    o.start = sim().time;
+    return o;
   }
 
   /// A plane or box may turn unless a servo drives it, the pore fluid needs
@@ -337,6 +394,11 @@ class Model {
       throw py::value_error(fmt::format(
           "set_wall_servo: wall '{}' turns, and a servo moves a wall along a fixed direction: stop its turn "
           "first (set_wall_motion(\"{}\", angular_velocity=0))",
+          name, name));
+    if (w.oscillation.active())
+      throw py::value_error(fmt::format(
+          "set_wall_servo: wall '{}' oscillates, and a servo sets its place from its load: stop the "
+          "oscillation first (set_wall_motion(\"{}\", oscillation=False))",
           name, name));
     // All checked: set.
     ServoControl servo;
@@ -761,7 +823,7 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["force"] = as_tuple<D>(w.force);
               d["water_force"] = as_tuple<D>(w.water_force);
               d["shape"] = w.is_cylinder() ? "cylinder" : (w.is_box() ? "box" : "plane");
-              d["velocity"] = as_tuple<D>(w.velocity);
+              d["velocity"] = as_tuple<D>(w.translation_velocity());
               if (D == 3 && !w.is_cylinder()) {
                 d["angular_velocity"] = as_tuple<D>(Vec<D>(w.spin * w.axis));
                 d["rotation_centre"] = as_tuple<D>(w.pivot);
@@ -775,6 +837,13 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
                 d["axes"] = axes;
               }
               if (w.is_plane()) d["normal"] = as_tuple<D>(w.normal);
+              d["oscillation"] =
+                  w.oscillation.active()
+                      ? py::object(py::dict(py::arg("amplitude") = as_tuple<D>(w.oscillation.amplitude),
+                                            py::arg("frequency") = w.oscillation.frequency,
+                                            py::arg("phase") = w.oscillation.phase * 180.0 / std::numbers::pi,
+                                            py::arg("start") = w.oscillation.start))
+                      : py::object(py::none());
               d["torque"] = w.torque;
               if (w.is_cylinder()) {
                 d["radius"] = w.radius;
@@ -799,7 +868,8 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "it, N (cylinders only); stress, a plane's load over the cross-section the other walls bound or "
           "a cylinder's over its lateral surface, Pa "
           "(the probe wall_stress; None where they bound none); servo, None or {'target_force': N} or "
-          "{'target_stress': Pa}")
+          "{'target_stress': Pa}; oscillation, None or {'amplitude': m, 'frequency': Hz, 'phase': degrees, "
+          "'start': s}")
       .def("set_wall_servo", &M::set_wall_servo, py::arg("name"), py::arg("gain"), py::arg("max_speed"),
            py::arg("target_force") = py::none(), py::arg("target_stress") = py::none(),
            py::arg("direction") = py::none(),
@@ -810,10 +880,13 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "moves along direction = [D numbers]")
       .def("set_wall_motion", &M::set_wall_motion, py::arg("name"), py::arg("velocity") = py::none(),
            py::arg("angular_velocity") = py::none(), py::arg("radial_velocity") = py::none(),
+           py::arg("oscillation") = py::none(),
            "sets a wall's velocity, m/s (ending a servo); its angular_velocity, rad/s: a cylinder's about "
            "its axis (a number, right-handed about it), a plane's or box's about its rotation centre (3D: "
            "[wx, wy, wz]; 2D: a number, counter-clockwise); and a cylinder's radial_velocity, the rate of "
-           "change of its radius, m/s (ending a servo); between steps, as a stage's walls.NAME entry does")
+           "change of its radius, m/s (ending a servo); an oscillation, a harmonic translation on top of its "
+           "motion from now on (a shaking table): {'amplitude': [D numbers] (m), 'frequency': Hz, 'phase': "
+           "degrees (optional, 0)}, or False to stop it; between steps, as a stage's walls.NAME entry does")
       .def(
           "kinetic_energy", [](const M& s) { return s.sim().kinetic_energy(); }, "J")
       .def(

@@ -273,6 +273,8 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
     // A plane or box keeps its last axis when it stops turning.
     if (!w.is_cylinder() && c.spin != 0.0) w.axis = c.spin_axis;
     w.radius_rate = c.radius_rate;
+    w.oscillation = c.oscillation;
+    w.oscillation.start = sim.time;
   }
 }
 

@@ -188,7 +188,7 @@ WallBarrier<D> plate_barrier(TableReader& r, const Wall<D>& w, const Vec<D>& box
   if (w.axes != Eigen::Matrix<double, D, D>::Identity()) {
     r.fail("impermeable", "an impermeable plate lies on the fluid grid's faces: it cannot be rotated");
   }
-  if (w.motion != WallMotion::fixed || w.spin != 0.0) {
+  if (w.motion != WallMotion::fixed || w.spin != 0.0 || w.oscillation.active()) {
     r.fail("impermeable", "an impermeable wall cannot move: its barrier is fixed in the fluid grid");
   }
   WallBarrier<D> b;
@@ -230,6 +230,40 @@ void read_cylinder(TableReader& r, const toml::table& table, Wall<D>& w) {
   cr.finish();
 }
 
+/// A wall's `oscillation` (none if not given): a harmonic translation on top
+/// of its motion, refused with a servo (which sets the wall's place from its
+/// load).
+template <int D>
+WallOscillation<D> read_oscillation(TableReader& r) {
+  WallOscillation<D> o;
+  const toml::table* t = r.optional_table("oscillation");
+  if (t == nullptr) {
+    if (r.has("oscillation"))
+      r.fail("oscillation", "must be a table: { amplitude = [" + std::to_string(D) +
+                                " numbers] (m), frequency = Hz, phase = degrees (optional, default 0) }");
+    return o;
+  }
+  if (r.has("servo")) {
+    r.fail("oscillation",
+           "a servo sets the wall's place from its load; give a servo wall no oscillation (or give the wall "
+           "a 'velocity' or 'fixed' to shake it)");
+  }
+  TableReader orr(*t, r.where() + " oscillation", r.file());
+  orr.allow({"amplitude", "frequency", "phase"});
+  o.amplitude = to_vec<D>(orr.numbers("amplitude", D));
+  if (!o.amplitude.allFinite() || o.amplitude.isZero(0.0))
+    orr.fail("amplitude", "must be finite and not all zero: the wall's displacement amplitude, m, a vector");
+  o.frequency = orr.check(
+      "frequency", orr.number("frequency"), [](double f) { return std::isfinite(f) && f > 0.0; }, "> 0 Hz");
+  const double phase = orr.check(
+      "phase", orr.optional_number("phase").value_or(0.0), [](double x) { return std::isfinite(x); },
+      "a finite number of degrees: the sine's phase at the start (0: the wall starts at its mean place "
+      "moving at full speed; -90: at rest, at one end of its stroke)");
+  o.phase = phase * 3.14159265358979323846 / 180.0;
+  orr.finish();
+  return o;
+}
+
 /// A wall's motion: `velocity`, `servo` or `fixed`, and its
 /// `angular_velocity` (a cylinder's spin about its axis; a plane's or
 /// box's turn about its rotation centre: 2D a number, 3D a vector, whose
@@ -241,9 +275,10 @@ void read_cylinder(TableReader& r, const toml::table& table, Wall<D>& w) {
 template <int D>
 void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec<D>& velocity,
                       WallMotion& motion, ServoControl& servo, Vec<D>& servo_axis, double& spin,
-                      Vec<D>& spin_axis, double& radius_rate) {
+                      Vec<D>& spin_axis, double& radius_rate, WallOscillation<D>& oscillation) {
   const bool box = shape == WallShape::box;
-  r.allow({"velocity", "servo", "fixed", "angular_velocity", "radial_velocity"});
+  r.allow({"velocity", "servo", "fixed", "angular_velocity", "radial_velocity", "oscillation"});
+  oscillation = read_oscillation<D>(r);
   // A cylinder's rate of change of radius, whatever its translation; a
   // servo sets its own.
   if (auto v = r.optional_number("radial_velocity")) {
@@ -872,7 +907,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     }
     Vec<D> spin_axis = Vec<D>::Zero();
     read_wall_motion<D>(r, w.shape, displaces_fluid, w.velocity, w.motion, w.servo, w.servo_axis, w.spin,
-                        spin_axis, w.radius_rate);
+                        spin_axis, w.radius_rate, w.oscillation);
     if (!w.is_cylinder() && D == 3) w.axis = spin_axis;
     if (impermeable && plate) {
       wall_barriers.push_back(plate_barrier<D>(r, w, box_lo, box_hi));
@@ -1563,17 +1598,19 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         c.wall = it->second;
         const bool displaces = std::find(solid_walls.begin(), solid_walls.end(), c.wall) != solid_walls.end();
         read_wall_motion<D>(cr, sim.walls[c.wall].shape, displaces, c.velocity, c.motion, c.servo,
-                            c.servo_axis, c.spin, c.spin_axis, c.radius_rate);
+                            c.servo_axis, c.spin, c.spin_axis, c.radius_rate, c.oscillation);
         if (c.spin != 0.0 && !sim.walls[c.wall].is_cylinder()) {
           check_turning_wall_in_period<D>(cr, sim.periodic);
         }
         if (c.motion == WallMotion::servo && c.servo.by_stress) {
           require_loaded_area<D>(cr, sim.walls, c.wall, sim.periodic);
         }
-        if (wall_is_barrier[c.wall] && (c.motion != WallMotion::fixed || c.spin != 0.0)) {
+        if (wall_is_barrier[c.wall] &&
+            (c.motion != WallMotion::fixed || c.spin != 0.0 || c.oscillation.active())) {
           cr.fail(c.motion == WallMotion::velocity ? "velocity"
                   : c.motion == WallMotion::servo  ? "servo"
-                                                   : "angular_velocity",
+                  : c.spin != 0.0                  ? "angular_velocity"
+                                                   : "oscillation",
                   "an impermeable wall cannot move: its barrier is fixed in the fluid grid");
         }
         cr.finish();

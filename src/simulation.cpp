@@ -65,7 +65,7 @@ void Simulation<D>::advance(std::uint64_t count) {
     if (tracked) walls_before = walls;
     update_stress_servos();
     for (auto& w : walls) {
-      w.advance(time_step);
+      w.advance(time_step, time);
       if (w.is_cylinder() && !(w.radius > 0.0)) {
         throw std::runtime_error(fmt::format(
             "wall \"{}\": the cylinder's radius has come to {} m at t = {} s: its servo or radial_velocity "

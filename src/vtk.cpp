@@ -171,7 +171,8 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
     for (std::size_t i = 0; i < walls.size(); ++i) out.print("{}\n", i);
     out.print("        </DataArray>\n");
     write_vector_array<D>(out, "force", walls.size(), [&](std::size_t i) { return walls[i].force; });
-    write_vector_array<D>(out, "velocity", walls.size(), [&](std::size_t i) { return walls[i].velocity; });
+    write_vector_array<D>(out, "velocity", walls.size(),
+                          [&](std::size_t i) { return walls[i].translation_velocity(); });
     out.print("      </CellData>\n      <Cells>\n");
     out.print("        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n");
     for (std::size_t i = 0; i < points.size(); ++i) out.print("{}\n", i);

@@ -1003,6 +1003,67 @@ class StressServo(unittest.TestCase):
         self.assertAlmostEqual(m.walls[0]["radius"], 0.003 + 0.002 * steps * m.time_step, delta=1e-15)
 
 
+class ShakingTable(unittest.TestCase):
+    """examples/dem_cases/vibrated_bed.toml's floor shaken from Python."""
+
+    def settled(self):
+        model = darcydem.load(os.path.join(SOURCE, "examples", "dem_cases", "vibrated_bed.toml"))
+        model.step(round(0.3 / model.time_step))
+        return model
+
+    def test_an_oscillation_set_from_python_is_the_stages(self):
+        shake = {"amplitude": [0.0, 0.0012425], "frequency": 20.0, "phase": -90.0}
+        by_stage = self.settled()
+        by_stage.apply_stage("shake")
+        by_python = self.settled()
+        by_python.apply_stage("shake")
+        by_python.set_wall_motion("floor", oscillation=False)  # stopped, then started again now
+        by_python.set_wall_motion("floor", oscillation=shake)
+        start = by_python.time
+        steps = 5000
+        by_stage.step(steps)
+        by_python.step(steps)
+        # The same sine from the same start: the same run, bit for bit.
+        np.testing.assert_array_equal(by_python.positions, by_stage.positions)
+        # The floor is where the sine puts it: A (1 - cos(omega t)), its
+        # steps' moves summing to it to round-off (1e-15 m per step).
+        omega = 2.0 * math.pi * 20.0
+        floor = next(w for w in by_python.walls if w["name"] == "floor")
+        self.assertEqual(floor["oscillation"]["amplitude"], (0.0, 0.0012425))
+        self.assertEqual(floor["oscillation"]["frequency"], 20.0)
+        self.assertAlmostEqual(floor["oscillation"]["phase"], -90.0, delta=1e-12)
+        self.assertEqual(floor["oscillation"]["start"], start)
+        t = by_python.time - start
+        self.assertAlmostEqual(floor["point"][1], 0.0012425 * (1.0 - math.cos(omega * t)), delta=1e-15 * steps)
+        # Its velocity the mean over the last step: the sine's slope at the
+        # step's middle, A omega sin(omega (t - dt/2)), to (omega dt)^2 / 24
+        # (1e-8; 1e-6 of A omega allowed).
+        middle = t - 0.5 * by_python.time_step
+        self.assertAlmostEqual(floor["velocity"][1], 0.0012425 * omega * math.sin(omega * middle),
+                               delta=1e-6 * 0.0012425 * omega)
+
+    def test_bad_oscillations_are_refused(self):
+        model = darcydem.load(os.path.join(SOURCE, "examples", "dem_cases", "vibrated_bed.toml"))
+        for bad, message in [
+            (True, "or False to stop one"),
+            ([0.0, 0.001], "or False to stop one"),
+            ({"amplitude": [0.0, 0.001]}, "'frequency': Hz"),
+            ({"amplitude": [0.0, 0.001], "frequency": 20.0, "period": 1.0}, "oscillation has no key 'period'"),
+            ({"amplitude": [0.0, 0.0], "frequency": 20.0}, "amplitude must be finite and not all zero"),
+            ({"amplitude": [0.0, 0.001], "frequency": -1.0}, "frequency must be > 0 Hz"),
+            ({"amplitude": [0.0, 0.001], "frequency": 20.0, "phase": math.nan}, "phase must be finite"),
+            ({"amplitude": [0.0, 0.0, 0.001], "frequency": 20.0}, "2 numbers expected, 3 given"),
+        ]:
+            with self.subTest(bad=bad), self.assertRaisesRegex(ValueError, message):
+                model.set_wall_motion("floor", oscillation=bad)
+        model.set_wall_servo("floor", gain=1e-3, max_speed=0.01, target_force=1.0)
+        with self.assertRaisesRegex(ValueError, "has a servo, which sets its place from its load"):
+            model.set_wall_motion("floor", oscillation={"amplitude": [0.0, 0.001], "frequency": 20.0})
+        model.set_wall_motion("floor", velocity=[0.0, 0.0], oscillation={"amplitude": [0.0, 0.001], "frequency": 5})
+        with self.assertRaisesRegex(ValueError, "oscillates, and a servo sets its place"):
+            model.set_wall_servo("floor", gain=1e-3, max_speed=0.01, target_force=1.0)
+
+
 def rows_of(model, numbers):
     """Each particle number's row in the model's per-particle arrays."""
     row = {int(n): k for k, n in enumerate(model.ids)}

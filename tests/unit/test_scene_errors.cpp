@@ -524,6 +524,43 @@ TEST(SceneErrors, CylinderWallsAreChecked) {
 
 std::string with_fluid(const std::string& extra);  // below, with the fluid's errors
 
+TEST(SceneErrors, OscillatingWallsAreChecked) {
+  // A harmonic translation: amplitude (D numbers, m), frequency (Hz),
+  // phase (degrees, optional), on a wall fixed or moving, in a [[wall]] or
+  // a stage's walls.NAME.
+  const std::string shaking =
+      "normal = [0.0, 1.0]\nmaterial = \"sand\"\n"
+      "oscillation = { amplitude = [0.0, 0.001], frequency = 20.0, phase = -90.0 }";
+  const std::string good = replace(kGood, "normal = [0.0, 1.0]\nmaterial = \"sand\"", shaking);
+  ASSERT_EQ(load_error(good), "");
+  {
+    const auto scene = built_scene<2>(good);
+    const auto& o = scene.simulation.walls[0].oscillation;
+    EXPECT_EQ(o.amplitude, Vec<2>(0.0, 0.001));
+    EXPECT_EQ(o.frequency, 20.0);
+    EXPECT_NEAR(o.phase, -0.5 * 3.141592653589793, 1e-15);
+  }
+  const std::string staged = replace(
+      kGood, "gravity = [0.0, -9.81]",
+      "gravity = [0.0, -9.81]\nwalls.floor = { fixed = true, oscillation = { amplitude = [0.0, 0.001], "
+      "frequency = 5.0 } }");
+  ASSERT_EQ(load_error(staged), "");
+  EXPECT_EQ(built_scene<2>(staged).stages.front().walls.front().oscillation.frequency, 5.0);
+  auto expect = [&](const std::string& from, const std::string& to, const std::string& wanted) {
+    const auto msg = load_error(replace(good, from, to));
+    EXPECT_NE(msg.find(wanted), std::string::npos) << msg;
+  };
+  expect("frequency = 20.0", "frequency = 0.0",
+         "[[wall]] #1 oscillation key 'frequency': must be > 0 Hz, got 0");
+  expect("amplitude = [0.0, 0.001]", "amplitude = [0.0, 0.0]",
+         "[[wall]] #1 oscillation key 'amplitude': must be finite and not all zero");
+  expect("amplitude = [0.0, 0.001]", "amplitude = [0.001]", "[[wall]] #1 oscillation key 'amplitude'");
+  expect(", phase = -90.0", ", period = 0.05", "period");
+  expect("oscillation = {", "oscillation = 3.0 #", "key 'oscillation': must be a table");
+  expect("oscillation = {", "servo = { target_force = 1.0, gain = 1e-3, max_speed = 0.01 }\noscillation = {",
+         "key 'oscillation': a servo sets the wall's place from its load");
+}
+
 TEST(SceneErrors, TurningWallsAreChecked) {
   // 2D: a plane or box turns counter-clockwise at a number of rad/s about
   // its rotation_centre (by default its point or centre).
@@ -903,6 +940,18 @@ std::string with_wall(const std::string& wall, bool fluid = true) {
   const std::string dem = replace(kGood, "[[particles]]", wall + "\n[[particles]]");
   if (!fluid) return dem;
   return with_fluid().replace(0, std::string(kGood).size(), dem);
+}
+
+TEST(SceneErrors, AnImpermeablePlateCannotOscillate) {
+  // A plate on the plane of faces between the grid's cells is a barrier
+  // fixed in the fluid grid (as in ImpermeableWallsAreChecked).
+  const std::string plate =
+      "\n[[wall]]\nname = \"pile\"\nbox = { min = [-0.0005, 0.002], max = [0.0005, 0.002] }\n"
+      "material = \"sand\"\nimpermeable = true\noscillation = { amplitude = [0.001, 0.0], frequency = 20.0 "
+      "}\n";
+  const auto msg = load_error(with_wall(plate));
+  EXPECT_NE(msg.find("[[wall]] #2 key 'impermeable': an impermeable wall cannot move"), std::string::npos)
+      << msg;
 }
 
 TEST(SceneErrors, ImpermeableWallsAreChecked) {

@@ -154,7 +154,7 @@ TEST(WallTouch, ACylindersServoChangesItsRadiusTowardsTheGrains) {
     w.servo.gain = 0.01;
     w.servo.max_speed = 1.0;
     w.radial_load = 4.0;
-    w.advance(0.5);  // speed 0.06 m/s for 0.5 s
+    w.advance(0.5, 0.0);  // speed 0.06 m/s for 0.5 s
     EXPECT_NEAR(w.radius, inside ? 4.97 : 5.03, kTol);
     EXPECT_NEAR((w.point - Vec<3>(1, 1, 1)).norm(), 0.0, kTol);
     EXPECT_NEAR(w.radial_speed, inside ? -0.06 : 0.06, kTol);
@@ -162,7 +162,7 @@ TEST(WallTouch, ACylindersServoChangesItsRadiusTowardsTheGrains) {
     // along the radius.
     EXPECT_NEAR((w.surface_velocity(Vec<3>(6, 1, 7)) - Vec<3>(w.radial_speed, 0, 0)).norm(), 0.0, kTol);
     w.radial_load = 10.0 + 1e4;  // far over: at max_speed the other way
-    w.advance(0.5);
+    w.advance(0.5, 0.5);
     EXPECT_NEAR(w.radial_speed, inside ? 1.0 : -1.0, kTol);
   }
 }
@@ -223,7 +223,7 @@ TEST(WallTouch, ABoxThatTurnsIsTheBoxPlacedTurned) {
   w.mark_build();
   double max_move = 0.0;
   for (int s = 0; s < steps; ++s) {
-    w.advance(dt);
+    w.advance(dt, s * dt);
     // Every point the particles may touch has moved no more than the bound.
     for (const auto& d : local) {
       const Vec<3> x = centre0 + d;
@@ -264,11 +264,11 @@ TEST(WallTouch, APlaneThatTurnsSweepsByItsReach) {
   w.pivot = Vec<2>(0.1, 0.0);
   w.reach = std::numeric_limits<double>::infinity();
   w.spin = -0.5;
-  w.advance(1e-3);
+  w.advance(1e-3, 0.0);
   EXPECT_TRUE(std::isinf(w.moved_since_build()));
   w.mark_build();
   w.reach = 2.0;  // as WallContactList::build measures it: farthest centre + skin
-  for (int s = 0; s < 999; ++s) w.advance(1e-3);
+  for (int s = 0; s < 999; ++s) w.advance(1e-3, (s + 1) * 1e-3);
   const double angle = -0.5;
   EXPECT_NEAR((w.normal - Vec<2>(-std::sin(angle), std::cos(angle))).norm(), 0.0, 1e-14);
   EXPECT_NEAR((w.point - w.pivot).dot(w.normal), 0.0, 1e-15);

@@ -486,6 +486,15 @@ TEST(Checkpoint, ResumedTiltingTableKeepsTurning) {
                                                   200000, 1);
 }
 
+TEST(Checkpoint, ResumedVibratedBedKeepsShaking) {
+  // examples/dem_cases/vibrated_bed.toml stopped at step 100 000, 0.125 s
+  // into the shaking (70 569 steps settle it): the floor's oscillation (its
+  // amplitude, frequency, phase and the time it began) must come back, or
+  // the floor would stand still, or start its sine again, after the resume.
+  expect_resumed_variant_writes_the_same_files<2>("examples/dem_cases/vibrated_bed.toml", {}, "vibrated_bed",
+                                                  2, 100000, 1);
+}
+
 TEST(Checkpoint, ResumedCantileverKeepsItsBondsScatteredStrengths) {
   // The same cantilever with strengths scattered from bond to bond
   // (strength_weibull_modulus), stopped in stage "sag": each bond's factor

@@ -63,7 +63,7 @@ void push_rod(PoreFluid<D>& f, Wall<D> rod, double entry_rate, double dt, int st
   double time = 0.0;
   double worst_out = 0.0;  // largest |out - entry| / entry after the first step
   for (int s = 0; s < steps; ++s) {
-    walls[0].advance(dt);
+    walls[0].advance(dt, time);
     time += dt;
     f.update(none, dt, time, walls);
     const FluidBalance& b = f.last_balance();

@@ -100,6 +100,7 @@ struct WallChange {
   double spin = 0.0;                   ///< rad/s (Wall::spin)
   Vec<D> spin_axis = Vec<D>::Zero();   ///< a 3D plane's or box's axis of turn (Wall::axis), unit or zero
   double radius_rate = 0.0;            ///< m/s, a cylinder's (Wall::radius_rate)
+  WallOscillation<D> oscillation;      ///< none unless the entry gives one; it starts with the stage
 };
 
 template <int D>

@@ -18,7 +18,8 @@
 // at a set rate). A cylinder may spin about its axis (a drum); a plane or box
 // may turn about its rotation centre, which moves with it (PFC's wall spin
 // about its centre of rotation, YADE's RotationEngine: a tilting table, a
-// paddle, a turntable). The load is what the particles put
+// paddle, a turntable). Any wall may also oscillate about its motion (a
+// shaking table). The load is what the particles put
 // on it (a cylinder's: the sum of their pushes normal to it), and with
 // `with_pore_water` also the pore water's thrust (a wall that displaces the
 // fluid: an impermeable piston or platen).
@@ -46,6 +47,30 @@ struct ServoControl {
   double gain = 0.0;             ///< m/(s N): wall speed per newton of load error
   double max_speed = 0.0;        ///< m/s
   bool with_pore_water = false;  ///< the load includes Wall::water_force
+};
+
+/// A harmonic translation a wall adds to its motion (YADE's
+/// HarmonicMotionEngine, PFC's wall velocity set by a sine: a shaking table,
+/// a vibrated bed, cyclic loading). Since `start` it has moved the wall by
+/// amplitude (sin(2 pi f (t - start) + phase) - sin(phase)): phase 0 starts
+/// it at its mean place moving at amplitude 2 pi f; phase -pi/2 starts it
+/// at rest, at one end of its stroke.
+template <int D>
+struct WallOscillation {
+  Vec<D> amplitude = Vec<D>::Zero();  ///< m
+  double frequency = 0.0;             ///< Hz; 0: none
+  double phase = 0.0;                 ///< rad
+  double start = 0.0;                 ///< s, the time it began
+  [[nodiscard]] bool active() const { return frequency > 0.0; }
+  /// Its displacement at time t since its start, m.
+  [[nodiscard]] Vec<D> displacement(double t) const {
+    const double angle = 2.0 * 3.14159265358979323846 * frequency * (t - start) + phase;
+    return amplitude * (std::sin(angle) - std::sin(phase));
+  }
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(amplitude, frequency, phase, start);
+  }
 };
 
 /// A unit vector normal to `axis` (unit, or zero: then x's unit): the grid
@@ -90,6 +115,12 @@ struct Wall {
   std::uint16_t material = 0;
   WallMotion motion = WallMotion::fixed;
   Vec<D> velocity = Vec<D>::Zero();  ///< m/s (velocity mode; servo sets it)
+  /// A harmonic translation on top of `velocity` (a shaking table), and
+  /// its mean velocity over the step the wall last took, m/s: the
+  /// oscillation's displacement over the step over its length, so that the
+  /// wall is where the sine puts it, step after step.
+  WallOscillation<D> oscillation;
+  Vec<D> shake_velocity = Vec<D>::Zero();
   ServoControl servo;
   /// A servo-controlled box's direction of motion as its load grows short
   /// of the target (unit; a plane moves along its normal).
@@ -128,7 +159,7 @@ struct Wall {
   void checkpoint(Archive& ar) {
     ar(point, normal, material, motion, velocity, servo, servo_axis, force, water_force, point_at_build, spin,
        torque, radius, radial_speed, radial_load, radius_at_build, radius_rate, axis, axes, pivot,
-       turned_since_build, reach, pivot_at_build);
+       turned_since_build, reach, pivot_at_build, oscillation, shake_velocity);
   }
 
   /// The point its turn is about: a cylinder's axis point, or a plane's or
@@ -138,10 +169,10 @@ struct Wall {
   /// The wall's velocity at a point c of its surface: its translation, a
   /// cylinder's spin and change of radius, a plane's or box's turn.
   [[nodiscard]] Vec<D> surface_velocity(const Vec<D>& c) const {
-    if (spin == 0.0 && radial_speed == 0.0) return velocity;
+    if (spin == 0.0 && radial_speed == 0.0) return translation_velocity();
     Vec<D> arm = c - centre_of_rotation();
     if constexpr (D == 3) arm -= arm.dot(axis) * axis;
-    Vec<D> v = velocity;
+    Vec<D> v = translation_velocity();
     if (radial_speed != 0.0) {
       const double rho = arm.norm();
       if (rho > 0.0) v += (radial_speed / rho) * arm;
@@ -153,6 +184,9 @@ struct Wall {
       return v + spin * cross(axis, arm);
     }
   }
+  /// Its translation's velocity over the last step, m/s: its motion's and
+  /// its oscillation's.
+  [[nodiscard]] Vec<D> translation_velocity() const { return velocity + shake_velocity; }
   /// Its angular velocity, rad/s: spin about its axis (2D: about the
   /// normal to the plane of the discs).
   [[nodiscard]] AngVec<D> angular_velocity() const {
@@ -299,10 +333,14 @@ struct Wall {
     return -f.dot(push_direction());
   }
 
-  /// Updates the servo velocity from the last load and moves the wall. A
-  /// cylinder's servo shrinks it (touched from inside) or grows it (from
-  /// outside) while the load is short of the target.
-  void advance(double dt) {
+  /// Updates the servo velocity from the last load and moves the wall over
+  /// the step from `time` to time + dt. A cylinder's servo shrinks it
+  /// (touched from inside) or grows it (from outside) while the load is
+  /// short of the target.
+  void advance(double dt, double time) {
+    shake_velocity = oscillation.active()
+                         ? Vec<D>((oscillation.displacement(time + dt) - oscillation.displacement(time)) / dt)
+                         : Vec<D>::Zero();
     if (motion == WallMotion::servo) {
       double speed = servo.gain * (servo.target_force - load());
       if (speed > servo.max_speed) speed = servo.max_speed;
@@ -317,8 +355,8 @@ struct Wall {
       radial_speed = shape == WallShape::cylinder ? radius_rate : 0.0;
       if (motion == WallMotion::fixed) velocity.setZero();
     }
-    point += velocity * dt;
-    pivot += velocity * dt;
+    point += translation_velocity() * dt;
+    pivot += translation_velocity() * dt;
     radius += radial_speed * dt;
     if (spin != 0.0 && shape != WallShape::cylinder) turn(spin * dt);
   }
