@@ -70,6 +70,16 @@ py::array_t<double> per_particle(const ParticleData<D>& p, const std::vector<V>&
   return out;
 }
 
+/// One value per particle, get(index), in creation order.
+template <class T, int D, class Get>
+py::array_t<T> per_particle_values(const ParticleData<D>& p, Get&& get) {
+  py::array_t<T> out(static_cast<py::ssize_t>(p.size()));
+  auto a = out.template mutable_unchecked<1>();
+  const auto order = p.creation_order();
+  for (std::size_t row = 0; row < order.size(); ++row) a(row) = get(order[row]);
+  return out;
+}
+
 /// A cell field as an array indexed [i, j(, k)] (cell index i + nx (j + ny k)).
 template <int D, class Value>
 py::array_t<double> cell_field(const FluidGrid<D>& grid, const std::vector<Value>& values, int width) {
@@ -435,6 +445,65 @@ class Model {
     }
   }
 
+  /// The index of the particle numbered `number` (model.ids), or a
+  /// ValueError naming the call.
+  std::size_t particle_index(std::int64_t number, const char* call) {
+    const auto& s = sim();
+    const auto& p = s.particles;
+    const std::size_t i = number >= 0 && number <= std::numeric_limits<std::uint32_t>::max()
+                              ? p.index_of(static_cast<std::uint32_t>(number))
+                              : p.size();
+    if (i == p.size())
+      throw py::value_error(
+          fmt::format("{}: there is no particle {} (the numbers are model.ids: {} particles{})", call, number,
+                      p.size(), s.removed_count > 0 ? ", some removed outside the [domain]" : ""));
+    return i;
+  }
+
+  /// Fixes a particle (it keeps its velocity, driven, as the scene's fixed
+  /// grains) or frees it (its mass and inertia from its material, its
+  /// critical time step checked as add_particle's), between steps: YADE's
+  /// blockedDOFs, PFC's ball fix. The kinetic energy it takes out of the
+  /// free grains' or brings in is external work in the energy budget.
+  void set_particle_fixed(std::int64_t number, bool fixed) {
+    auto& s = sim();
+    auto& p = s.particles;
+    const std::size_t i = particle_index(number, "set_particle_fixed");
+    if ((p.fixed[i] != 0) == fixed) return;
+    auto kinetic = [&] {
+      return 0.5 * p.velocity[i].squaredNorm() / p.inv_mass[i] +
+             0.5 * p.angular_velocity[i].squaredNorm() / p.inv_inertia[i];
+    };
+    // The force the next step's first half kick uses is the last
+    // evaluation's, which counts a free grain's weight and not a fixed
+    // one's: it changes with it.
+    const double m = ParticleData<D>::mass_of(s.materials[p.material[i]].density, p.radius[i]);
+    if (fixed) {
+      if (s.energy.started) s.energy.external_work -= kinetic();
+      p.force[i] -= m * s.gravity;
+      p.inv_mass[i] = 0.0;
+      p.inv_inertia[i] = 0.0;
+      p.fixed[i] = 1;
+      return;
+    }
+    p.inv_mass[i] = 1.0 / m;
+    p.inv_inertia[i] = 1.0 / (inertia_factor<D> * m * p.radius[i] * p.radius[i]);
+    p.fixed[i] = 0;
+    const double critical =
+        fluid() != nullptr ? fluid()->critical_time_step(p, s.critical_time_step()) : s.critical_time_step();
+    if (s.time_step > critical) {
+      p.inv_mass[i] = 0.0;
+      p.inv_inertia[i] = 0.0;
+      p.fixed[i] = 1;
+      throw py::value_error(fmt::format(
+          "set_particle_fixed: particle {} free would need a time step of at most {:.4g} s; the scene's is "
+          "{:.4g} s",
+          number, critical, s.time_step));
+    }
+    p.force[i] += m * s.gravity;
+    if (s.energy.started) s.energy.external_work += kinetic();
+  }
+
   /// A particle's velocity and angular velocity set between steps (YADE's
   /// state.vel and state.angVel, PFC's ball velocity and spin). A free
   /// grain then moves on from it; a fixed one keeps it (a grain driven at
@@ -444,13 +513,7 @@ class Model {
                              const py::object& angular_velocity) {
     auto& s = sim();
     auto& p = s.particles;
-    const std::size_t i = number >= 0 && number <= std::numeric_limits<std::uint32_t>::max()
-                              ? p.index_of(static_cast<std::uint32_t>(number))
-                              : p.size();
-    if (i == p.size())
-      throw py::value_error(fmt::format(
-          "set_particle_velocity: there is no particle {} (the numbers are model.ids: {} particles{})",
-          number, p.size(), s.removed_count > 0 ? ", some removed outside the [domain]" : ""));
+    const std::size_t i = particle_index(number, "set_particle_velocity");
     if (!velocity && angular_velocity.is_none())
       throw py::value_error(
           "set_particle_velocity: give velocity = [D numbers] (m/s) and or angular_velocity (rad/s: a number "
@@ -771,22 +834,14 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "radii",
           [](const M& s) {
             const auto& p = s.sim().particles;
-            py::array_t<double> out(static_cast<py::ssize_t>(p.size()));
-            auto a = out.mutable_unchecked<1>();
-            const auto order = p.creation_order();
-            for (std::size_t row = 0; row < order.size(); ++row) a(row) = p.radius[order[row]];
-            return out;
+            return per_particle_values<double>(p, [&](std::size_t i) { return p.radius[i]; });
           },
           "particle radii, m, (N,), in creation order")
       .def_property_readonly(
           "ids",
           [](const M& s) {
             const auto& p = s.sim().particles;
-            py::array_t<std::int64_t> out(static_cast<py::ssize_t>(p.size()));
-            auto a = out.mutable_unchecked<1>();
-            const auto order = p.creation_order();
-            for (std::size_t row = 0; row < order.size(); ++row) a(row) = p.id[order[row]];
-            return out;
+            return per_particle_values<std::int64_t>(p, [&](std::size_t i) { return p.id[i]; });
           },
           "each row's particle number (its index in creation order), (N,), increasing; with a [domain] "
           "the numbers of the particles removed are missing")
@@ -961,6 +1016,19 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "counter-clockwise; 3D [wx, wy, wz]) between steps, particle by its number (model.ids): a free "
            "grain moves on from it (the kinetic energy it gains is external work in the energy budget), a "
            "fixed one keeps it")
+      .def("set_particle_fixed", &M::set_particle_fixed, py::arg("particle"), py::arg("fixed") = true,
+           "fixes a particle between steps (it keeps its velocity: set_particle_velocity drives it) or, "
+           "fixed=False, frees it (its mass and inertia from its material; refused if it would need a "
+           "shorter time step), particle by its number (model.ids); the kinetic energy it takes from or "
+           "brings to the free grains is external work in the energy budget (YADE's blockedDOFs, PFC's ball "
+           "fix)")
+      .def_property_readonly(
+          "fixed",
+          [](const M& s) {
+            const auto& p = s.sim().particles;
+            return per_particle_values<bool>(p, [&](std::size_t i) { return p.fixed[i] != 0; });
+          },
+          "whether each particle is fixed, (N,), in creation order")
       .def("step", &M::step, py::arg("count") = 1,
            "advances count DEM steps, with the pore fluid's steps among them as in a run")
       .def_property_readonly(

@@ -1220,6 +1220,46 @@ class Contacts(unittest.TestCase):
         model.set_particle_velocity(3, angular_velocity=2.0)
         self.assertEqual(model.angular_velocities[3], 2.0)
 
+    def test_a_chain_let_go_falls_as_a_body_and_a_grain_fixed_keeps_its_velocity(self):
+        # The cemented chain hung from its fixed top disc, then without
+        # damping (stage "overload" with gravity set back to g) let go: the
+        # eleven discs, bonded, fall with their centre of mass at g (their
+        # bonds' forces cancel in pairs): y0 + v0 t - g t^2 / 2, v0 the
+        # mean velocity at release (equal discs). Velocity Verlet's free
+        # fall is exact, so only round-off is left: 1e-12 m.
+        model = darcydem.load(os.path.join(SOURCE, "examples", "dem_cases", "cemented_chain.toml"))
+        model.step(round(0.3 / model.time_step))
+        model.apply_stage("overload")
+        model.gravity = (0.0, -9.81)
+        model.track_energy = True
+        np.testing.assert_array_equal(model.fixed, [True] + [False] * 10)
+        model.set_particle_fixed(0, False)
+        self.assertFalse(model.fixed[0])
+        y0 = float(np.mean(model.positions[:, 1]))
+        v0 = float(np.mean(model.velocities[:, 1]))
+        steps = round(0.05 / model.time_step)
+        model.step(steps)
+        t = steps * model.time_step
+        self.assertAlmostEqual(float(np.mean(model.positions[:, 1])), y0 + v0 * t - 0.5 * 9.81 * t * t, delta=1e-12)
+        self.assertEqual(model.broken_bonds, 0)
+        # Fixed in flight, the lowest disc keeps its velocity: driven at it.
+        v = model.velocities[10].copy()
+        x = model.positions[10].copy()
+        mass = 2500.0 * math.pi * 1e-6
+        kinetic = 0.5 * mass * float(np.sum(v**2)) + 0.25 * mass * 1e-6 * float(model.angular_velocities[10] ** 2)
+        model.set_particle_fixed(10)
+        model.step(100)
+        np.testing.assert_array_equal(model.velocities[10], v)
+        np.testing.assert_allclose(model.positions[10], x + 100 * model.time_step * v, rtol=0.0, atol=1e-15)
+        # The budget: the top disc let go at rest brought nothing in; the
+        # lowest one fixed took its kinetic energy out as external work
+        # (to 1e-12 of it), and the rest closes (round-off, 1e-9 of it).
+        e = model.energy()
+        self.assertAlmostEqual(e["external_work"], -kinetic, delta=1e-12 * kinetic)
+        self.assertLess(abs(e["unaccounted"]), 1e-9 * kinetic)
+        with self.assertRaisesRegex(ValueError, "set_particle_fixed: there is no particle 12"):
+            model.set_particle_fixed(12)
+
     def test_bad_particle_velocities_are_refused(self):
         model = darcydem.load(os.path.join(SOURCE, "examples", "dem_cases", "cemented_chain.toml"))
         with self.assertRaisesRegex(ValueError, "there is no particle 11 .*11 particles"):
