@@ -288,8 +288,7 @@ class Model {
     if (w.motion == WallMotion::servo && !with_velocity)
       throw py::value_error(
           fmt::format("set_wall_motion: wall '{}' has a servo, which sets its place from its load: give it a "
-                      "velocity too "
-                      "(which ends the servo) to shake it",
+                      "velocity too (which ends the servo) to shake it",
                       w.name));
     if (const auto* f = fluid(); f != nullptr) {
       if (std::any_of(f->barriers.begin(), f->barriers.end(),

@@ -259,7 +259,7 @@ WallOscillation<D> read_oscillation(TableReader& r) {
       "phase", orr.optional_number("phase").value_or(0.0), [](double x) { return std::isfinite(x); },
       "a finite number of degrees: the sine's phase at the start (0: the wall starts at its mean place "
       "moving at full speed; -90: at rest, at one end of its stroke)");
-  o.phase = phase * 3.14159265358979323846 / 180.0;
+  o.phase = phase * std::numbers::pi / 180.0;
   orr.finish();
   return o;
 }

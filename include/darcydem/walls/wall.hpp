@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -64,7 +65,7 @@ struct WallOscillation {
   [[nodiscard]] bool active() const { return frequency > 0.0; }
   /// Its displacement at time t since its start, m.
   [[nodiscard]] Vec<D> displacement(double t) const {
-    const double angle = 2.0 * 3.14159265358979323846 * frequency * (t - start) + phase;
+    const double angle = 2.0 * std::numbers::pi * frequency * (t - start) + phase;
     return amplitude * (std::sin(angle) - std::sin(phase));
   }
   template <class Archive>
