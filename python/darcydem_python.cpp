@@ -114,6 +114,26 @@ Vec<D> as_vec(const std::vector<double>& v, const char* what) {
   return x;
 }
 
+/// A wall's servo as model.walls reports it: None, or its target now
+/// ({'target_force': N} or {'target_stress': Pa}) with its 'cycle' if it
+/// cycles.
+template <int D>
+py::object servo_dict(const Wall<D>& w) {
+  if (w.motion != WallMotion::servo) return py::none();
+  py::dict d;
+  if (w.servo.by_stress) {
+    d["target_stress"] = w.servo.target_stress;
+  } else {
+    d["target_force"] = w.servo.target_force;
+  }
+  if (w.servo.cycle.active()) {
+    d["cycle"] = py::dict(py::arg("amplitude") = w.servo.cycle.amplitude,
+                          py::arg("frequency") = w.servo.cycle.frequency,
+                          py::arg("phase") = w.servo.cycle.phase * 180.0 / std::numbers::pi);
+  }
+  return d;
+}
+
 /// The box [lo, hi] of a measurement, checked: D numbers each, hi > lo.
 template <int D>
 std::pair<Vec<D>, Vec<D>> as_box(const std::vector<double>& lo, const std::vector<double>& hi) {
@@ -350,13 +370,44 @@ class Model {
     }
   }
 
+  /// A servo's cycle = {'amplitude': N or Pa, 'frequency': Hz, 'phase':
+  /// degrees (optional, 0)} about `target`, which it must not take below 0.
+  static ServoCycle read_servo_cycle(const py::object& given, double target) {
+    const std::string form =
+        "give cycle = {'amplitude': the target's units, 'frequency': Hz, 'phase': degrees (optional, 0)}";
+    if (!py::isinstance<py::dict>(given)) throw py::value_error("set_wall_servo: " + form);
+    const auto d = given.cast<py::dict>();
+    for (const auto& [key, value] : d) {
+      const auto k = py::str(key).cast<std::string>();
+      if (k != "amplitude" && k != "frequency" && k != "phase")
+        throw py::value_error(fmt::format("set_wall_servo: cycle has no key '{}': {}", k, form));
+    }
+    if (!d.contains("amplitude") || !d.contains("frequency"))
+      throw py::value_error("set_wall_servo: " + form);
+    ServoCycle c;
+    c.amplitude = d["amplitude"].cast<double>();
+    c.frequency = d["frequency"].cast<double>();
+    const double phase = d.contains("phase") ? d["phase"].cast<double>() : 0.0;
+    if (!(std::isfinite(c.amplitude) && c.amplitude > 0.0 && c.amplitude <= target))
+      throw py::value_error(fmt::format(
+          "set_wall_servo: the cycle's amplitude must be > 0 and at most the target ({}), so that the target "
+          "stays >= 0, got {}",
+          target, c.amplitude));
+    if (!(std::isfinite(c.frequency) && c.frequency > 0.0))
+      throw py::value_error("set_wall_servo: the cycle's frequency must be > 0 Hz");
+    if (!std::isfinite(phase)) throw py::value_error("set_wall_servo: the cycle's phase must be finite");
+    c.phase = phase * std::numbers::pi / 180.0;
+    return c;
+  }
+
   /// Makes a wall a servo between steps, as a stage's walls.NAME = { servo
   /// = ... } does: one of target_force (N) and target_stress (Pa, a plane
   /// or cylinder whose loaded area the other walls bound), gain and
   /// max_speed; a box needs its direction (unless it is a servo already).
   void set_wall_servo(const std::string& name, double gain, double max_speed,
                       std::optional<double> target_force, std::optional<double> target_stress,
-                      const std::optional<std::vector<double>>& direction) {
+                      const std::optional<std::vector<double>>& direction, const py::object& cycle,
+                      const std::string& load) {
     auto& walls = sim().walls;
     auto& w = wall_named(name, "set_wall_servo");
     const std::size_t index = static_cast<std::size_t>(&w - walls.data());
@@ -410,10 +461,28 @@ class Model {
           "oscillation first (set_wall_motion(\"{}\", oscillation=False))",
           name, name));
     // All checked: set.
+    if (load != "grains" && load != "total")
+      throw py::value_error(
+          fmt::format("set_wall_servo: load must be 'grains' (the grains' push) or 'total' (and the pore "
+                      "water's thrust), "
+                      "got '{}'",
+                      load));
+    const auto* f = fluid();
+    if (load == "total" && (f == nullptr || std::find(f->solid_walls.begin(), f->solid_walls.end(), index) ==
+                                                f->solid_walls.end()))
+      throw py::value_error(
+          fmt::format("set_wall_servo: load 'total' adds the pore water's thrust, which only a wall that "
+                      "displaces the fluid "
+                      "takes, and wall '{}' does not",
+                      name));
     ServoControl servo;
+    servo.with_pore_water = load == "total";
     servo.by_stress = target_stress.has_value();
     servo.target_stress = target_stress.value_or(0.0);
     servo.target_force = target_force.value_or(0.0);
+    servo.schedule = TimeSeries::constant(target);
+    servo.schedule.start = sim().time;
+    if (!cycle.is_none()) servo.cycle = read_servo_cycle(cycle, target);
     servo.gain = gain;
     servo.max_speed = max_speed;
     w.motion = WallMotion::servo;
@@ -905,10 +974,7 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               }
               const double stress = wall_stress(s.sim().walls, walls.size(), s.sim().periodic);
               d["stress"] = std::isnan(stress) ? py::object(py::none()) : py::object(py::float_(stress));
-              d["servo"] = w.motion != WallMotion::servo ? py::object(py::none())
-                           : w.servo.by_stress
-                               ? py::object(py::dict(py::arg("target_stress") = w.servo.target_stress))
-                               : py::object(py::dict(py::arg("target_force") = w.servo.target_force));
+              d["servo"] = servo_dict(w);
               walls.append(d);
             }
             return walls;
@@ -922,16 +988,21 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "it, N (cylinders only); stress, a plane's load over the cross-section the other walls bound or "
           "a cylinder's over its lateral surface, Pa "
           "(the probe wall_stress; None where they bound none); servo, None or {'target_force': N} or "
-          "{'target_stress': Pa}; oscillation, None or {'amplitude': m, 'frequency': Hz, 'phase': degrees, "
+          "{'target_stress': Pa} (the target now), with 'cycle': {'amplitude', 'frequency' (Hz), 'phase' "
+          "(degrees)} where it cycles; oscillation, None or {'amplitude': m, 'frequency': Hz, 'phase': "
+          "degrees, "
           "'start': s}")
       .def("set_wall_servo", &M::set_wall_servo, py::arg("name"), py::arg("gain"), py::arg("max_speed"),
            py::arg("target_force") = py::none(), py::arg("target_stress") = py::none(),
-           py::arg("direction") = py::none(),
+           py::arg("direction") = py::none(), py::arg("cycle") = py::none(), py::arg("load") = "grains",
            "makes a wall a servo between steps, as a stage's walls.NAME = { servo = ... } does: one of "
            "target_force (N) or target_stress (Pa: a plane, its load over the cross-section the other walls "
            "bound, as a triaxial test's; a cylinder, over its lateral surface; taken again at every step; a "
            "cylinder's servo changes its radius), gain (m/(s N)), max_speed (m/s); a box "
-           "moves along direction = [D numbers]")
+           "moves along direction = [D numbers]; cycle = {'amplitude': the target's units, 'frequency': Hz, "
+           "'phase': degrees (optional, 0)} adds amplitude sin(2 pi f t + phase) to the target, t from now "
+           "(cyclic loading); load = 'grains' (their push) or 'total' (with the pore water's thrust, on a "
+           "wall that displaces the fluid)")
       .def("set_wall_motion", &M::set_wall_motion, py::arg("name"), py::arg("velocity") = py::none(),
            py::arg("angular_velocity") = py::none(), py::arg("radial_velocity") = py::none(),
            py::arg("oscillation") = py::none(),

@@ -268,6 +268,7 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
     w.motion = c.motion;
     w.velocity = c.motion == WallMotion::velocity ? c.velocity : Vec<D>::Zero();
     w.servo = c.servo;
+    w.servo.schedule.start = sim.time;  // a servo's target counts from its stage's start
     w.servo_axis = c.servo_axis;
     w.spin = c.spin;
     // A plane or box keeps its last axis when it stops turning.

@@ -264,6 +264,56 @@ WallOscillation<D> read_oscillation(TableReader& r) {
   return o;
 }
 
+/// A servo's target: `target_force` (N) or, with `by_stress`,
+/// `target_stress` (Pa), each a number or a table { times, values } (a ramp,
+/// a load schedule: s from the stage's start), plus an optional
+/// `cycle = { amplitude, frequency, phase }` on top (cyclic loading). The
+/// target must stay >= 0 (compressive) throughout.
+void read_servo_target(TableReader& sr, bool by_stress, WallShape shape, ServoControl& servo) {
+  const char* key = by_stress ? "target_stress" : "target_force";
+  const std::string unit = by_stress ? "Pa"
+                           : shape == WallShape::cylinder
+                               ? "N, the sum of the grains' pushes normal to the cylinder"
+                               : "N";
+  servo.by_stress = by_stress;
+  servo.schedule = read_time_series(sr, key, unit);
+  const auto& values = servo.schedule.values;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (values[i] >= 0.0) continue;
+    if (values.size() == 1)
+      sr.fail(key, fmt::format("must be >= 0 {}, got {}", unit, TableReader::format_number(values[i])));
+    sr.fail(key, fmt::format("must be >= 0 {} at every time (a compressive load), got {} at {} s", unit,
+                             TableReader::format_number(values[i]),
+                             TableReader::format_number(servo.schedule.times[i])));
+  }
+  if (const toml::table* c = sr.optional_table("cycle")) {
+    TableReader cr(*c, sr.where() + " cycle", sr.file());
+    cr.allow({"amplitude", "frequency", "phase"});
+    servo.cycle.amplitude = cr.check(
+        "amplitude", cr.number("amplitude"), [](double a) { return std::isfinite(a) && a > 0.0; },
+        fmt::format("> 0 {}: the target's swing either side of '{}'", by_stress ? "Pa" : "N", key));
+    servo.cycle.frequency = cr.check(
+        "frequency", cr.number("frequency"), [](double f) { return std::isfinite(f) && f > 0.0; }, "> 0 Hz");
+    servo.cycle.phase =
+        cr.check(
+            "phase", cr.optional_number("phase").value_or(0.0), [](double x) { return std::isfinite(x); },
+            "a finite number of degrees: the sine's phase at the start (0: the target starts "
+            "at '" +
+                std::string(key) + "' and rises; -90: at its lowest, without a jump)") *
+        std::numbers::pi / 180.0;
+    const double lowest = *std::min_element(values.begin(), values.end());
+    if (servo.cycle.amplitude > lowest) {
+      cr.fail(
+          "amplitude",
+          fmt::format("must be at most the least of '{}' ({}): the target, {} plus the cycle, must stay >= 0 "
+                      "(a compressive load)",
+                      key, TableReader::format_number(lowest), key));
+    }
+    cr.finish();
+  }
+  (by_stress ? servo.target_stress : servo.target_force) = servo.target_at(0.0);
+}
+
 /// A wall's motion: `velocity`, `servo` or `fixed`, and its
 /// `angular_velocity` (a cylinder's spin about its axis; a plane's or
 /// box's turn about its rotation centre: 2D a number, 3D a vector, whose
@@ -340,20 +390,13 @@ void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec
           "a servo needs one of 'target_force' (N, the load wanted on the wall) or 'target_stress' (Pa, a "
           "plane wall's load over the cross-section the other walls bound: a triaxial or biaxial test)");
     }
-    if (sr.has("target_stress")) {
-      if (shape == WallShape::box) {
-        sr.fail("target_stress",
-                "is for a plane wall (its cross-section of the sample) or a cylinder (its lateral surface), "
-                "whose loaded area the other walls bound; give a box wall a 'target_force'");
-      }
-      servo.by_stress = true;
-      servo.target_stress = sr.check("target_stress", sr.number("target_stress"), is_non_negative, ">= 0 Pa");
-    } else {
-      servo.target_force = sr.check("target_force", sr.number("target_force"), is_non_negative,
-                                    shape == WallShape::cylinder
-                                        ? ">= 0 N, the sum of the grains' pushes normal to the cylinder"
-                                        : ">= 0 N");
+    const bool by_stress = sr.has("target_stress");
+    if (by_stress && shape == WallShape::box) {
+      sr.fail("target_stress",
+              "is for a plane wall (its cross-section of the sample) or a cylinder (its lateral surface), "
+              "whose loaded area the other walls bound; give a box wall a 'target_force'");
     }
+    read_servo_target(sr, by_stress, shape, servo);
     servo.gain = sr.check("gain", sr.number("gain"), is_positive, "> 0 m/(s N)");
     servo.max_speed = sr.check("max_speed", sr.number("max_speed"), is_positive, "> 0 m/s");
     if (box) {

@@ -15,34 +15,6 @@ std::vector<std::string> side_list() {
   return std::vector<std::string>(side_names, side_names + 2 * D);
 }
 
-/// A number, or a table { times = [...], values = [...] } (s from the start
-/// of the stage, piecewise linear).
-TimeSeries read_series(TableReader& r, std::string_view key, const std::string& unit) {
-  const toml::node* n = r.raw(key);
-  if (n == nullptr) r.fail_table(fmt::format("missing required key '{}' ({})", key, unit));
-  // A number as the reader takes one (finite, or refused at the key).
-  if (n->is_floating_point() || n->is_integer()) return TimeSeries::constant(r.number(key));
-  const toml::table* t = n->as_table();
-  if (t == nullptr) {
-    r.fail(key, fmt::format("must be a number ({}) or a table {{ times = [...], values = [...] }}", unit));
-  }
-  TableReader tr(*t, fmt::format("{} {}", r.where(), key), r.file());
-  TimeSeries s;
-  s.times = tr.number_list("times");
-  s.values = tr.number_list("values");
-  if (s.values.size() != s.times.size()) tr.fail("values", "must have as many entries as 'times'");
-  for (std::size_t i = 0; i < s.times.size(); ++i) {
-    if (!(s.times[i] >= 0.0)) tr.fail("times", "must be >= 0 s (counted from the start of the stage)");
-    if (i > 0 && !(s.times[i] > s.times[i - 1])) tr.fail("times", "must increase strictly");
-  }
-  tr.finish();
-  return s;
-}
-
-}  // namespace
-
-namespace {
-
 /// type = "drained" | "flux" | "no_flow" with its value; `what` is "side"
 /// or "patch", for the messages.
 FluidBoundary read_condition(TableReader& r, const char* what) {
@@ -53,12 +25,12 @@ FluidBoundary read_condition(TableReader& r, const char* what) {
     if (r.has("inflow"))
       r.fail("inflow", fmt::format("does not apply to a drained {} (give 'pressure')", what));
     b.type = FluidBoundaryType::drained;
-    b.value = read_series(r, "pressure", "excess pore pressure, Pa");
+    b.value = read_time_series(r, "pressure", "excess pore pressure, Pa");
   } else if (type == "flux") {
     if (r.has("pressure"))
       r.fail("pressure", fmt::format("does not apply to a flux {} (give 'inflow')", what));
     b.type = FluidBoundaryType::flux;
-    b.value = read_series(r, "inflow", "Darcy velocity into the grid, m/s");
+    b.value = read_time_series(r, "inflow", "Darcy velocity into the grid, m/s");
   } else {
     for (auto k : {"pressure", "inflow"}) {
       if (r.has(k)) r.fail(k, fmt::format("does not apply to a no_flow {}", what));

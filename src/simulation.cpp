@@ -63,7 +63,7 @@ void Simulation<D>::advance(std::uint64_t count) {
   std::vector<Wall<D>> walls_before;
   for (std::uint64_t s = 0; s < count; ++s) {
     if (tracked) walls_before = walls;
-    update_stress_servos();
+    update_servo_targets();
     for (auto& w : walls) {
       w.advance(time_step, time);
       if (w.is_cylinder() && !(w.radius > 0.0)) {
@@ -267,10 +267,12 @@ std::vector<std::uint32_t> Simulation<D>::remove_outside_domain() {
 }
 
 template <int D>
-void Simulation<D>::update_stress_servos() {
+void Simulation<D>::update_servo_targets() {
   for (std::size_t i = 0; i < walls.size(); ++i) {
     ServoControl& servo = walls[i].servo;
-    if (walls[i].motion != WallMotion::servo || !servo.by_stress) continue;
+    if (walls[i].motion != WallMotion::servo) continue;
+    if (servo.varies()) (servo.by_stress ? servo.target_stress : servo.target_force) = servo.target_at(time);
+    if (!servo.by_stress) continue;
     const LoadedArea a = loaded_area(walls, i, periodic);
     if (!a.why_not.empty()) {
       throw std::runtime_error(

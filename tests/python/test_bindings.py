@@ -1003,6 +1003,72 @@ class StressServo(unittest.TestCase):
         self.assertAlmostEqual(m.walls[0]["radius"], 0.003 + 0.002 * steps * m.time_step, delta=1e-15)
 
 
+class CyclicPiston(unittest.TestCase):
+    """examples/fluid_cases/consolidation_sealed_piston.toml's piston cycled from Python."""
+
+    EXAMPLE = os.path.join(SOURCE, "examples", "fluid_cases", "consolidation_sealed_piston.toml")
+    CYCLE = {"amplitude": 0.25, "frequency": 1.5, "phase": -90.0}
+
+    def settled(self, path):
+        model = darcydem.load(path)
+        model.step(20000)  # 0.18 s of settling: enough to compare two runs
+        model.apply_stage("load")
+        return model
+
+    def test_a_cycle_set_from_python_is_the_stages(self):
+        with open(self.EXAMPLE) as f:
+            text = f.read()
+        servo = "servo = { target_force = 0.51, gain = 0.1"
+        self.assertIn(servo, text)
+        cycled = os.path.join(tempfile.mkdtemp(), "cycled.toml")
+        with open(cycled, "w") as f:
+            f.write(text.replace(servo, "servo = { target_force = 0.26, cycle = { amplitude = 0.25, "
+                                        "frequency = 1.5, phase = -90.0 }, gain = 0.1"))
+        by_stage = self.settled(cycled)
+        by_python = self.settled(self.EXAMPLE)
+        start = by_python.time
+        by_python.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=0.26, cycle=self.CYCLE,
+                                 direction=[0.0, -1.0], load="total")
+        steps = 20000
+        by_stage.step(steps)
+        by_python.step(steps)
+        # The same target from the same start, on the same load: bit for bit.
+        np.testing.assert_array_equal(by_python.positions, by_stage.positions)
+        piston = next(w for w in by_python.walls if w["name"] == "piston")
+        self.assertEqual(piston["servo"]["cycle"]["amplitude"], 0.25)
+        self.assertEqual(piston["servo"]["cycle"]["frequency"], 1.5)
+        self.assertAlmostEqual(piston["servo"]["cycle"]["phase"], -90.0, delta=1e-12)
+        # The target of the last step, taken at its start: 0.26 - 0.25 cos(2
+        # pi f s), s from the call (round-off: 1e-12 N).
+        s = by_python.time - by_python.time_step - start
+        self.assertAlmostEqual(piston["servo"]["target_force"], 0.26 - 0.25 * math.cos(3.0 * math.pi * s),
+                               delta=1e-12)
+        # Without load="total" the servo pushes the grains alone to the
+        # target: another run.
+        grains_only = self.settled(self.EXAMPLE)
+        grains_only.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=0.26, cycle=self.CYCLE,
+                                   direction=[0.0, -1.0])
+        grains_only.step(steps)
+        self.assertFalse(np.array_equal(grains_only.positions, by_stage.positions))
+
+    def test_bad_cycles_are_refused(self):
+        model = darcydem.load(self.EXAMPLE)
+        for bad, message in [
+            ([0.25, 1.5], "give cycle = "),
+            ({"amplitude": 0.25}, "give cycle = "),
+            ({"amplitude": 0.25, "frequency": 1.5, "period": 1.0}, "cycle has no key 'period'"),
+            ({"amplitude": 0.3, "frequency": 1.5}, "at most the target \\(0.26\\)"),
+            ({"amplitude": 0.25, "frequency": 0.0}, "frequency must be > 0 Hz"),
+            ({"amplitude": 0.25, "frequency": 1.5, "phase": math.inf}, "phase must be finite"),
+        ]:
+            with self.subTest(bad=bad), self.assertRaisesRegex(ValueError, message):
+                model.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=0.26, cycle=bad)
+        with self.assertRaisesRegex(ValueError, "load must be 'grains'"):
+            model.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=0.26, load="water")
+        with self.assertRaisesRegex(ValueError, "wall 'floor' does not"):
+            model.set_wall_servo("floor", gain=0.1, max_speed=0.05, target_force=0.26, load="total")
+
+
 class ShakingTable(unittest.TestCase):
     """examples/dem_cases/vibrated_bed.toml's floor shaken from Python."""
 

@@ -524,6 +524,62 @@ TEST(SceneErrors, CylinderWallsAreChecked) {
 
 std::string with_fluid(const std::string& extra);  // below, with the fluid's errors
 
+TEST(SceneErrors, ServoSchedulesAreChecked) {
+  // A servo's target in time: a number, or { times, values } (a ramp or
+  // schedule from the stage's start), plus an optional cycle = {
+  // amplitude, frequency, phase }; it must stay >= 0 (compressive).
+  const std::string servo =
+      "normal = [0.0, 1.0]\nmaterial = \"sand\"\n"
+      "servo = { target_force = { times = [0.0, 0.5], values = [1.0, 3.0] }, cycle = { amplitude = 0.5, "
+      "frequency = 2.0, phase = -90.0 }, gain = 1e-3, max_speed = 0.01 }";
+  const std::string good = replace(kGood, "normal = [0.0, 1.0]\nmaterial = \"sand\"", servo);
+  ASSERT_EQ(load_error(good), "");
+  {
+    const auto scene = built_scene<2>(good);
+    const auto& s = scene.simulation.walls[0].servo;
+    EXPECT_TRUE(s.varies());
+    // 1 + 0.5 sin(-pi/2) at the start; at 0.25 s the ramp's 2 N plus the
+    // cycle's 0.5 sin(pi - pi/2) = 0.5 N.
+    EXPECT_DOUBLE_EQ(s.target_force, 0.5);
+    EXPECT_NEAR(s.target_at(0.25), 2.5, 1e-12);
+    EXPECT_NEAR(s.target_at(1.0), 3.0 + 0.5 * std::sin(4.0 * 3.141592653589793 - 0.5 * 3.141592653589793),
+                1e-12);
+  }
+  auto expect = [&](const std::string& from, const std::string& to, const std::string& wanted) {
+    const auto msg = load_error(replace(good, from, to));
+    EXPECT_NE(msg.find(wanted), std::string::npos) << msg;
+  };
+  expect("values = [1.0, 3.0]", "values = [1.0, -3.0]",
+         "[[wall]] #1 servo key 'target_force': must be >= 0 N at every time (a compressive load), got -3 at "
+         "0.5 s");
+  expect("values = [1.0, 3.0]", "values = [1.0]",
+         "servo target_force key 'values': must have as many entries");
+  expect("times = [0.0, 0.5]", "times = [0.5, 0.0]",
+         "servo target_force key 'times': must increase strictly");
+  expect(
+      "amplitude = 0.5", "amplitude = 1.5",
+      "[[wall]] #1 servo cycle key 'amplitude': must be at most the least of 'target_force' (1): the target, "
+      "target_force plus the cycle, must stay >= 0");
+  expect("amplitude = 0.5", "amplitude = 0.0", "servo cycle key 'amplitude': must be > 0 N");
+  expect("frequency = 2.0", "frequency = -2.0", "servo cycle key 'frequency': must be > 0 Hz, got -2");
+  expect("frequency = 2.0", "frequncy = 2.0", "unknown key 'frequncy'. Did you mean 'frequency'?");
+  expect("cycle = {", "cycle = 3.0, cyc = {", "servo key 'cycle': must be a table");
+  expect("target_force = { times = [0.0, 0.5], values = [1.0, 3.0] }", "target_force = \"high\"",
+         "servo key 'target_force': must be a number (N) or a table { times = [...], values = [...] }");
+  // In a stage, with a stress target: Pa.
+  const std::string staged = replace(
+      kGood, "gravity = [0.0, -9.81]",
+      "gravity = [0.0, -9.81]\nwalls.floor = { servo = { target_force = 2.0, cycle = { amplitude = 1.0, "
+      "frequency = 5.0 }, gain = 1e-3, max_speed = 0.01 } }");
+  ASSERT_EQ(load_error(staged), "");
+  EXPECT_EQ(built_scene<2>(staged).stages.front().walls.front().servo.cycle.frequency, 5.0);
+  const std::string msg = load_error(replace(staged, "amplitude = 1.0", "amplitude = 2.5"));
+  EXPECT_NE(msg.find("[[stage]] #1 walls.floor servo cycle key 'amplitude': must be at most the least of "
+                     "'target_force' (2)"),
+            std::string::npos)
+      << msg;
+}
+
 TEST(SceneErrors, OscillatingWallsAreChecked) {
   // A harmonic translation: amplitude (D numbers, m), frequency (Hz),
   // phase (degrees, optional), on a wall fixed or moving, in a [[wall]] or

@@ -495,6 +495,21 @@ TEST(Checkpoint, ResumedVibratedBedKeepsShaking) {
                                                   2, 100000, 1);
 }
 
+TEST(Checkpoint, ResumedCyclicPistonKeepsItsSchedule) {
+  // examples/fluid_cases/consolidation_sealed_piston.toml with the load
+  // stage's servo on a schedule (0.26 to 0.3 N over 0.5 s) and a cycle
+  // (0.25 N at 1.5 Hz from its lowest), stopped at step 200 000, 0.3 s into
+  // the stage (the settling takes 167 003): the schedule, the cycle and the
+  // time they count from (the stage's start) must come back, or the target
+  // would stand still, or start its cycle again, after the resume.
+  expect_resumed_variant_writes_the_same_files<2>(
+      "examples/fluid_cases/consolidation_sealed_piston.toml",
+      {{"servo = { target_force = 0.51, gain = 0.1",
+        "servo = { target_force = { times = [0.0, 0.5], values = [0.26, 0.3] }, cycle = { amplitude = 0.25, "
+        "frequency = 1.5, phase = -90.0 }, gain = 0.1"}},
+      "cyclic_piston", 2, 200000, 1);
+}
+
 TEST(Checkpoint, ResumedCantileverKeepsItsBondsScatteredStrengths) {
   // The same cantilever with strengths scattered from bond to bond
   // (strength_weibull_modulus), stopped in stage "sag": each bond's factor

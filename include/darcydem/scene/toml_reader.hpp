@@ -14,6 +14,8 @@
 
 #include <toml++/toml.h>
 
+#include "darcydem/core/time_series.hpp"
+
 namespace darcydem {
 
 /// Predicates for TableReader::check.
@@ -96,5 +98,10 @@ class TableReader {
 
 /// Parses a TOML file, turning syntax errors into SceneErrors.
 toml::table parse_toml_file(const std::string& path, std::string& text_out);
+
+/// A number, or a table { times = [...], values = [...] } (s from the start
+/// of the stage, piecewise linear), at `key`; `unit` says what it is in the
+/// messages.
+TimeSeries read_time_series(TableReader& r, std::string_view key, const std::string& unit);
 
 }  // namespace darcydem

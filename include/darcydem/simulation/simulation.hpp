@@ -270,9 +270,11 @@ class Simulation {
   template <class Select, class Add>
   void for_each_contact_moment(Select&& selected, Add&& add) const;
   void rebuild_if_needed(double moved);
-  /// Sets each stress-controlled servo's target force to its target stress
-  /// times its loaded area now; throws if the walls no longer bound it.
-  void update_stress_servos();
+  /// Sets each servo's target from its schedule and cycle at the present
+  /// time (where they vary), and a stress-controlled one's target force to
+  /// its target stress times its loaded area now; throws if the walls no
+  /// longer bound it.
+  void update_servo_targets();
   /// Throws if a period is too short for the particles and skin.
   void check_periods() const;
   void rebuild();

@@ -32,12 +32,31 @@
 
 #include <Eigen/Geometry>
 
+#include "darcydem/core/time_series.hpp"
 #include "darcydem/core/vec.hpp"
 
 namespace darcydem {
 
 enum class WallMotion { fixed, velocity, servo };
 enum class WallShape { plane, box, cylinder };
+
+/// The harmonic part of a servo's target (stress- or force-controlled
+/// cyclic loading: the cyclic triaxial, simple shear or oedometer tests of
+/// PFC and YADE): amplitude sin(2 pi f s + phase), s the time since the
+/// servo was set, in the target's units.
+struct ServoCycle {
+  double amplitude = 0.0;  ///< N, or Pa for a stress target
+  double frequency = 0.0;  ///< Hz; 0: none
+  double phase = 0.0;      ///< rad
+  [[nodiscard]] bool active() const { return frequency > 0.0; }
+  [[nodiscard]] double at(double since) const {
+    return amplitude * std::sin(2.0 * std::numbers::pi * frequency * since + phase);
+  }
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(amplitude, frequency, phase);
+  }
+};
 
 struct ServoControl {
   double target_force = 0.0;  ///< N, compressive load wanted on the wall
@@ -48,6 +67,21 @@ struct ServoControl {
   double gain = 0.0;             ///< m/(s N): wall speed per newton of load error
   double max_speed = 0.0;        ///< m/s
   bool with_pore_water = false;  ///< the load includes Wall::water_force
+  /// The target in time, N (Pa with by_stress), counted from the start of
+  /// the stage that set the servo (schedule.start): the schedule (a ramp or
+  /// table; one point for a constant target) plus the cycle. Where it varies,
+  /// Simulation::update_servo_targets sets target_force (target_stress) from
+  /// it at the start of every step.
+  TimeSeries schedule = TimeSeries::constant(0.0);
+  ServoCycle cycle;
+  [[nodiscard]] bool varies() const { return schedule.times.size() > 1 || cycle.active(); }
+  [[nodiscard]] double target_at(double time) const {
+    return schedule.at(time) + (cycle.active() ? cycle.at(time - schedule.start) : 0.0);
+  }
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(target_force, target_stress, by_stress, gain, max_speed, with_pore_water, schedule, cycle);
+  }
 };
 
 /// A harmonic translation a wall adds to its motion (YADE's
