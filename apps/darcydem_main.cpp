@@ -20,6 +20,7 @@
 #include "darcydem/particles/grading.hpp"
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
+#include "darcydem/simulation/describe_walls.hpp"
 #include "darcydem/simulation/runner.hpp"
 #include "darcydem/version.hpp"
 
@@ -56,6 +57,10 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
       std::cout << "  " << darcydem::describe_grading<D>(scene.simulation.particles.radius);
     }
     for (const auto& note : scene.notes) std::cout << "  note: " << note << '\n';
+    {
+      std::istringstream lines(darcydem::describe_wall_motions(scene));
+      for (std::string line; std::getline(lines, line);) std::cout << "  " << line << '\n';
+    }
     if (scene.fluid) {
       const auto& f = *scene.fluid;
       const double dry = scene.simulation.critical_time_step();

@@ -52,6 +52,14 @@ sed 's/^drag = "darcy"/drag = "ergun"/' "$src/examples/fluid_cases/graded_sand_s
   | grep -q "^  note: with Ergun's drag each grain takes its own d, which balances Kozeny-Carman for d = 0.0013" \
   && ok "check says how far Ergun's drag misses Kozeny-Carman on a graded sand" || bad "check: Ergun's note"
 
+"$exe" check "$src/examples/dem_cases/vibrated_bed.toml" \
+  | grep -q "^  stage shake: wall floor oscillates, amplitude (0, 0.001242) m at 20 Hz, phase -90 deg: peak acceleration 19.62 m/s^2, Gamma = A omega^2 / g = 2 along gravity (above 1" \
+  && ok "check gives a shaken wall's Gamma" || bad "check: Gamma ($("$exe" check "$src/examples/dem_cases/vibrated_bed.toml" | grep shake))"
+sed 's/servo = { target_force = 0.51, gain/servo = { target_force = { times = [0.0, 0.2], values = [0.3, 0.51] }, cycle = { amplitude = 0.25, frequency = 1.5, phase = -90.0 }, gain/' \
+  "$src/examples/fluid_cases/consolidation_sealed_piston.toml" > "$work/cyclic_piston.toml"
+"$exe" check "$work/cyclic_piston.toml" \
+  | grep -q "^  stage load: wall piston servo, target_force from 0.3 to 0.51 N over 0.2 s (2 points, between 0.3 and 0.51 N) + 0.25 N sin(2 pi 1.5 Hz t - 90 deg) (period 0.6667 s), on the load of the grains and the pore water$" \
+  && ok "check gives a servo's schedule and cycle" || bad "check: servo schedule ($("$exe" check "$work/cyclic_piston.toml" | grep piston))"
 sed 's/^density = 2650.0/densty = 2650.0/' "$scene" > "$work/bad.toml"
 msg="$("$exe" check "$work/bad.toml" 2>&1)"; rc=$?
 [ $rc -eq 2 ] && echo "$msg" | grep -q "bad.toml:[0-9]*:[0-9]*: error: .*'densty'.*Did you mean 'density'" \
