@@ -370,6 +370,42 @@ class Model {
     }
   }
 
+  /// A servo's target: a number, or {'times': [s from now, increasing],
+  /// 'values': [...]} (a ramp or schedule), each value finite and >= 0.
+  static TimeSeries read_servo_schedule(const py::object& given) {
+    const std::string form =
+        "the target must be a number or {'times': [s from now], 'values': [...]} (a ramp or schedule)";
+    TimeSeries s;
+    if (py::isinstance<py::dict>(given)) {
+      const auto d = given.cast<py::dict>();
+      for (const auto& [key, value] : d) {
+        const auto k = py::str(key).cast<std::string>();
+        if (k != "times" && k != "values")
+          throw py::value_error(fmt::format("set_wall_servo: the target has no key '{}': {}", k, form));
+      }
+      if (!d.contains("times") || !d.contains("values")) throw py::value_error("set_wall_servo: " + form);
+      s.times = d["times"].cast<std::vector<double>>();
+      s.values = d["values"].cast<std::vector<double>>();
+      if (s.times.empty() || s.times.size() != s.values.size())
+        throw py::value_error(
+            "set_wall_servo: the target's times and values must have the same, non-zero length");
+      for (std::size_t i = 0; i < s.times.size(); ++i) {
+        if (!(s.times[i] >= 0.0) || !std::isfinite(s.times[i]) || (i > 0 && !(s.times[i] > s.times[i - 1])))
+          throw py::value_error(
+              "set_wall_servo: the target's times must be finite, >= 0 and increase strictly");
+      }
+    } else if (py::isinstance<py::float_>(given) || py::isinstance<py::int_>(given)) {
+      s = TimeSeries::constant(given.cast<double>());
+    } else {
+      throw py::value_error("set_wall_servo: " + form);
+    }
+    for (double v : s.values) {
+      if (!(v >= 0.0) || !std::isfinite(v))
+        throw py::value_error(fmt::format("set_wall_servo: the target must be finite and >= 0, got {}", v));
+    }
+    return s;
+  }
+
   /// A servo's cycle = {'amplitude': N or Pa, 'frequency': Hz, 'phase':
   /// degrees (optional, 0)} about `target`, which it must not take below 0.
   static ServoCycle read_servo_cycle(const py::object& given, double target) {
@@ -404,28 +440,27 @@ class Model {
   /// = ... } does: one of target_force (N) and target_stress (Pa, a plane
   /// or cylinder whose loaded area the other walls bound), gain and
   /// max_speed; a box needs its direction (unless it is a servo already).
-  void set_wall_servo(const std::string& name, double gain, double max_speed,
-                      std::optional<double> target_force, std::optional<double> target_stress,
-                      const std::optional<std::vector<double>>& direction, const py::object& cycle,
-                      const std::string& load) {
+  void set_wall_servo(const std::string& name, double gain, double max_speed, const py::object& target_force,
+                      const py::object& target_stress, const std::optional<std::vector<double>>& direction,
+                      const py::object& cycle, const std::string& load) {
     auto& walls = sim().walls;
     auto& w = wall_named(name, "set_wall_servo");
     const std::size_t index = static_cast<std::size_t>(&w - walls.data());
-    if (target_force.has_value() == target_stress.has_value()) {
+    if (target_force.is_none() == target_stress.is_none()) {
       throw py::value_error(
           "set_wall_servo: give one of target_force (N, the load wanted on the wall) or target_stress (Pa, a "
           "plane's load over the cross-section the other walls bound)");
     }
-    const double target = target_force ? *target_force : *target_stress;
-    if (!(target >= 0.0) || !std::isfinite(target))
-      throw py::value_error(
-          fmt::format("set_wall_servo: the target must be finite and >= 0, got {}", target));
+    const bool by_stress = !target_stress.is_none();
+    const TimeSeries schedule = read_servo_schedule(by_stress ? target_stress : target_force);
+    // The least the target takes (a cycle must not take it below 0).
+    const double target = *std::min_element(schedule.values.begin(), schedule.values.end());
     if (!(gain > 0.0) || !std::isfinite(gain))
       throw py::value_error(fmt::format("set_wall_servo: gain must be finite and > 0 m/(s N), got {}", gain));
     if (!(max_speed > 0.0) || !std::isfinite(max_speed))
       throw py::value_error(
           fmt::format("set_wall_servo: max_speed must be finite and > 0 m/s, got {}", max_speed));
-    if (target_stress) {
+    if (by_stress) {
       if (const LoadedArea a = loaded_area(walls, index, sim().periodic); !a.why_not.empty())
         throw py::value_error(
             fmt::format("set_wall_servo: wall '{}' has no loaded area: {}", name, a.why_not));
@@ -477,12 +512,11 @@ class Model {
                       name));
     ServoControl servo;
     servo.with_pore_water = load == "total";
-    servo.by_stress = target_stress.has_value();
-    servo.target_stress = target_stress.value_or(0.0);
-    servo.target_force = target_force.value_or(0.0);
-    servo.schedule = TimeSeries::constant(target);
+    servo.by_stress = by_stress;
+    servo.schedule = schedule;
     servo.schedule.start = sim().time;
     if (!cycle.is_none()) servo.cycle = read_servo_cycle(cycle, target);
+    (by_stress ? servo.target_stress : servo.target_force) = servo.target_at(sim().time);
     servo.gain = gain;
     servo.max_speed = max_speed;
     w.motion = WallMotion::servo;
@@ -998,7 +1032,9 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "makes a wall a servo between steps, as a stage's walls.NAME = { servo = ... } does: one of "
            "target_force (N) or target_stress (Pa: a plane, its load over the cross-section the other walls "
            "bound, as a triaxial test's; a cylinder, over its lateral surface; taken again at every step; a "
-           "cylinder's servo changes its radius), gain (m/(s N)), max_speed (m/s); a box "
+           "cylinder's servo changes its radius), each a number or {'times': [s from now], 'values': [...]} "
+           "(a ramp or schedule, piecewise linear, held after its last point), gain (m/(s N)), max_speed "
+           "(m/s); a box "
            "moves along direction = [D numbers]; cycle = {'amplitude': the target's units, 'frequency': Hz, "
            "'phase': degrees (optional, 0)} adds amplitude sin(2 pi f t + phase) to the target, t from now "
            "(cyclic loading); load = 'grains' (their push) or 'total' (with the pore water's thrust, on a "

@@ -1008,6 +1008,7 @@ class CyclicPiston(unittest.TestCase):
 
     EXAMPLE = os.path.join(SOURCE, "examples", "fluid_cases", "consolidation_sealed_piston.toml")
     CYCLE = {"amplitude": 0.25, "frequency": 1.5, "phase": -90.0}
+    RAMP = {"times": [0.0, 0.1], "values": [0.26, 0.3]}
 
     def settled(self, path):
         model = darcydem.load(path)
@@ -1022,12 +1023,12 @@ class CyclicPiston(unittest.TestCase):
         self.assertIn(servo, text)
         cycled = os.path.join(tempfile.mkdtemp(), "cycled.toml")
         with open(cycled, "w") as f:
-            f.write(text.replace(servo, "servo = { target_force = 0.26, cycle = { amplitude = 0.25, "
-                                        "frequency = 1.5, phase = -90.0 }, gain = 0.1"))
+            f.write(text.replace(servo, "servo = { target_force = { times = [0.0, 0.1], values = [0.26, 0.3] }, "
+                                        "cycle = { amplitude = 0.25, frequency = 1.5, phase = -90.0 }, gain = 0.1"))
         by_stage = self.settled(cycled)
         by_python = self.settled(self.EXAMPLE)
         start = by_python.time
-        by_python.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=0.26, cycle=self.CYCLE,
+        by_python.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=self.RAMP, cycle=self.CYCLE,
                                  direction=[0.0, -1.0], load="total")
         steps = 20000
         by_stage.step(steps)
@@ -1038,15 +1039,17 @@ class CyclicPiston(unittest.TestCase):
         self.assertEqual(piston["servo"]["cycle"]["amplitude"], 0.25)
         self.assertEqual(piston["servo"]["cycle"]["frequency"], 1.5)
         self.assertAlmostEqual(piston["servo"]["cycle"]["phase"], -90.0, delta=1e-12)
-        # The target of the last step, taken at its start: 0.26 - 0.25 cos(2
-        # pi f s), s from the call (round-off: 1e-12 N).
+        # The target of the last step, taken at its start (0.18 s in, past
+        # the ramp's 0.1 s): 0.3 - 0.25 cos(2 pi f s), s from the call
+        # (round-off: 1e-12 N).
         s = by_python.time - by_python.time_step - start
-        self.assertAlmostEqual(piston["servo"]["target_force"], 0.26 - 0.25 * math.cos(3.0 * math.pi * s),
+        self.assertGreater(s, 0.1)
+        self.assertAlmostEqual(piston["servo"]["target_force"], 0.3 - 0.25 * math.cos(3.0 * math.pi * s),
                                delta=1e-12)
         # Without load="total" the servo pushes the grains alone to the
         # target: another run.
         grains_only = self.settled(self.EXAMPLE)
-        grains_only.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=0.26, cycle=self.CYCLE,
+        grains_only.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=self.RAMP, cycle=self.CYCLE,
                                    direction=[0.0, -1.0])
         grains_only.step(steps)
         self.assertFalse(np.array_equal(grains_only.positions, by_stage.positions))
@@ -1063,6 +1066,20 @@ class CyclicPiston(unittest.TestCase):
         ]:
             with self.subTest(bad=bad), self.assertRaisesRegex(ValueError, message):
                 model.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=0.26, cycle=bad)
+        for bad, message in [
+            ("high", "must be a number or {'times'"),
+            ({"times": [0.0, 1.0]}, "must be a number or {'times'"),
+            ({"times": [0.0, 1.0], "values": [1.0]}, "the same, non-zero length"),
+            ({"times": [1.0, 0.0], "values": [1.0, 2.0]}, "increase strictly"),
+            ({"times": [0.0, 1.0], "values": [1.0, -2.0]}, "finite and >= 0, got -2"),
+            ({"times": [0.0], "values": [1.0], "start": 2.0}, "the target has no key 'start'"),
+        ]:
+            with self.subTest(bad=bad), self.assertRaisesRegex(ValueError, message):
+                model.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=bad)
+        # A cycle may not take the schedule's least value below 0.
+        with self.assertRaisesRegex(ValueError, "at most the target \\(0.2\\)"):
+            model.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force={"times": [0.0, 1.0],
+                                 "values": [0.5, 0.2]}, cycle={"amplitude": 0.25, "frequency": 1.0})
         with self.assertRaisesRegex(ValueError, "load must be 'grains'"):
             model.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=0.26, load="water")
         with self.assertRaisesRegex(ValueError, "wall 'floor' does not"):
