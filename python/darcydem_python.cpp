@@ -23,6 +23,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -44,6 +45,7 @@
 #include "darcydem/particles/grading.hpp"
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
+#include "darcydem/simulation/run_checkpoint.hpp"
 #include "darcydem/simulation/runner.hpp"
 #include "darcydem/version.hpp"
 #include "darcydem/walls/loaded_area.hpp"
@@ -190,12 +192,15 @@ class Model {
   }
 
   void apply_stage(const std::string& name) {
-    for (const auto& s : scene_.stages) {
+    for (std::size_t k = 0; k < scene_.stages.size(); ++k) {
+      const auto& s = scene_.stages[k];
       if (s.name == name) {
         if (starts_new_coupling_interval(fluid(), s) && since_update_ > 0) fluid_step();
         darcydem::apply_stage(sim(), fluid(), s);
         apply_inlet_changes(scene_.inlets, s, sim().time);
         if (s.make_bonds) sim().make_bonds(s.bond_gap);
+        stage_ = k;
+        stage_start_step_ = sim().steps;
         return;
       }
     }
@@ -740,8 +745,52 @@ class Model {
     since_update_ = 0;
   }
 
+  /// The run's state as a checkpoint holds it, by reference: the model's
+  /// position (the stage applied last, the steps since, the DEM steps
+  /// since the last fluid step) in `position`.
+  RunState<D> run_state(RunPosition& position) {
+    return RunState<D>{position,   sim(),      scene_.inlets, fluid(),   analysis_ ? &*analysis_ : nullptr,
+                       series_[0], series_[1], series_[2],    series_[3]};
+  }
+
+ public:
+  /// Writes the model's whole state to `path` (YADE's O.save): the
+  /// program's checkpoint format, which darcydem.load(scene,
+  /// checkpoint=path) reads back into a model of the same scene file.
+  void save(const std::string& path) {
+    RunPosition position;
+    position.stage = stage_;
+    position.stage_steps = sim().steps - stage_start_step_;
+    position.since_update = since_update_;
+    position.probes_bytes = saved_by_model;  // no output directory to go on with
+    write_checkpoint(path, scene_, run_state(position));
+  }
+
+  /// Loads a checkpoint of this scene over the model (YADE's O.load): one a
+  /// model saved, or one an interrupted `darcydem run` left in its output
+  /// directory. The model goes on from its state: its time, grains, walls,
+  /// pore fluid and the stage under way, with that stage's settings.
+  void restore(const std::string& path) {
+    RunPosition position;
+    read_checkpoint(path, scene_, run_state(position));  // darcydem.CheckpointError if it does not fit
+    stage_ = static_cast<std::size_t>(position.stage);
+    stage_start_step_ = sim().steps - position.stage_steps;
+    since_update_ = position.since_update;
+    sim().measure_contact_forces = true;
+  }
+
+ private:
   Scene<D> scene_;
   std::uint64_t since_update_ = 0;  ///< DEM steps since the last fluid step
+  std::size_t stage_ = 0;           ///< the stage applied last (the first at the start)
+  std::uint64_t stage_start_step_ = 0;
+  /// What a run's checkpoint holds besides: its seepage-column analysis
+  /// and its VTK series (a model writes neither, but keeps them to save).
+  std::optional<SeepageColumnAnalysis<D>> analysis_ =
+      scene_.seepage_column
+          ? std::optional<SeepageColumnAnalysis<D>>(std::in_place, *scene_.seepage_column, scene_)
+          : std::nullopt;
+  std::array<PvdSeries, 4> series_{PvdSeries(""), PvdSeries(""), PvdSeries(""), PvdSeries("")};
 };
 
 /// The pore fluid of a model, read through it (it lives as long as the model).
@@ -1137,6 +1186,10 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "whether each particle is fixed, (N,), in creation order")
       .def("step", &M::step, py::arg("count") = 1,
            "advances count DEM steps, with the pore fluid's steps among them as in a run")
+      .def("save", &M::save, py::arg("path"),
+           "writes the model's whole state to path (YADE's O.save), in the program's checkpoint format: "
+           "darcydem.load(scene, checkpoint=path) goes on from it, bit for bit, in a model of the same "
+           "scene file")
       .def_property_readonly(
           "fluid",
           [](py::object self) -> py::object {
@@ -1160,18 +1213,22 @@ PYBIND11_MODULE(darcydem, m) {
   bind_model<3>(m, "Model3D", "Fluid3D");
   m.def(
       "load",
-      [](const std::string& file) {
+      [](const std::string& file, const std::optional<std::string>& checkpoint) {
         return with_scene(file,
                           [&]<int D>(const toml::table& root, const std::string& f, const std::string& text) {
-                            return py::cast(std::make_unique<Model<D>>(root, f, text));
+                            auto model = std::make_unique<Model<D>>(root, f, text);
+                            if (checkpoint) model->restore(*checkpoint);
+                            return py::cast(std::move(model));
                           });
       },
-      py::arg("scene"),
-      "builds a scene from its TOML file (checked as `darcydem check` does); raises SceneError on bad input");
+      py::arg("scene"), py::arg("checkpoint") = py::none(),
+      "builds a scene from its TOML file (checked as `darcydem check` does); raises SceneError on bad input. "
+      "With checkpoint = a file model.save wrote, or the checkpoint.bin an interrupted `darcydem run` of "
+      "the same scene file left, the model goes on from that state (YADE's O.load)");
   m.def(
       "run",
       [](const std::string& file, const std::string& out, bool force, bool resume, double checkpoint_every,
-         int threads, bool log) {
+         int threads, bool log, std::uint64_t stop_at_step) {
         if (force && resume) throw py::value_error("run: force and resume exclude each other");
         if (!force && !resume && !darcydem::output_dir_is_free(out))
           throw py::value_error(
@@ -1182,6 +1239,7 @@ PYBIND11_MODULE(darcydem, m) {
         options.out_dir = out;
         options.resume = resume;
         options.checkpoint_every = checkpoint_every;
+        options.stop_at_step = stop_at_step;
         options.log = log ? &std::cerr : nullptr;  // the program's run log and progress lines
         return with_scene(file,
                           [&]<int D>(const toml::table& root, const std::string& f, const std::string& text) {
@@ -1191,8 +1249,11 @@ PYBIND11_MODULE(darcydem, m) {
       },
       py::arg("scene"), py::arg("out"), py::arg("force") = false, py::arg("resume") = false,
       py::arg("checkpoint_every") = 0.0, py::arg("threads") = 0, py::arg("log") = false,
+      py::arg("stop_at_step") = 0,
       "runs a scene as `darcydem run` does, writing its output directory; returns a summary; with "
-      "log=True the program's run log and progress lines go to stderr");
+      "log=True the program's run log and progress lines go to stderr; stop_at_step = N stops it as if "
+      "interrupted once N steps are done (checked every 256 steps), leaving its checkpoint (resume=True "
+      "goes on with it; darcydem.load(scene, checkpoint=out + '/checkpoint.bin') loads it into a model)");
   m.def(
       "grading",
       [](const std::vector<double>& radii, int dimension) {

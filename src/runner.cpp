@@ -384,6 +384,12 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
     // The scene built and prepared as at the start, then the state of the
     // interrupted run loaded over it; output goes on where it stopped.
     read_checkpoint(checkpoint_path.string(), scene, state);
+    if (pos.probes_bytes == saved_by_model) {
+      throw CheckpointError(fmt::format(
+          "{}: saved by a Python model (model.save), which writes no output to go on with: load it with "
+          "darcydem.load(scene, checkpoint=...) and go on in Python",
+          checkpoint_path.string()));
+    }
     ++pos.resumes;
     summary.resumed_at_step = sim.steps;
     summary.stages_completed = pos.stages_completed;

@@ -1086,6 +1086,79 @@ class CyclicPiston(unittest.TestCase):
             model.set_wall_servo("floor", gain=0.1, max_speed=0.05, target_force=0.26, load="total")
 
 
+class SaveAndLoad(unittest.TestCase):
+    """model.save and darcydem.load(scene, checkpoint=...), YADE's O.save and O.load, on the sealed-piston
+    column (pore fluid, servo, two stages)."""
+
+    EXAMPLE = os.path.join(SOURCE, "examples", "fluid_cases", "consolidation_sealed_piston.toml")
+
+    def same_state(self, a, b):
+        self.assertEqual(a.steps, b.steps)
+        self.assertEqual(a.time, b.time)
+        np.testing.assert_array_equal(a.positions, b.positions)
+        np.testing.assert_array_equal(a.velocities, b.velocities)
+        np.testing.assert_array_equal(a.fluid.pressure, b.fluid.pressure)
+        self.assertEqual([w["point"] for w in a.walls], [w["point"] for w in b.walls])
+        self.assertEqual([w["servo"] for w in a.walls], [w["servo"] for w in b.walls])
+
+    def test_a_saved_model_goes_on_bit_for_bit(self):
+        path = os.path.join(tempfile.mkdtemp(), "state.bin")
+        model = darcydem.load(self.EXAMPLE)
+        model.step(20000)
+        model.apply_stage("load")  # the sealed top, the servo on the total load raised to 0.51 N
+        model.set_wall_servo("piston", gain=0.1, max_speed=0.05, target_force=0.26, direction=[0.0, -1.0],
+                             load="total", cycle={"amplitude": 0.25, "frequency": 1.5, "phase": -90.0})
+        model.step(3000)
+        model.save(path)
+        model.step(4000)
+        loaded = darcydem.load(self.EXAMPLE, checkpoint=path)
+        self.assertEqual(loaded.steps, 23000)
+        loaded.step(4000)
+        # The same 4000 steps from the same state, the servo's cycle, the
+        # sealed top and the pore water's pressures with it: bit for bit.
+        self.same_state(model, loaded)
+        # Without the saved state the model starts over and differs.
+        fresh = darcydem.load(self.EXAMPLE)
+        fresh.step(4000)
+        self.assertFalse(np.array_equal(fresh.positions, model.positions))
+
+    def test_an_interrupted_run_goes_on_in_python(self):
+        out = os.path.join(tempfile.mkdtemp(), "out")
+        summary = darcydem.run(self.EXAMPLE, out=out, stop_at_step=5000)
+        self.assertEqual(summary["status"], "interrupted")
+        self.assertTrue(summary["checkpoint_written"])
+        loaded = darcydem.load(self.EXAMPLE, checkpoint=os.path.join(out, "checkpoint.bin"))
+        self.assertGreaterEqual(loaded.steps, 5000)
+        # The run's steps are the model's (README: stepping from Python gives
+        # the program's run), so a model stepped as far is the same.
+        stepped = darcydem.load(self.EXAMPLE)
+        stepped.step(loaded.steps)
+        self.same_state(stepped, loaded)
+        loaded.step(2000)
+        stepped.step(2000)
+        self.same_state(stepped, loaded)
+
+    def test_what_does_not_fit_is_refused(self):
+        folder = tempfile.mkdtemp()
+        path = os.path.join(folder, "state.bin")
+        model = darcydem.load(self.EXAMPLE)
+        model.step(10)
+        model.save(path)
+        with self.assertRaisesRegex(darcydem.CheckpointError, "no checkpoint to resume from"):
+            darcydem.load(self.EXAMPLE, checkpoint=os.path.join(folder, "missing.bin"))
+        other = os.path.join(SOURCE, "examples", "fluid_cases", "consolidation_column.toml")
+        with self.assertRaisesRegex(darcydem.CheckpointError, "written for a scene with hash"):
+            darcydem.load(other, checkpoint=path)
+        # A model's save has no output for `darcydem run --resume` to go on with.
+        out = os.path.join(folder, "out")
+        os.makedirs(out)
+        os.replace(path, os.path.join(out, "checkpoint.bin"))
+        with open(os.path.join(out, "probes.csv"), "w") as f:
+            f.write("time\n")
+        with self.assertRaisesRegex(darcydem.CheckpointError, "saved by a Python model"):
+            darcydem.run(self.EXAMPLE, out=out, resume=True)
+
+
 class ShakingTable(unittest.TestCase):
     """examples/dem_cases/vibrated_bed.toml's floor shaken from Python."""
 

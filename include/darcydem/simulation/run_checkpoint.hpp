@@ -38,6 +38,11 @@ struct RunPosition {
   }
 };
 
+/// RunPosition::probes_bytes of a checkpoint a Python model saved
+/// (model.save): it has no output directory for `darcydem run --resume` to
+/// go on with.
+constexpr std::uint64_t saved_by_model = ~std::uint64_t{0};
+
 /// Everything a checkpoint holds, by reference.
 template <int D>
 struct RunState {
