@@ -79,11 +79,13 @@ void for_each_section(const FluidGrid<D>& grid, const Vec<D>& lo, const Vec<D>& 
 template <int D>
 std::optional<SolidBox<D>> PoreFluid<D>::displaced_box(const Wall<D>& wall) const {
   if (wall.is_box()) return SolidBox<D>{wall.point, wall.half, wall.axes};
-  // A plane: the half-space behind it, its face kept a hundred-thousandth
-  // of a cell inside the grid (ten times box_section's slab), so that a
-  // plane on or beyond the side it faces stands on that side: it takes the
-  // side's pressure and, impermeable, closes it. The sliver this adds to
-  // the cells there is constant while it lasts: no Biot source.
+  // A plane: the half-space behind it, its face a hundred-thousandth of a
+  // cell inside the grid (ten times box_section's slab) where the plane is
+  // on or beyond the side it faces, so that it stands on that side: it
+  // takes the side's pressure and, impermeable, closes it. The sliver
+  // shrinks to nothing as the plane crosses the first layer (behind_plane),
+  // so every move it makes into the grid displaces water: 1 - 1e-5 of its
+  // volume there, all of it deeper in.
   const int axis = grid_axis_of<D>(wall.normal);
   if (axis < 0)
     throw std::logic_error("PoreFluid: a plane that displaces the fluid must be normal to a grid axis");

@@ -39,9 +39,14 @@ struct SolidBox {
 /// into the domain, away from the solid), as a box: the half-space behind
 /// the plane over the grid widened by the grid's own length on every side,
 /// so that within the grid only the plane's face bounds it. `inside` (m,
-/// >= 0) moves the face into the grid by that much where the plane is at or
-/// beyond the grid's side it faces (the face then stays in the grid). None
-/// if the half-space misses the widened grid.
+/// >= 0, below the width of the grid's layer at the side the plane faces)
+/// keeps the face that far into the grid where the plane is at or beyond
+/// that side, so that the face stays in the grid; as the plane moves in
+/// across that layer the offset shrinks in proportion, to none at the
+/// layer's far face: the face moves with the plane at 1 - inside / width,
+/// so every move of the plane into the grid displaces water, and a plane
+/// deeper in has its face exactly on it. None if the half-space misses
+/// the widened grid.
 template <int D>
 [[nodiscard]] std::optional<SolidBox<D>> behind_plane(const FluidGrid<D>& grid, const Vec<D>& point,
                                                       const Vec<D>& normal, double inside = 0.0) {
@@ -56,10 +61,15 @@ template <int D>
     double to = hi + margin;
     if (k == a) {
       // normal +e_a: solid below the plane; -e_a: above it.
+      // How far the plane stands in the grid, over the first layer's width.
+      const double first =
+          normal[a] > 0.0 ? grid.face_at(a, 1) - lo : hi - grid.face_at(a, grid.cells[a] - 1);
+      const double depth = std::max(normal[a] > 0.0 ? point[a] - lo : hi - point[a], 0.0);
+      const double offset = inside * std::max(1.0 - depth / first, 0.0);
       if (normal[a] > 0.0) {
-        to = std::max(point[a], lo + inside);
+        to = std::max(point[a], lo) + offset;
       } else {
-        from = std::min(point[a], hi - inside);
+        from = std::min(point[a], hi) - offset;
       }
       if (!(to > from)) return std::nullopt;
     }
