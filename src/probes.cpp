@@ -123,6 +123,12 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
     case ProbeQuantity::wall_stress:
       // Walls that have crossed leave no area: nan, as the servo stops the run.
       return wall_stress(sim.walls, probe.wall, sim.periodic);
+    case ProbeQuantity::wall_target: {
+      // Taken at the start of the last step (Simulation::update_servo_targets).
+      const Wall<D>& w = sim.walls[probe.wall];
+      if (w.motion != WallMotion::servo) return std::numeric_limits<double>::quiet_NaN();
+      return w.servo.by_stress ? w.servo.target_stress : w.servo.target_force;
+    }
     case ProbeQuantity::wall_fluid_force:
       if (fluid == nullptr) return 0.0;
       return pick(probe.barrier >= 0 ? fluid->barrier_thrust(static_cast<std::size_t>(probe.barrier))

@@ -1302,6 +1302,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "wall_torque",
                                                 "wall_radius",
                                                 "wall_stress",
+                                                "wall_target",
                                                 "kinetic_energy",
                                                 "elastic_energy",
                                                 "gravitational_energy",
@@ -1508,6 +1509,12 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                            sim.walls[p.wall].name, a.why_not));
       }
       if (r.has("component")) r.fail("component", "does not apply: the stress is normal to the wall");
+    } else if (q == "wall_target") {
+      p.quantity = ProbeQuantity::wall_target;
+      p.wall = probe_wall(r);
+      if (r.has("component"))
+        r.fail("component",
+               "does not apply: a servo's target is its load normal to the wall (N) or its stress (Pa)");
     } else if (q == "wall_torque" || q == "wall_radius") {
       const bool torque = q == "wall_torque";
       p.quantity = torque ? ProbeQuantity::wall_torque : ProbeQuantity::wall_radius;

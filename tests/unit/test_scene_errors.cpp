@@ -564,6 +564,12 @@ TEST(SceneErrors, ServoSchedulesAreChecked) {
   expect("frequency = 2.0", "frequency = -2.0", "servo cycle key 'frequency': must be > 0 Hz, got -2");
   expect("frequency = 2.0", "frequncy = 2.0", "unknown key 'frequncy'. Did you mean 'frequency'?");
   expect("cycle = {", "cycle = 3.0, cyc = {", "servo key 'cycle': must be a table");
+  // The probe of a servo's target: a wall, no component.
+  const std::string probe = "\n[[probe]]\nname = \"t\"\nquantity = \"wall_target\"\nwall = \"floor\"\n";
+  EXPECT_EQ(load_error(replace(good, "[[particles]]", probe + "\n[[particles]]")), "");
+  EXPECT_NE(load_error(replace(good, "[[particles]]", probe + "component = \"y\"\n\n[[particles]]"))
+                .find("key 'component': does not apply: a servo's target is its load normal to the wall"),
+            std::string::npos);
   expect("target_force = { times = [0.0, 0.5], values = [1.0, 3.0] }", "target_force = \"high\"",
          "servo key 'target_force': must be a number (N) or a table { times = [...], values = [...] }");
   // In a stage, with a stress target: Pa.

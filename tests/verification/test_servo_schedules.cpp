@@ -138,8 +138,29 @@ ScheduleErrors schedule_errors(const ConsolidationRun& run, const std::function<
 void expect_column_follows(const std::string& target, const std::function<double(double)>& force,
                            const std::string& name) {
   const std::string servo = "gain = 0.1, max_speed = 0.05, direction = [0.0, -1.0], load = \"total\" }";
+  // With a probe of the piston's target (wall_target).
   const auto run = run_sealed_piston_variant(
-      {{"servo = { target_force = 0.51, " + servo, "servo = { " + target + ", " + servo}}, name);
+      {{"servo = { target_force = 0.51, " + servo, "servo = { " + target + ", " + servo},
+       {"[[stage]]\nname = \"settle\"",
+        "[[probe]]\nname = \"target\"\nquantity = \"wall_target\"\nwall = \"piston\"\n\n[[stage]]\nname = "
+        "\"settle\""}},
+      name);
+  // The probe reads the target the last step took, at its start: the
+  // schedule's force at t - dt, s counted from the load stage's start
+  // (before it, the settling's 0.01 N). The stage starts after the
+  // settling's round(1.5 s / dt) steps. Bound 5e-9 N: probes.csv keeps 10
+  // significant digits, so a time near 2.5 s is within 1.25e-9 s of the
+  // step's, which the load's rate (at most 2.5 N/s) makes 3e-9 N
+  // (measured 1.3e-9 N).
+  const auto& t = run.probes.at("time");
+  const double dt = run.scene.simulation.time_step;
+  const double t0 = std::round(run.scene.stages.front().duration / dt) * dt;
+  double worst_target = 0.0;
+  for (std::size_t j = 1; j < t.size(); ++j) {
+    const double expected = t[j] - dt < t0 - 1e-12 ? 0.01 : force(t[j] - dt - t0);
+    worst_target = std::max(worst_target, std::abs(run.probes.at("target")[j] - expected));
+  }
+  EXPECT_LT(worst_target, 5e-9) << name;
   const ScheduleErrors against_target = schedule_errors(run, force, false, name.c_str());
   const ScheduleErrors against_applied = schedule_errors(run, force, true, name.c_str());
   EXPECT_LT(against_target.load_rms, 0.02);

@@ -26,6 +26,7 @@ enum class ProbeQuantity {
   wall_torque,       ///< the particles' moment on a cylinder about its axis, N m (Wall::torque)
   wall_radius,       ///< a cylinder's radius, m (a servo changes it)
   wall_stress,       ///< the particles' load on a plane over its loaded area, Pa (walls/loaded_area.hpp)
+  wall_target,       ///< a servo's target as the last step took it, N or Pa (NaN: not a servo)
   kinetic_energy,
   elastic_energy,        ///< J, stored in the contacts' and bonds' springs (Simulation::elastic_energy)
   gravitational_energy,  ///< J, -sum m g.x (zero at the origin)
