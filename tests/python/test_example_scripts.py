@@ -20,6 +20,7 @@ def load(path):
 
 drum_profile = load("examples/dem_cases/drum_profile.py")
 triaxial_plot = load("examples/dem_cases/triaxial_plot.py")
+vibrated_plot = load("examples/dem_cases/vibrated_plot.py")
 
 
 def tilted_bed(angle, spacing, drum_radius=8e-3, depth=-2e-3):
@@ -148,6 +149,51 @@ class TriaxialPlot(unittest.TestCase):
         self.assertNotEqual(r.returncode, 0)
         self.assertIn(os.path.join(out, "probes.csv") + " not found", r.stderr)
 
+
+
+class VibratedPlot(unittest.TestCase):
+    """vibrated_plot.py's ball and flights, against the hand's."""
+
+    A, F = 0.0012425, 20.0  # the example's floor: Gamma = A (2 pi f)^2 / g = 2.0001
+
+    def test_the_ball_leaves_at_arccos_and_lands_on_the_floor(self):
+        lift, land, flight = vibrated_plot.ball(self.A, self.F)
+        omega = 2.0 * math.pi * self.F
+        gamma = self.A * omega**2 / vibrated_plot.G
+        # Take-off where the floor's acceleration is -g (exact).
+        self.assertAlmostEqual(lift, math.acos(-1.0 / gamma), delta=1e-15)
+        # Landing: the parabola meets the floor there (bisection to
+        # round-off: 1e-15 m) and stays above it in between.
+        s = land / omega
+        self.assertAlmostEqual(flight(s), vibrated_plot.floor_height(self.A, omega, s), delta=1e-15)
+        for k in range(1, 100):
+            x = (lift + k * (land - lift) / 100) / omega
+            self.assertGreater(flight(x), vibrated_plot.floor_height(self.A, omega, x))
+        # Half a radian into the next cycle, as the C++ test's bisection
+        # gives (ShakingWalls: 6.7534 rad).
+        self.assertAlmostEqual(land, 6.7534, delta=1e-4)
+        # Gamma at or below 1: it never leaves.
+        self.assertEqual(vibrated_plot.ball(0.4 * self.A, self.F), (None, None, None))
+
+    def test_the_first_flight_is_found_in_the_probes(self):
+        # A bed that flies as the ball, probed every 1e-4 s from the
+        # shaking's start at 0.3 s: no floor load while it flies.
+        lift, land, _ = vibrated_plot.ball(self.A, self.F)
+        omega = 2.0 * math.pi * self.F
+        times = [0.3 + 1e-4 * k for k in range(2000)]
+        loads = [0.0 if lift < omega * (t - 0.3) < land else 1.0 for t in times]
+        p = {"time": times, "floor_load": loads}
+        off, on = vibrated_plot.first_flight(p, 0.3, self.F)
+        # Within a probe interval (omega 1e-4 s = 0.0126 rad) of the ball's.
+        self.assertLess(abs(off - lift), omega * 1e-4)
+        self.assertLess(abs(on - land), omega * 1e-4)
+
+    def test_a_missing_run_is_refused(self):
+        out = tempfile.mkdtemp()
+        r = subprocess.run([sys.executable, os.path.join(SOURCE, "examples/dem_cases/vibrated_plot.py"), out],
+                           capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("probes.csv: no such file (run the scene first)", r.stderr)
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)
