@@ -19,20 +19,14 @@ less its height at the start) against omega s with the ball's flight in
 OUT/vibrated.png.
 """
 import argparse
-import csv
 import math
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from triaxial_plot import read_columns  # noqa: E402  (probes.csv's columns by name)
+
 G = 9.81  # m/s^2, the scene's gravity
-
-
-def read_columns(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
-    if not rows:
-        raise ValueError(f"{path} has no rows")
-    return {k: [float(r[k]) for r in rows] for k in rows[0]}
 
 
 def floor_height(amplitude, omega, s):
