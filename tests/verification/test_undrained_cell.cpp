@@ -29,9 +29,9 @@ TEST(UndrainedCell, TakesSkemptonsBAndDrainsToTheSkeleton) {
   // each side shortens by (N + 1) 100 Pa (2 r)^2 / k_n = 0.4 um.
   // Tolerances: the pressure 1e-3 of B dsigma (the servo's residual, 1e-4
   // of the load, and the geometry's change, strains of 1e-4; measured
-  // 7e-6); the squeezes 1e-3 of theirs (the servos take the stress over
+  // 1.2e-5); the squeezes 1e-3 of theirs (the servos take the stress over
   // the present cross-section, 2.7e-4 smaller than the first; measured
-  // 2.6e-4 and 2.7e-4); the pressure uniform to 1e-6 of it, undrained; the
+  // 2.5e-4 and 2.7e-4); the pressure uniform to 1e-6 of it, undrained; the
   // drained pressure below 1e-4 of the load. Before session 45 a platen's
   // first 1e-5 of a cell of motion into the grid displaced no water (the
   // face of its solid was held there): then u came out 5 % low (47.48 Pa);
