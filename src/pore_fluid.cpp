@@ -221,12 +221,51 @@ void PoreFluid<D>::compute_wall_solid(const std::vector<Wall<D>>& walls) {
   for (std::size_t w : solid_walls) {
     if (w >= walls.size())
       throw std::logic_error("PoreFluid: a solid wall that is not among the walls given");
-    const Wall<D>& wall = walls[w];
-    // A box, or the half-space behind a plane.
-    const std::optional<SolidBox<D>> box = displaced_box(wall);
+  }
+  // The planes' half-spaces: in each cell, all but the part of it in the
+  // region they leave to the water (their union, so that platens meeting at
+  // a cell's edges count their overlap once).
+  const auto [wet_lo, wet_hi] = planes_wet_region(walls);
+  const bool planes =
+      std::any_of(solid_walls.begin(), solid_walls.end(), [&](std::size_t w) { return !walls[w].is_box(); });
+  auto cell_bounds = [&](const std::array<int, D>& c, Vec<D>& corner, Vec<D>& far) {
+    for (int k = 0; k < D; ++k) {
+      corner[k] = grid.face_at(k, c[k]);
+      far[k] = grid.face_at(k, c[k] + 1);
+    }
+  };
+  if (planes) {
+    for (std::size_t c = 0; c < n; ++c) {
+      Vec<D> corner;
+      Vec<D> far;
+      cell_bounds(grid.coords(c), corner, far);
+      if ((corner.array() >= wet_lo.array()).all() && (far.array() <= wet_hi.array()).all()) continue;
+      double cell = 1.0;
+      double wet = 1.0;
+      for (int k = 0; k < D; ++k) {
+        cell *= far[k] - corner[k];
+        wet *= std::max(0.0, std::min(far[k], wet_hi[k]) - std::max(corner[k], wet_lo[k]));
+      }
+      wall_solid_[c] = std::max(0.0, cell - wet);
+    }
+  }
+  // The boxes: each its exact volume in each cell, less its part behind
+  // the planes.
+  for (std::size_t w : solid_walls) {
+    if (!walls[w].is_box()) continue;
+    const std::optional<SolidBox<D>> box = displaced_box(walls[w]);
     if (!box) continue;
-    for_each_box_cell(grid, *box,
-                      [&](const std::array<int, D>& c, double v) { wall_solid_[grid.index(c)] += v; });
+    for_each_box_cell(grid, *box, [&](const std::array<int, D>& c, double v) {
+      if (planes && v > 0.0) {
+        Vec<D> corner;
+        Vec<D> far;
+        cell_bounds(c, corner, far);
+        const Vec<D> from = corner.cwiseMax(wet_lo);
+        const Vec<D> to = far.cwiseMin(wet_hi);
+        v = (to.array() > from.array()).all() ? box_cell_volume(*box, from, to) : 0.0;
+      }
+      wall_solid_[grid.index(c)] += v;
+    });
   }
   compute_open_faces(walls);
 }

@@ -2,8 +2,10 @@
 // the fluid, and on the barrier of an impermeable plate (pore_fluid.hpp).
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "darcydem/fluid/box_cell_overlap.hpp"
@@ -94,11 +96,44 @@ std::optional<SolidBox<D>> PoreFluid<D>::displaced_box(const Wall<D>& wall) cons
 }
 
 template <int D>
+std::pair<Vec<D>, Vec<D>> PoreFluid<D>::planes_wet_region(const std::vector<Wall<D>>& walls,
+                                                          std::size_t skip) const {
+  Vec<D> lo = Vec<D>::Constant(-std::numeric_limits<double>::infinity());
+  Vec<D> hi = Vec<D>::Constant(std::numeric_limits<double>::infinity());
+  for (std::size_t w : solid_walls) {
+    if (w == skip || walls.at(w).is_box()) continue;
+    const auto solid = displaced_box(walls[w]);
+    if (!solid) continue;
+    const int axis = grid_axis_of<D>(walls[w].normal);
+    if (walls[w].normal[axis] > 0.0) {
+      lo[axis] = std::max(lo[axis], solid->centre[axis] + solid->half[axis]);
+    } else {
+      hi[axis] = std::min(hi[axis], solid->centre[axis] - solid->half[axis]);
+    }
+  }
+  return {lo, hi};
+}
+
+template <int D>
 Vec<D> PoreFluid<D>::wall_thrust(const std::vector<Wall<D>>& walls, std::size_t w) const {
   if (!initialized_) throw std::logic_error("PoreFluid::wall_thrust before initialize");
   const Wall<D>& wall = walls.at(w);
-  const auto box = displaced_box(wall);
+  auto box = displaced_box(wall);
   if (!box) return Vec<D>::Zero();
+  if (!wall.is_box()) {
+    // Across its normal, only where the other planes leave water: a platen
+    // between platens is wet over the section they bound.
+    const auto [wet_lo, wet_hi] = planes_wet_region(walls, w);
+    const int axis = grid_axis_of<D>(wall.normal);
+    for (int k = 0; k < D; ++k) {
+      if (k == axis) continue;
+      const double from = std::max(box->centre[k] - box->half[k], wet_lo[k]);
+      const double to = std::min(box->centre[k] + box->half[k], wet_hi[k]);
+      if (!(to > from)) return Vec<D>::Zero();
+      box->centre[k] = 0.5 * (from + to);
+      box->half[k] = 0.5 * (to - from);
+    }
+  }
   const Vec<D> thrust = is_impermeable(w) ? sealed_box_thrust(*box) : box_thrust(*box);
   // On a plane, along its normal (the box's sides beyond the grid are dry).
   return wall.is_box() ? thrust : Vec<D>(thrust.dot(wall.normal) * wall.normal);
@@ -229,6 +264,10 @@ Vec<D> PoreFluid<D>::barrier_thrust(std::size_t barrier) const {
   return thrust;
 }
 
+template std::pair<Vec<2>, Vec<2>> PoreFluid<2>::planes_wet_region(const std::vector<Wall<2>>&,
+                                                                   std::size_t) const;
+template std::pair<Vec<3>, Vec<3>> PoreFluid<3>::planes_wet_region(const std::vector<Wall<3>>&,
+                                                                   std::size_t) const;
 template Vec<2> PoreFluid<2>::wall_thrust(const std::vector<Wall<2>>&, std::size_t) const;
 template Vec<3> PoreFluid<3>::wall_thrust(const std::vector<Wall<3>>&, std::size_t) const;
 template void PoreFluid<2>::compute_open_faces(const std::vector<Wall<2>>&);

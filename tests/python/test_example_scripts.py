@@ -21,6 +21,7 @@ def load(path):
 drum_profile = load("examples/dem_cases/drum_profile.py")
 triaxial_plot = load("examples/dem_cases/triaxial_plot.py")
 vibrated_plot = load("examples/dem_cases/vibrated_plot.py")
+undrained_plot = load("examples/fluid_cases/undrained_triaxial_plot.py")
 
 
 def tilted_bed(angle, spacing, drum_radius=8e-3, depth=-2e-3):
@@ -194,6 +195,75 @@ class VibratedPlot(unittest.TestCase):
                            capture_output=True, text=True)
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("probes.csv: no such file (run the scene first)", r.stderr)
+
+class UndrainedTriaxialPlot(unittest.TestCase):
+    """undrained_triaxial_plot.py's closed form and its reading of a run."""
+
+    SCRIPT = "examples/fluid_cases/undrained_triaxial_plot.py"
+
+    def test_the_closed_form_has_the_elastic_limits(self):
+        # Skempton's A of an elastic skeleton is 1/3 whatever K_f; with
+        # incompressible water (K_f -> infinity) the sample keeps its
+        # volume, e1 = 2 e3, so u = E e1 / 2 and the effective stress path
+        # is vertical (p' constant); with no water (K_f -> 0) u = 0 and the
+        # path is the drained one, dq/dp' = 3.
+        for kf in (1e3, 1.19e5, 1e7):
+            lattice = undrained_plot.Lattice(3, 5e-4, 1e3, kf, 0.4762)
+            p, q = lattice.path(1e-4, 100.0)
+            self.assertAlmostEqual(lattice.pore_pressure(1e-4) / (lattice.b * q), 1.0 / 3.0, delta=1e-14)
+        stiff = undrained_plot.Lattice(3, 5e-4, 1e3, 1e15, 0.4762)
+        self.assertAlmostEqual(stiff.modulus, 750e3, delta=1e-9)  # 3 k_n / (2 r 4)
+        self.assertAlmostEqual(stiff.pore_pressure(1e-4) / (0.5 * 750e3 * 1e-4), 1.0, delta=1e-8)
+        self.assertAlmostEqual(stiff.path(1e-4, 100.0)[0], 100.0, delta=1e-6)
+        dry = undrained_plot.Lattice(3, 5e-4, 1e3, 1e-9, 0.4762)
+        p, q = dry.path(1e-4, 100.0)
+        self.assertAlmostEqual(q / (p - 100.0), 3.0, delta=1e-9)
+
+    def run_on(self, rows, *options):
+        out = tempfile.mkdtemp()
+        names = ["time", "pore_pressure", "axial_stress", "lateral_stress",
+                 "x_low_x", "x_high_x", "y_low_y", "y_high_y", "z_low_z", "z_high_z"]
+        with open(os.path.join(out, "probes.csv"), "w") as f:
+            f.write(",".join(names) + "\n")
+            for r in rows:
+                f.write(",".join(repr(r[k]) for k in names) + "\n")
+        return subprocess.run([sys.executable, os.path.join(SOURCE, self.SCRIPT), out, "--no-plot", *options],
+                              capture_output=True, text=True)
+
+    def test_a_sample_that_follows_the_lattice_gives_its_a(self):
+        # A sample made by hand: consolidated to sides of 3 mm (1 - 1e-4),
+        # then sheared to e1 = 1.5e-4 as the lattice's closed form says,
+        # with K_f = 1e5 Pa (not the default: given on the command line).
+        side0 = 3e-3 * (1.0 - 1e-4)
+        spheres = 27 * 4.0 / 3.0 * math.pi * 5e-4**3
+        lattice = undrained_plot.Lattice(3, 5e-4, 1e3, 1e5, 1.0 - spheres / side0**3)
+        rows = []
+        for k in range(71):
+            t = 1e-3 * k
+            e1 = 1.5e-4 * max(0.0, min(1.0, (t - 0.03) / 0.03))
+            u = lattice.pore_pressure(e1)
+            lateral = side0 * (1.0 + u / lattice.modulus)
+            rows.append({"time": t, "pore_pressure": u, "axial_stress": 100.0 + lattice.modulus * e1,
+                         "lateral_stress": 100.0 - u, "x_low_x": 0.0, "x_high_x": lateral, "y_low_y": 0.0,
+                         "y_high_y": lateral, "z_low_z": 0.0, "z_high_z": side0 * (1.0 - e1)})
+        out = self.run_on(rows, "--bulk-modulus", "1e5")
+        self.assertEqual(out.returncode, 0, out.stderr)
+        self.assertIn("Skempton's A = 0.3333", out.stdout)  # the printed A, to its four digits
+        expected = lattice.pore_pressure(1.5e-4)
+        self.assertIn(f"u = {expected:.4f} Pa (closed form {expected:.4f})", out.stdout)
+
+    def test_a_missing_or_short_run_is_refused(self):
+        out = tempfile.mkdtemp()
+        r = subprocess.run([sys.executable, os.path.join(SOURCE, self.SCRIPT), out], capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("probes.csv: no such file", r.stderr)
+        short = [{"time": 1e-3 * k, "pore_pressure": 0.0, "axial_stress": 100.0, "lateral_stress": 100.0,
+                  "x_low_x": 0.0, "x_high_x": 3e-3, "y_low_y": 0.0, "y_high_y": 3e-3, "z_low_z": 0.0,
+                  "z_high_z": 3e-3} for k in range(20)]
+        r = self.run_on(short)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("before the shear", r.stderr)
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

@@ -308,6 +308,63 @@ TEST(WallThrust, APlatenFeelsThePressureOnItsFaceAlongItsNormal) {
   }
 }
 
+TEST(WallThrust, PlatensThatMeetCountTheirSharedSolidOnceAndTakeTheSectionTheOthersBound) {
+  // A cell of four platens in the steady column (u = 100 (0.08 - z) Pa,
+  // grid 6 x 4 x 8 cells of 1 cm): x_low at x = 0.015 (facing +x), x_high
+  // at 0.043 (facing -x), both beyond the first layers (where a plane's
+  // solid keeps a sliver inside the grid), a floor at z = 0.02 (facing +z), a lid at 0.06
+  // (facing -z); the water is in [0.015, 0.043] x [0, 0.04] x [0.02, 0.06],
+  // the rest of the grid solid. By hand: the walls' volume is the grid's
+  // less that, 1.92e-4 - 0.028 x 0.04 x 0.04 = 1.472e-4 m^3; a corner cell
+  // below the floor and beside x_low is solid once (1e-6 m^3, not 1.5e-6:
+  // the platens overlap there). Each platen takes the water's thrust over
+  // the section the others bound: the lid u(0.06) = 2 Pa over 0.028 x 0.04
+  // (+2.24e-3 N along z), the floor u(0.02) = 6 Pa (-6.72e-3 N), each side
+  // the integral of u over 0.04 x [0.02, 0.06], 0.04 x 0.16 = 6.4e-3 N,
+  // pushing it out. The grid's whole section instead would give the lid
+  // 3.2e-3 N and each side 1.28e-2 N.
+  std::vector<Wall<3>> walls{moving_plane<3>(Vec<3>(0.015, 0.0, 0.0), Vec<3>(1.0, 0.0, 0.0), Vec<3>::Zero()),
+                             moving_plane<3>(Vec<3>(0.043, 0.0, 0.0), Vec<3>(-1.0, 0.0, 0.0), Vec<3>::Zero()),
+                             moving_plane<3>(Vec<3>(0.0, 0.0, 0.02), Vec<3>(0.0, 0.0, 1.0), Vec<3>::Zero()),
+                             moving_plane<3>(Vec<3>(0.0, 0.0, 0.06), Vec<3>(0.0, 0.0, -1.0), Vec<3>::Zero())};
+  for (auto& w : walls) w.motion = WallMotion::fixed;
+  PoreFluid<3> f = empty_grid<3>(0.01, {6, 4, 8});
+  f.sides[4] = {FluidBoundaryType::flux, TimeSeries::constant(1e-5)};
+  f.solid_walls = {0, 1, 2, 3};
+  ParticleData<3> none;
+  f.initialize(none, walls);
+  for (int s = 1; s <= 3; ++s) f.update(none, 1.0, s, walls);
+  double total = 0.0;
+  for (double v : f.wall_volume()) total += v;
+  // The volumes exact to round-off (1e-16 of a cell, 1e-6 m^3).
+  EXPECT_NEAR(total, 1.472e-4, 1e-18);
+  EXPECT_NEAR(f.wall_volume()[f.grid.index({1, 2, 1})], 1e-6, 1e-20);
+  EXPECT_NEAR(f.wall_volume()[f.grid.index({1, 2, 2})], 0.5e-6, 1e-20);
+  EXPECT_NEAR(f.wall_volume()[f.grid.index({4, 2, 6})], 1e-6, 1e-20);
+  EXPECT_NEAR(f.wall_volume()[f.grid.index({4, 2, 5})], 0.7e-6, 1e-20);
+  // The thrusts: the pressures to the solver's tolerance, the sections
+  // exact, and on whole cells the faces' pressures integrate the linear u
+  // exactly: 1e-9 of each, as for the single platen above.
+  const double lid = 2.0 * 0.028 * 0.04;
+  const double floor = 6.0 * 0.028 * 0.04;
+  const double side = 0.04 * 0.16;
+  EXPECT_NEAR(f.wall_thrust(walls, 3).z(), lid, 1e-9 * lid);
+  EXPECT_NEAR(f.wall_thrust(walls, 2).z(), -floor, 1e-9 * floor);
+  EXPECT_NEAR(f.wall_thrust(walls, 1).x(), side, 1e-9 * side);
+  EXPECT_NEAR(f.wall_thrust(walls, 0).x(), -side, 1e-9 * side);
+  // A box that displaces the fluid, reaching behind x_low: only its part
+  // in the water counts, [0.015, 0.025] x [0.01, 0.02] x [0.03, 0.04].
+  walls.push_back(moving_box<3>(Vec<3>(0.01, 0.01, 0.03), Vec<3>(0.025, 0.02, 0.04), Vec<3>::Zero()));
+  walls.back().motion = WallMotion::fixed;
+  PoreFluid<3> g = empty_grid<3>(0.01, {6, 4, 8});
+  g.solid_walls = {0, 1, 2, 3, 4};
+  g.initialize(none, walls);
+  total = 0.0;
+  for (double v : g.wall_volume()) total += v;
+  EXPECT_NEAR(total, 1.472e-4 + 1e-6, 1e-18);
+  EXPECT_NEAR(g.wall_volume()[g.grid.index({1, 1, 3})], 1e-6, 1e-20);  // x_low's half and the box's
+}
+
 TEST(WallThrust, APlateAcrossTheFlowHoldsThePressureDifference2D) {
   // A 2D grid of 1 cm cells, 6 x 6, drained at 50 Pa below and 0 above,
   // with an impermeable plate across its whole width at y = 0.03: no flow,

@@ -22,6 +22,7 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Sparse>
@@ -91,6 +92,9 @@ class PoreFluid final : public ParticleForceField<D> {
   /// exact volume there (box_cell_overlap.hpp) is solid, like the grains' (porosity,
   /// storage, permeability); a moving one changes it, which the Biot term
   /// turns into pressure and flow, so it pushes the pore water ahead of it.
+  /// Where the planes' solids overlap (a cell's platens meet at its edges
+  /// and corners), their union counts once, and a box counts only its part
+  /// outside them; boxes overlapping each other add up.
   std::vector<std::size_t> solid_walls;
   /// Of solid_walls, those the pore water cannot cross either (a wall's
   /// `impermeable`): boxes along the grid's axes and planes. Every face
@@ -210,8 +214,10 @@ class PoreFluid final : public ParticleForceField<D> {
   /// the side's outward normal, and where it crosses a barrier, its section
   /// times the jump. A plane normal to a grid axis: the same for the
   /// half-space behind it (behind_plane), along its normal; on or beyond
-  /// the grid's side it faces, it takes that side's pressure. Exact for a
-  /// pressure linear in space. An impermeable wall (impermeable_walls)
+  /// the grid's side it faces, it takes that side's pressure. Across its
+  /// normal, only as far as the other planes leave water (planes_wet_region):
+  /// a platen between others takes the water's thrust over the section
+  /// they bound. Exact for a pressure linear in space. An impermeable wall (impermeable_walls)
   /// instead takes the pressure on each of its faces from the cells on the
   /// wet side (sealed_box_thrust). The hydrostatic part (buoyancy) is not
   /// in it: u is the excess pressure.
@@ -286,6 +292,12 @@ class PoreFluid final : public ParticleForceField<D> {
   /// for a plane behind_plane, its face kept 1e-5 of a cell inside the
   /// grid. None if it misses the grid.
   [[nodiscard]] std::optional<SolidBox<D>> displaced_box(const Wall<D>& wall) const;
+  /// The region the planes among solid_walls (but `skip`, an index into
+  /// `walls`) leave to the water, an axis-aligned box [lo, hi]: along each
+  /// axis between the faces of their solids (displaced_box), +-infinity
+  /// where no plane bounds it. Their solids' union is all else.
+  [[nodiscard]] std::pair<Vec<D>, Vec<D>> planes_wet_region(const std::vector<Wall<D>>& walls,
+                                                            std::size_t skip = std::size_t(-1)) const;
   /// face_open_ from the impermeable_walls among `walls` (empty if none).
   void compute_open_faces(const std::vector<Wall<D>>& walls);
   /// wall_solid_ from the solid_walls among `walls`.
