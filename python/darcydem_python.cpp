@@ -38,6 +38,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "contact_view.hpp"
 #include "darcydem/analysis/seepage_analytic.hpp"
@@ -375,40 +376,63 @@ class Model {
     }
   }
 
-  /// A servo's target: a number, or {'times': [s from now, increasing],
-  /// 'values': [...]} (a ramp or schedule), each value finite and >= 0.
-  static TimeSeries read_servo_schedule(const py::object& given) {
-    const std::string form =
-        "the target must be a number or {'times': [s from now], 'values': [...]} (a ramp or schedule)";
+  /// A value in time: a number, or {'times': [s from now, increasing],
+  /// 'values': [...]} (a ramp or schedule), each value finite (and >= 0
+  /// if `nonnegative`). `who` (the method) and `what` name it in messages.
+  static TimeSeries read_schedule(const py::object& given, const std::string& who, const std::string& what,
+                                  bool nonnegative) {
+    const std::string form = fmt::format(
+        "{} must be a number or {{'times': [s from now], 'values': [...]}} (a ramp or schedule)", what);
     TimeSeries s;
     if (py::isinstance<py::dict>(given)) {
       const auto d = given.cast<py::dict>();
       for (const auto& [key, value] : d) {
         const auto k = py::str(key).cast<std::string>();
         if (k != "times" && k != "values")
-          throw py::value_error(fmt::format("set_wall_servo: the target has no key '{}': {}", k, form));
+          throw py::value_error(fmt::format("{}: {} has no key '{}': {}", who, what, k, form));
       }
-      if (!d.contains("times") || !d.contains("values")) throw py::value_error("set_wall_servo: " + form);
+      if (!d.contains("times") || !d.contains("values")) throw py::value_error(who + ": " + form);
       s.times = d["times"].cast<std::vector<double>>();
       s.values = d["values"].cast<std::vector<double>>();
       if (s.times.empty() || s.times.size() != s.values.size())
         throw py::value_error(
-            "set_wall_servo: the target's times and values must have the same, non-zero length");
+            fmt::format("{}: {}'s times and values must have the same, non-zero length", who, what));
       for (std::size_t i = 0; i < s.times.size(); ++i) {
         if (!(s.times[i] >= 0.0) || !std::isfinite(s.times[i]) || (i > 0 && !(s.times[i] > s.times[i - 1])))
           throw py::value_error(
-              "set_wall_servo: the target's times must be finite, >= 0 and increase strictly");
+              fmt::format("{}: {}'s times must be finite, >= 0 and increase strictly", who, what));
       }
     } else if (py::isinstance<py::float_>(given) || py::isinstance<py::int_>(given)) {
       s = TimeSeries::constant(given.cast<double>());
     } else {
-      throw py::value_error("set_wall_servo: " + form);
+      throw py::value_error(who + ": " + form);
     }
     for (double v : s.values) {
-      if (!(v >= 0.0) || !std::isfinite(v))
-        throw py::value_error(fmt::format("set_wall_servo: the target must be finite and >= 0, got {}", v));
+      if (!std::isfinite(v) || (nonnegative && !(v >= 0.0)))
+        throw py::value_error(
+            fmt::format("{}: {} must be finite{}, got {}", who, what, nonnegative ? " and >= 0" : "", v));
     }
     return s;
+  }
+
+  /// Sets a [[fluid.source]]'s inflow between steps, as a stage's
+  /// fluid.sources.NAME = { inflow = ... } does, a series counted from now.
+  void set_fluid_source(const std::string& name, const py::object& inflow) {
+    PoreFluid<D>* f = fluid();
+    if (f == nullptr) throw py::value_error("set_fluid_source: the scene has no [fluid]");
+    std::vector<std::string> names;
+    for (const auto& source : f->sources) names.push_back(source.name);
+    const auto at = std::find(names.begin(), names.end(), name);
+    if (at == names.end()) {
+      throw py::value_error(
+          names.empty()
+              ? std::string("set_fluid_source: the scene has no [[fluid.source]]")
+              : fmt::format("set_fluid_source: no [[fluid.source]] named \"{}\" (the scene has: {})", name,
+                            fmt::join(names, ", ")));
+    }
+    TimeSeries series = read_schedule(inflow, "set_fluid_source", "the inflow", false);
+    series.start = sim().time;
+    f->sources[static_cast<std::size_t>(at - names.begin())].inflow = series;
   }
 
   /// A servo's cycle = {'amplitude': N or Pa, 'frequency': Hz, 'phase':
@@ -457,7 +481,8 @@ class Model {
           "plane's load over the cross-section the other walls bound)");
     }
     const bool by_stress = !target_stress.is_none();
-    const TimeSeries schedule = read_servo_schedule(by_stress ? target_stress : target_force);
+    const TimeSeries schedule =
+        read_schedule(by_stress ? target_stress : target_force, "set_wall_servo", "the target", true);
     // The least the target takes (a cycle must not take it below 0).
     const double target = *std::min_element(schedule.values.begin(), schedule.values.end());
     if (!(gain > 0.0) || !std::isfinite(gain))
@@ -888,7 +913,9 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "the grains' volume in each cell, m^3 (2D: per metre), exact")
       .def_property_readonly(
           "wall_volume", [](const F& f) { return cell_field<D>(f.fluid->grid, f.fluid->wall_volume(), 1); },
-          "the volume of the box walls that displace the fluid in each cell, m^3 (2D: per metre), exact")
+          "the volume of the walls that displace the fluid in each cell, m^3 (2D: per metre), exact (the "
+          "planes' "
+          "union where they meet)")
       .def_property_readonly(
           "permeability",
           [](const F& f) { return cell_field<D>(f.fluid->grid, f.fluid->permeability_field(), D); },
@@ -903,6 +930,25 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
             return f.fluid->pressure_at(as_vec<D>(x, "point"));
           },
           py::arg("point"), "excess pore pressure at a point, Pa, between the cell centres")
+      .def_property_readonly(
+          "sources",
+          [](const F& f) {
+            py::list out;
+            for (std::size_t i = 0; i < f.fluid->sources.size(); ++i) {
+              const auto& source = f.fluid->sources[i];
+              py::dict d;
+              d["name"] = source.name;
+              d["position"] = std::vector<double>(source.position.data(), source.position.data() + D);
+              const auto c = f.fluid->grid.coords(f.fluid->source_cell(i));
+              d["cell"] = std::vector<int>(c.begin(), c.end());
+              d["inflow"] = f.fluid->source_inflow(i);
+              out.append(d);
+            }
+            return out;
+          },
+          "the [[fluid.source]]s: name, position (m), the cell it feeds (indices) and inflow, what it gave "
+          "in "
+          "the last fluid step, m^3/s (2D: per metre)")
       .def_property_readonly(
           "balance",
           [](const F& f) {
@@ -1088,6 +1134,11 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "'phase': degrees (optional, 0)} adds amplitude sin(2 pi f t + phase) to the target, t from now "
            "(cyclic loading); load = 'grains' (their push) or 'total' (with the pore water's thrust, on a "
            "wall that displaces the fluid)")
+      .def("set_fluid_source", &M::set_fluid_source, py::arg("name"), py::arg("inflow"),
+           "sets a [[fluid.source]]'s inflow between steps, as a stage's fluid.sources.NAME = { inflow = ... "
+           "} "
+           "does: m^3/s into the pore water (2D: per metre), negative pumping out; a number or {'times': [s "
+           "from now], 'values': [...]}")
       .def("set_wall_motion", &M::set_wall_motion, py::arg("name"), py::arg("velocity") = py::none(),
            py::arg("angular_velocity") = py::none(), py::arg("radial_velocity") = py::none(),
            py::arg("oscillation") = py::none(),

@@ -70,6 +70,19 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles, const std::vecto
     }
   }
   build_pattern();
+  source_cells_.clear();
+  for (const FluidSource<D>& source : sources) {
+    std::array<int, D> c{};
+    for (int k = 0; k < D; ++k) {
+      const double lo = grid.face_at(k, 0);
+      const double hi = grid.face_at(k, grid.cells[k]);
+      if (!(source.position[k] >= lo && source.position[k] <= hi))
+        throw std::logic_error("PoreFluid: the source \"" + source.name + "\" is outside the grid");
+      c[k] = std::clamp(grid.cell_along(k, source.position[k]), 0, grid.cells[k] - 1);
+    }
+    source_cells_.push_back(grid.index(c));
+  }
+  source_inflow_.assign(sources.size(), 0.0);
   compute_solid(particles);
   solid_old_ = solid_;
   compute_wall_solid(walls);
@@ -685,6 +698,11 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
       rhs_[bf.cell] += dt * side.value.at(time) * open * area;
     }
   }
+  // Sources: their water into their cells.
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    source_inflow_[i] = sources[i].inflow.at(time);
+    rhs_[source_cells_[i]] += dt * source_inflow_[i];
+  }
 
   // Initial guess (CG): the pressure extrapolated linearly from the last
   // two fluid steps, which follows a smoothly changing flow.
@@ -734,6 +752,10 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   for (int s = 0; s < 2 * D; ++s) {
     b.inflow += side_inflow_[s] * dt;
     b.gross += std::abs(rest[s] * dt);
+  }
+  for (double q : source_inflow_) {
+    b.inflow += q * dt;
+    b.gross += std::abs(q * dt);
   }
   b.gross += solid_moved;
   b.gross += std::abs(b.stored);

@@ -178,12 +178,21 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       for (int k = 0; k < D; ++k) x[k] = probe.position[k];
       return fluid != nullptr ? fluid->pressure_at(x) : 0.0;
     }
-    case ProbeQuantity::fluid_inflow:
+    case ProbeQuantity::fluid_inflow: {
       if (fluid == nullptr) return 0.0;
-      return probe.side < 2 * D ? fluid->side_inflow(probe.side)
-                                : fluid->patch_inflow(static_cast<std::size_t>(probe.side - 2 * D));
-    case ProbeQuantity::side_pressure:
-      return fluid != nullptr ? fluid->side_pressure(probe.side) : 0.0;
+      if (probe.side < 2 * D) return fluid->side_inflow(probe.side);
+      const auto i = static_cast<std::size_t>(probe.side - 2 * D);
+      return i < fluid->patches.size() ? fluid->patch_inflow(i)
+                                       : fluid->source_inflow(i - fluid->patches.size());
+    }
+    case ProbeQuantity::side_pressure: {
+      if (fluid == nullptr) return 0.0;
+      // A source's: the pressure in the cell it feeds (a piezometer in the well).
+      const auto i = static_cast<std::size_t>(std::max(probe.side - 2 * D, 0));
+      if (probe.side >= 2 * D && i >= fluid->patches.size())
+        return fluid->pressure()[fluid->source_cell(i - fluid->patches.size())];
+      return fluid->side_pressure(probe.side);
+    }
     case ProbeQuantity::fluid_balance:
       return fluid != nullptr ? fluid->total_balance().imbalance() : 0.0;
     case ProbeQuantity::fluid_iterations:

@@ -258,6 +258,10 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
       condition = b;
       condition.value.start = sim.time;
     }
+    for (const auto& [source, inflow] : stage.fluid_sources) {
+      fluid->sources[source].inflow = inflow;
+      fluid->sources[source].inflow.start = sim.time;
+    }
   }
   if (stage.gravity) sim.gravity = *stage.gravity;
   if (stage.local_damping) sim.damping.local = *stage.local_damping;
@@ -717,6 +721,22 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::
     const double area = fluid.patch_area(k);
     out += fmt::format("patch {} on {}: {} faces, {:.6g} m^2, {}\n", patch.name, side_names[patch.side],
                        fluid.patch_faces(k), area, to_string(patch.condition.type));
+  }
+  for (std::size_t k = 0; k < fluid.sources.size(); ++k) {
+    const auto& source = fluid.sources[k];
+    const auto cell = fluid.grid.coords(fluid.source_cell(k));
+    std::string at;
+    std::string index;
+    for (int a = 0; a < D; ++a) {
+      at += fmt::format("{}{:.6g}", a == 0 ? "" : ", ", source.position[a]);
+      index += fmt::format("{}{}", a == 0 ? "" : ", ", cell[a]);
+    }
+    const bool steady = source.inflow.times.size() == 1;
+    out += fmt::format(
+        "source {} at ({}) m, into cell ({}): {}\n", source.name, at, index,
+        steady ? fmt::format("{:.6g} m^{}/s", source.inflow.at(0.0), D)
+               : fmt::format("{:.6g} to {:.6g} m^{}/s over {} points in time", source.inflow.values.front(),
+                             source.inflow.values.back(), D, source.inflow.values.size()));
   }
   for (std::size_t k = 0; k < fluid.barriers.size(); ++k) {
     const auto& b = fluid.barriers[k];

@@ -1452,15 +1452,17 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       p.position = r.numbers("position", D);
     } else if (q == "fluid_inflow" || q == "side_pressure") {
       p.quantity = q == "fluid_inflow" ? ProbeQuantity::fluid_inflow : ProbeQuantity::side_pressure;
-      // A side, or a patch of one (index 2 D + its index in the patches).
+      // A side, or a patch of one (index 2 D + its index in the patches),
+      // or a source (after the patches).
       auto names = std::vector<std::string>(side_names, side_names + 2 * D);
       for (const auto& patch : scene.fluid->patches) names.push_back(patch.name);
+      for (const auto& source : scene.fluid->sources) names.push_back(source.name);
       const std::string side = r.choice("side", names);
       p.side = static_cast<int>(std::find(names.begin(), names.end(), side) - names.begin());
       if (p.side < 2 * D && scene.fluid->grid.periodic[p.side / 2]) {
         r.fail("side",
                fmt::format("the fluid grid is periodic along {}: its side {} is no boundary (allowed: "
-                           "a side along a non-periodic axis, or a patch)",
+                           "a side along a non-periodic axis, a patch or a source)",
                            "xyz"[p.side / 2], side));
       }
     } else if (q == "fluid_balance" || q == "fluid_iterations") {
@@ -1750,6 +1752,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         s.fluid_sides = std::move(changes.sides);
         s.fluid_patches = std::move(changes.patches);
       }
+      if (const toml::table* st = fr.optional_table("sources"))
+        s.fluid_sources = read_source_changes<D>(*st, r.where() + " fluid.sources", file, *scene.fluid);
       if (fr.has("freeze_permeability")) s.freeze_permeability = fr.boolean_or("freeze_permeability", false);
       if (fr.has("steps_per_update")) s.fluid_steps_per_update = read_steps_per_update(fr);
       if (fr.has("hold_forces")) s.fluid_hold_forces = fr.boolean_or("hold_forces", false);

@@ -314,7 +314,76 @@ FluidBarrier<D> read_barrier(const toml::table& table, const std::string& where,
   return barrier;
 }
 
+/// One [[fluid.source]]: 'name', 'position' (in the grid), 'inflow'
+/// (m^3/s, a number or a series). `taken` holds the names the sides,
+/// patches and earlier sources already use.
+template <int D>
+FluidSource<D> read_source(const toml::table& table, const std::string& where, const std::string& file,
+                           const FluidGrid<D>& grid, const std::vector<std::string>& taken) {
+  TableReader r(table, where, file);
+  FluidSource<D> source;
+  source.name = r.string("name");
+  if (source.name.empty()) r.fail("name", "must not be empty (probes and stages find the source by it)");
+  if (std::find(taken.begin(), taken.end(), source.name) != taken.end()) {
+    r.fail("name",
+           fmt::format("\"{}\" is already a side, a patch or a source of the fluid: names must differ "
+                       "(the fluid_inflow probe and the stages find a source by its name)",
+                       source.name));
+  }
+  const auto x = r.numbers("position", D);
+  for (int k = 0; k < D; ++k) {
+    const double lo = grid.face_at(k, 0);
+    const double hi = grid.face_at(k, grid.cells[k]);
+    if (!(x[k] >= lo && x[k] <= hi)) {
+      r.fail("position", fmt::format("must lie in the fluid grid: {} = {} m is outside [{}, {}] m", "xyz"[k],
+                                     TableReader::format_number(x[k]), TableReader::format_number(lo),
+                                     TableReader::format_number(hi)));
+    }
+    source.position[k] = x[k];
+  }
+  source.inflow = read_time_series(
+      r, "inflow",
+      D == 2 ? "m^2/s per metre into the grid, negative out" : "m^3/s into the grid, negative out");
+  r.finish();
+  return source;
+}
+
 }  // namespace
+
+template <int D>
+std::vector<std::pair<std::size_t, TimeSeries>> read_source_changes(const toml::table& table,
+                                                                    const std::string& where,
+                                                                    const std::string& file,
+                                                                    const PoreFluid<D>& fluid) {
+  std::vector<std::string> names;
+  for (const auto& s : fluid.sources) names.push_back(s.name);
+  TableReader r(table, where, file);
+  std::vector<std::pair<std::size_t, TimeSeries>> out;
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    r.allow({name});
+    const auto at = std::find(names.begin(), names.end(), name);
+    if (at == names.end()) {
+      std::string hint;
+      if (auto h = did_you_mean(name, names); !h.empty()) hint = fmt::format(" (did you mean \"{}\"?)", h);
+      r.fail(name, names.empty() ? std::string("the scene has no [[fluid.source]]")
+                                 : fmt::format("is not a [[fluid.source]] of the scene{}", hint));
+    }
+    const toml::table* t = node.as_table();
+    if (t == nullptr) r.fail(name, "must be a table, e.g. { inflow = 0.0 } (m^3/s; a number or a series)");
+    TableReader sr(*t, fmt::format("{}.{}", where, name), file);
+    for (auto k : {"name", "position"}) {
+      if (sr.has(k))
+        sr.fail(k,
+                "a stage changes a source's inflow only; its name and position are set in [[fluid.source]]");
+    }
+    out.emplace_back(static_cast<std::size_t>(at - names.begin()),
+                     read_time_series(sr, "inflow", "m^3/s into the grid, negative out"));
+    sr.finish();
+  }
+  r.finish();
+  return out;
+}
 
 template <int D>
 FluidBoundaryChanges read_fluid_boundary_changes(const toml::table& table, const std::string& where,
@@ -540,6 +609,20 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
           read_barrier<D>(*t, fmt::format("[[fluid.barrier]] #{}", index), file, fluid->grid));
     }
   }
+  // [[fluid.source]]: wells and injection points inside the grid.
+  if (const toml::array* a = r.optional_array("source")) {
+    std::vector<std::string> taken = side_list<D>();
+    for (const auto& p : fluid->patches) taken.push_back(p.name);
+    int index = 0;
+    for (const toml::node& node : *a) {
+      ++index;
+      const toml::table* t = node.as_table();
+      if (t == nullptr) r.fail("source", "must be an array of tables: [[fluid.source]]");
+      fluid->sources.push_back(
+          read_source<D>(*t, fmt::format("[[fluid.source]] #{}", index), file, fluid->grid, taken));
+      taken.push_back(fluid->sources.back().name);
+    }
+  }
   // Impermeable box walls: barriers on their planes, checked like the
   // others but reported at the wall's 'impermeable' key.
   for (const auto& w : wall_barriers) {
@@ -556,6 +639,14 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   return fluid;
 }
 
+template std::vector<std::pair<std::size_t, TimeSeries>> read_source_changes<2>(const toml::table&,
+                                                                                const std::string&,
+                                                                                const std::string&,
+                                                                                const PoreFluid<2>&);
+template std::vector<std::pair<std::size_t, TimeSeries>> read_source_changes<3>(const toml::table&,
+                                                                                const std::string&,
+                                                                                const std::string&,
+                                                                                const PoreFluid<3>&);
 template FluidBoundaryChanges read_fluid_boundary_changes<2>(const toml::table&, const std::string&,
                                                              const std::string&, const PoreFluid<2>*,
                                                              std::vector<FluidPatch<2>>*);

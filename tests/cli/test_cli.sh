@@ -52,6 +52,9 @@ sed 's/^drag = "darcy"/drag = "ergun"/' "$src/examples/fluid_cases/graded_sand_s
   | grep -q "^  note: with Ergun's drag each grain takes its own d, which balances Kozeny-Carman for d = 0.0013" \
   && ok "check says how far Ergun's drag misses Kozeny-Carman on a graded sand" || bad "check: Ergun's note"
 
+"$exe" check "$src/examples/fluid_cases/pumping_well.toml" \
+  | grep -q "^  source well at (0.205, 0.205) m, into cell (20, 20): -2e-06 m^2/s$" \
+  && ok "check names a well, its cell and inflow" || bad "check: source ($("$exe" check "$src/examples/fluid_cases/pumping_well.toml" | grep source))"
 "$exe" check "$src/examples/dem_cases/vibrated_bed.toml" \
   | grep -q "^  stage shake: wall floor oscillates, amplitude (0, 0.001242) m at 20 Hz, phase -90 deg: peak acceleration 19.62 m/s^2, Gamma = A omega^2 / g = 2 along gravity (above 1" \
   && ok "check gives a shaken wall's Gamma" || bad "check: Gamma ($("$exe" check "$src/examples/dem_cases/vibrated_bed.toml" | grep shake))"

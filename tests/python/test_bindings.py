@@ -1086,6 +1086,67 @@ class CyclicPiston(unittest.TestCase):
             model.set_wall_servo("floor", gain=0.1, max_speed=0.05, target_force=0.26, load="total")
 
 
+class PumpingWell(unittest.TestCase):
+    """examples/fluid_cases/pumping_well.toml's well, read and shut off from Python."""
+
+    EXAMPLE = os.path.join(SOURCE, "examples", "fluid_cases", "pumping_well.toml")
+
+    @staticmethod
+    def e1(x):
+        """The exponential integral E1 by its series (x < 2 here)."""
+        total, term = -0.5772156649015329 - math.log(x), 1.0
+        for k in range(1, 60):
+            term *= -x / k
+            total -= term / k
+        return total
+
+    def test_a_well_shut_off_from_python_is_the_stages_and_recovers_as_theis_says(self):
+        by_stage = darcydem.load(self.EXAMPLE)
+        by_python = darcydem.load(self.EXAMPLE)
+        sources = by_python.fluid.sources
+        self.assertEqual([s["name"] for s in sources], ["well"])
+        self.assertEqual(sources[0]["cell"], [20, 20])
+        self.assertEqual(sources[0]["position"], [0.205, 0.205])
+        for model in (by_stage, by_python):
+            model.step(1000)  # 0.1 s of pumping
+        self.assertEqual(by_python.fluid.sources[0]["inflow"], -2e-6)
+        by_stage.apply_stage("recover")
+        by_python.set_fluid_source("well", inflow=0.0)
+        for model in (by_stage, by_python):
+            model.step(1000)
+        self.assertEqual(by_python.fluid.sources[0]["inflow"], 0.0)
+        # The same shut-off at the same step: bit for bit.
+        self.assertTrue(np.array_equal(by_stage.fluid.pressure, by_python.fluid.pressure))
+        # Theis, shut off at 0.1 s, 5 cm from the well at 0.2 s (c = 0.01
+        # m^2/s): -Q mu / (4 pi kappa) (E1(r^2 / 4 c t) - E1(r^2 / 4 c (t - 0.1))),
+        # within the lattice's correction at 5 cells and 2e-3 of the scale
+        # (as the C++ test APumpingTestDrawsDownAndRecoversAsTheisSays).
+        scale = 2e-6 * 1e-3 / (4.0 * math.pi * 1e-10)
+        expected = -scale * (self.e1(0.0025 / 0.008) - self.e1(0.0025 / 0.004))
+        u = by_python.fluid.pressure_at([0.255, 0.205])
+        self.assertAlmostEqual(u, expected, delta=scale * (1.0 / 150.0 + 2e-3))
+        # The water balance, the well's 2e-7 m^2 out in it: to round-off.
+        balance = by_python.fluid.balance
+        self.assertLess(abs(balance["imbalance"]), 1e-9 * balance["gross"])
+        self.assertGreater(balance["gross"], 2e-7)
+
+    def test_bad_sources_are_refused(self):
+        model = darcydem.load(self.EXAMPLE)
+        with self.assertRaisesRegex(ValueError, r'no \[\[fluid.source\]\] named "wel" \(the scene has: well\)'):
+            model.set_fluid_source("wel", inflow=0.0)
+        with self.assertRaisesRegex(ValueError, "the inflow must be a number or"):
+            model.set_fluid_source("well", inflow="off")
+        with self.assertRaisesRegex(ValueError, "the inflow's times and values must have the same"):
+            model.set_fluid_source("well", inflow={"times": [0.0, 1.0], "values": [0.0]})
+        with self.assertRaisesRegex(ValueError, "the inflow must be finite, got nan"):
+            model.set_fluid_source("well", inflow=float("nan"))
+        # A ramp is taken from now.
+        model.step(10)
+        model.set_fluid_source("well", inflow={"times": [0.0, 0.01], "values": [0.0, 1e-6]})
+        model.step(50)  # 0.005 s into the ramp: half of it
+        self.assertAlmostEqual(model.fluid.sources[0]["inflow"], 5e-7, delta=1e-15)
+
+
 class SaveAndLoad(unittest.TestCase):
     """model.save and darcydem.load(scene, checkpoint=...), YADE's O.save and O.load, on the sealed-piston
     column (pore fluid, servo, two stages)."""

@@ -967,6 +967,61 @@ TEST(SceneErrors, FluidPatchesAreChecked) {
       << msg;
 }
 
+TEST(SceneErrors, FluidSourcesAreChecked) {
+  // The grid is 1 x 2 cells of 1 x 2 mm: x in [-0.5, 0.5] mm, y in [0, 4] mm.
+  const std::string well = "\n[[fluid.source]]\nname = \"well\"\nposition = [0.0, 0.001]\ninflow = 1e-9\n";
+  ASSERT_EQ(load_error(with_fluid(well)), "");
+  {
+    const auto scene = built_scene<2>(
+        with_fluid(well + replace(well, "1e-9", "-2e-9").replace(well.find("well"), 4, "pump")));
+    ASSERT_EQ(scene.fluid->sources.size(), 2U);
+    EXPECT_EQ(scene.fluid->sources[1].name, "pump");
+    EXPECT_EQ(scene.fluid->sources[1].inflow.at(0.0), -2e-9);
+    EXPECT_EQ(scene.fluid->source_cell(0), 0U);  // y = 1 mm: the first cell
+  }
+  auto expect = [&](const std::string& text, const std::string& wanted) {
+    const auto msg = load_error(text);
+    EXPECT_NE(msg.find(wanted), std::string::npos) << msg;
+    EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  };
+  expect(
+      with_fluid(replace(well, "[0.0, 0.001]", "[0.0, 0.005]")),
+      "[[fluid.source]] #1 key 'position': must lie in the fluid grid: y = 0.005 m is outside [0, 0.004] m");
+  expect(with_fluid(replace(well, "[0.0, 0.001]", "[0.0]")), "key 'position'");
+  expect(with_fluid(replace(well, "\"well\"", "\"y_max\"")),
+         "[[fluid.source]] #1 key 'name': \"y_max\" is already a side, a patch or a source of the fluid");
+  expect(with_fluid(well + well), "[[fluid.source]] #2 key 'name': \"well\" is already a side");
+  expect(with_fluid(replace(well, "inflow = 1e-9\n", "")), "missing required key 'inflow'");
+  expect(with_fluid(replace(well, "inflow = 1e-9", "inflow = { times = [0.0, 1.0], values = [1e-9] }")),
+         "key 'values': must have as many entries as 'times'");
+  expect(with_fluid(replace(well, "inflow = 1e-9", "inflow = 1e-9\nradius = 0.001")), "unknown key 'radius'");
+  // A stage changes a source's inflow by its name, and nothing else.
+  const std::string stage = "gravity = [0.0, -9.81]\n";
+  auto in_stage = [&](const std::string& change, const std::string& sources = "") {
+    return replace(with_fluid(sources.empty() ? well : sources), stage,
+                   stage + "[stage.fluid.sources]\n" + change);
+  };
+  EXPECT_EQ(load_error(in_stage("well = { inflow = 0.0 }\n")), "");
+  {
+    const auto scene =
+        built_scene<2>(in_stage("well = { inflow = { times = [0.0, 1.0], values = [0.0, 3e-9] } }\n"));
+    ASSERT_EQ(scene.stages[0].fluid_sources.size(), 1U);
+    EXPECT_NEAR(scene.stages[0].fluid_sources[0].second.at(0.5), 1.5e-9, 1e-24);
+  }
+  expect(in_stage("wel = { inflow = 0.0 }\n"),
+         "is not a [[fluid.source]] of the scene (did you mean \"well\"?)");
+  expect(in_stage("well = { inflow = 0.0, position = [0.0, 0.002] }\n"),
+         "key 'position': a stage changes a source's inflow only");
+  expect(in_stage("well = 0.0\n"), "must be a table, e.g. { inflow = 0.0 }");
+  expect(replace(with_fluid(), stage, stage + "[stage.fluid.sources]\nwell = { inflow = 0.0 }\n"),
+         "the scene has no [[fluid.source]]");
+  // Probes read a source by its name: the flow it gives, the pressure in its cell.
+  const std::string probe = "\n[[probe]]\nname = \"q\"\nquantity = \"fluid_inflow\"\nside = \"well\"\n";
+  EXPECT_EQ(load_error(with_fluid(well + probe)), "");
+  EXPECT_EQ(load_error(with_fluid(well + replace(probe, "fluid_inflow", "side_pressure"))), "");
+  expect(with_fluid(well + replace(probe, "\"well\"", "\"wel\"")), "did you mean \"well\"?");
+}
+
 TEST(SceneErrors, FluidBarriersAreChecked) {
   // The grid is 1 x 2 cells of 1 x 2 mm from y = 0: the one plane of faces
   // between cells along y is at y = 2 mm, and its face is centred at x = 0.
@@ -1445,7 +1500,7 @@ TEST(SceneErrors, PeriodicFluidGridIsChecked) {
     EXPECT_EQ(load_error(good + probe), "") << quantity;
     msg = load_error(good + replace(probe, "y_min", "x_max"));
     EXPECT_NE(msg.find("[[probe]] #1 key 'side': the fluid grid is periodic along x: its side x_max is no "
-                       "boundary (allowed: a side along a non-periodic axis, or a patch)"),
+                       "boundary (allowed: a side along a non-periodic axis, a patch or a source)"),
               std::string::npos)
         << msg;
   }

@@ -510,6 +510,18 @@ TEST(Checkpoint, ResumedCyclicPistonKeepsItsSchedule) {
       "cyclic_piston", 2, 200000, 1);
 }
 
+TEST(Checkpoint, ResumedPumpingWellKeepsItsSourcesSeries) {
+  // examples/fluid_cases/pumping_well.toml with the recovery stage's well
+  // on a ramp (pumping 2e-6 m^2/s down to injecting 1e-6 over 0.1 s, from
+  // the stage's start), stopped at step 1500, halfway down the ramp: the
+  // series and the time it counts from must come back, and the last step's
+  // flow the probe reads.
+  expect_resumed_variant_writes_the_same_files<2>(
+      "examples/fluid_cases/pumping_well.toml",
+      {{"well = { inflow = 0.0 }", "well = { inflow = { times = [0.0, 0.1], values = [-2e-6, 1e-6] } }"}},
+      "pumping_well", 2, 1500, 1);
+}
+
 TEST(Checkpoint, ResumedCantileverKeepsItsBondsScatteredStrengths) {
   // The same cantilever with strengths scattered from bond to bond
   // (strength_weibull_modulus), stopped in stage "sag": each bond's factor

@@ -26,6 +26,23 @@ struct FluidBoundary {
   }
 };
 
+/// A source of pore water inside the grid (a well, an injection point, a
+/// drain; YADE's imposeFlux at a point, PFC's fluid source): the water it
+/// gives enters the cell holding `position`, m^3/s (2D: per metre of
+/// thickness), negative where it pumps water out.
+template <int D>
+struct FluidSource {
+  std::string name;
+  Vec<D> position = Vec<D>::Zero();
+  TimeSeries inflow;  ///< m^3/s into the grid
+  /// Only the inflow changes in a run (stages); where it lies comes from
+  /// the scene.
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(inflow);
+  }
+};
+
 /// Whether `centre` lies in [lo, hi] along every axis but `skip`: for a
 /// face normal to `skip`, the centre of either cell beside it will do
 /// (FluidGrid::centre).

@@ -42,7 +42,7 @@ namespace darcydem {
 
 /// Fluid volumes of one fluid step and of the run so far (m^3).
 struct FluidBalance {
-  double inflow = 0.0;       ///< across the grid's sides, into the grid
+  double inflow = 0.0;       ///< across the grid's sides and from its sources, into the grid
   double stored = 0.0;       ///< sum S (u - u_old): compression of the pore fluid
   double pore_change = 0.0;  ///< increase of pore volume, -(change of solid volume)
   double gross = 0.0;        ///< sum of the magnitudes of all the terms (each side's flow too)
@@ -83,6 +83,10 @@ class PoreFluid final : public ParticleForceField<D> {
   /// most one (the scene reader checks it; the first that holds a face
   /// takes it). Set before initialize(), which finds their faces.
   std::vector<FluidPatch<D>> patches;
+  /// Sources of water inside the grid, each into the cell holding its
+  /// position (a position outside the grid is a logic error; the scene
+  /// reader checks it). Set before initialize(), which finds their cells.
+  std::vector<FluidSource<D>> sources;
   /// Impermeable walls inside the grid. Set before initialize(), which
   /// finds their faces.
   std::vector<FluidBarrier<D>> barriers;
@@ -174,6 +178,14 @@ class PoreFluid final : public ParticleForceField<D> {
     }
     for (auto& patch : patches) ar(patch);
     ar(patch_inflow_);
+    std::size_t source_count = sources.size();
+    ar(source_count);
+    if constexpr (Archive::loading) {
+      if (source_count != sources.size())
+        throw std::runtime_error("checkpoint: the pore fluid has another number of sources");
+    }
+    for (auto& source : sources) ar(source);
+    ar(source_inflow_);
     bool held = held_.force != nullptr;
     if constexpr (!Archive::loading) {
       if (held && held_.force != held_output)
@@ -232,6 +244,10 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Flow into the grid through one patch (index in `patches`) in the last
   /// step, m^3/s; part of its side's side_inflow.
   [[nodiscard]] double patch_inflow(std::size_t patch) const { return patch_inflow_.at(patch); }
+  /// What source i gave in the last fluid step, m^3/s (2D: per metre).
+  [[nodiscard]] double source_inflow(std::size_t source) const { return source_inflow_.at(source); }
+  /// The cell that source i feeds.
+  [[nodiscard]] std::size_t source_cell(std::size_t source) const { return source_cells_.at(source); }
   /// The excess pressure on a side of the grid (`side` 0 .. 2D-1, as
   /// side_inflow) or on a patch (`side` = 2D + its index in `patches`),
   /// Pa: the mean over its faces, weighted by their areas, of each face's
@@ -600,9 +616,11 @@ class PoreFluid final : public ParticleForceField<D> {
   std::array<std::array<std::size_t, D>, D> face_stride_{};  ///< [axis][j]: index step along j
   std::array<std::array<std::size_t, D>, D> corner_step_{};  ///< [component][j]: between stencil corners
   std::array<double, 2 * D> side_inflow_{};
-  std::vector<double> patch_inflow_;      ///< m^3/s, per patch
-  std::vector<std::size_t> patch_faces_;  ///< boundary faces per patch
-  std::vector<double> patch_area_;        ///< their area per patch, m^2
+  std::vector<double> patch_inflow_;       ///< m^3/s, per patch
+  std::vector<double> source_inflow_;      ///< m^3/s, per source, in the last fluid step
+  std::vector<std::size_t> source_cells_;  ///< the cell each source feeds
+  std::vector<std::size_t> patch_faces_;   ///< boundary faces per patch
+  std::vector<double> patch_area_;         ///< their area per patch, m^2
   /// An interior face a barrier closes: the cell below it along `axis`
   /// (index into face_lambda_ and carried_) and its index in face_gq_.
   struct BlockedFace {
