@@ -22,6 +22,7 @@ drum_profile = load("examples/dem_cases/drum_profile.py")
 triaxial_plot = load("examples/dem_cases/triaxial_plot.py")
 vibrated_plot = load("examples/dem_cases/vibrated_plot.py")
 undrained_plot = load("examples/fluid_cases/undrained_triaxial_plot.py")
+pumping_plot = load("examples/fluid_cases/pumping_plot.py")
 
 
 def tilted_bed(angle, spacing, drum_radius=8e-3, depth=-2e-3):
@@ -263,6 +264,61 @@ class UndrainedTriaxialPlot(unittest.TestCase):
         r = self.run_on(short)
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("before the shear", r.stderr)
+
+
+class PumpingPlot(unittest.TestCase):
+    """pumping_plot.py's Theis and E1 against tabulated values, and its
+    reading of a run."""
+
+    SCRIPT = "examples/fluid_cases/pumping_plot.py"
+
+    def test_e1_takes_its_tabulated_values(self):
+        # Abramowitz and Stegun's table 5.1 (to the digits given there).
+        for x, value in ((0.1, 1.8229239584193906), (0.5, 0.5597735947761608), (1.0, 0.21938393439552029),
+                         (2.0, 0.04890051070806112), (5.0, 1.1482955912753257e-3), (10.0, 4.156968929685324e-6)):
+            self.assertAlmostEqual(pumping_plot.e1(x) / value, 1.0, delta=1e-13, msg=f"E1({x})")
+        # The series and the continued fraction meet at 1 without a jump:
+        # just above, E1 falls at its slope there, -exp(-1) / 1.
+        step = pumping_plot.e1(1.0 + 1e-9) - pumping_plot.e1(1.0)
+        self.assertAlmostEqual(step / (-1e-9 * math.exp(-1.0)), 1.0, delta=1e-5)
+        with self.assertRaises(ValueError):
+            pumping_plot.e1(0.0)
+
+    def test_theis_recovers_and_peacemans_radius(self):
+        args = (2e-6, 1e-3, 1e-10, 0.01)
+        scale = 2e-6 * 1e-3 / (4.0 * math.pi * 1e-10)
+        # Late in the pumping, Jacob's straight line: -scale (-gamma - ln(r^2 / 4 c t)).
+        u = pumping_plot.theis(0.001, 10.0, *args)
+        self.assertAlmostEqual(u / (-scale * (-0.5772156649015329 - math.log(1e-6 / 0.4))), 1.0, delta=1e-6)
+        # Long after the shut-off it recovers: scale ln(t / (t - t1)) -> 0.
+        late = pumping_plot.theis(0.05, 1000.0, *args, shut_off=0.1)
+        self.assertAlmostEqual(late, -scale * math.log(1000.0 / 999.9), delta=1e-6 * scale)
+        self.assertEqual(pumping_plot.theis(0.05, 0.0, *args), 0.0)
+        self.assertAlmostEqual(pumping_plot.peaceman_radius(1.0), 0.198506, delta=1e-6)
+
+    def test_a_run_that_follows_theis_departs_by_nothing(self):
+        out = tempfile.mkdtemp()
+        times = [0.005 * k for k in range(41)]
+        args = (2e-6, 1e-3, 1e-10, 0.01)
+        with open(os.path.join(out, "probes.csv"), "w") as f:
+            f.write("time,well_pressure,u_5cm,u_10cm\n")
+            for t in times:
+                row = [pumping_plot.theis(r, t, *args, shut_off=0.1)
+                       for r in (pumping_plot.peaceman_radius(0.01), 0.05, 0.1)]
+                f.write(",".join(repr(v) for v in [t] + row) + "\n")
+        r = subprocess.run([sys.executable, os.path.join(SOURCE, self.SCRIPT), out, "--no-plot"],
+                           capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("u_5cm (r = 0.05 m): largest departure from Theis 0 Pa", r.stdout)
+        self.assertIn("well_pressure (r = 0.001985 m): largest departure from Theis 0 Pa", r.stdout)
+        r = subprocess.run([sys.executable, os.path.join(SOURCE, self.SCRIPT), out, "--no-plot", "--piezometer",
+                            "u_7cm=0.07"], capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("no column 'u_7cm'", r.stderr)
+        r = subprocess.run([sys.executable, os.path.join(SOURCE, self.SCRIPT), tempfile.mkdtemp()],
+                           capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("probes.csv: no such file", r.stderr)
 
 
 if __name__ == "__main__":
