@@ -415,9 +415,10 @@ class Model {
     return s;
   }
 
-  /// Sets a [[fluid.source]]'s inflow between steps, as a stage's
-  /// fluid.sources.NAME = { inflow = ... } does, a series counted from now.
-  void set_fluid_source(const std::string& name, const py::object& inflow) {
+  /// Sets a [[fluid.source]]'s inflow or the pressure it holds between
+  /// steps, as a stage's fluid.sources.NAME = { inflow = ... } or {
+  /// pressure = ... } does, a series counted from now.
+  void set_fluid_source(const std::string& name, const py::object& inflow, const py::object& pressure) {
     PoreFluid<D>* f = fluid();
     if (f == nullptr) throw py::value_error("set_fluid_source: the scene has no [fluid]");
     std::vector<std::string> names;
@@ -430,9 +431,17 @@ class Model {
               : fmt::format("set_fluid_source: no [[fluid.source]] named \"{}\" (the scene has: {})", name,
                             fmt::join(names, ", ")));
     }
-    TimeSeries series = read_schedule(inflow, "set_fluid_source", "the inflow", false);
+    if (inflow.is_none() == pressure.is_none())
+      throw py::value_error(
+          "set_fluid_source: give one of inflow (m^3/s into the pore water, 2D per metre; negative out) and "
+          "pressure (Pa, held in the source's cell)");
+    const bool by_inflow = !inflow.is_none();
+    TimeSeries series = read_schedule(by_inflow ? inflow : pressure, "set_fluid_source",
+                                      by_inflow ? "the inflow" : "the pressure", false);
     series.start = sim().time;
-    f->sources[static_cast<std::size_t>(at - names.begin())].inflow = series;
+    auto& source = f->sources[static_cast<std::size_t>(at - names.begin())];
+    source.type = by_inflow ? FluidSourceType::inflow : FluidSourceType::pressure;
+    source.value = series;
   }
 
   /// A servo's cycle = {'amplitude': N or Pa, 'frequency': Hz, 'phase':
@@ -941,14 +950,15 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["position"] = std::vector<double>(source.position.data(), source.position.data() + D);
               const auto c = f.fluid->grid.coords(f.fluid->source_cell(i));
               d["cell"] = std::vector<int>(c.begin(), c.end());
+              d["type"] = source.type == FluidSourceType::inflow ? "inflow" : "pressure";
               d["inflow"] = f.fluid->source_inflow(i);
               out.append(d);
             }
             return out;
           },
-          "the [[fluid.source]]s: name, position (m), the cell it feeds (indices) and inflow, what it gave "
-          "in "
-          "the last fluid step, m^3/s (2D: per metre)")
+          "the [[fluid.source]]s: name, position (m), the cell it feeds (indices), type ('inflow' or "
+          "'pressure': what it imposes) and inflow, what it gave in the last fluid step, m^3/s (2D: per "
+          "metre)")
       .def_property_readonly(
           "balance",
           [](const F& f) {
@@ -1134,11 +1144,11 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "'phase': degrees (optional, 0)} adds amplitude sin(2 pi f t + phase) to the target, t from now "
            "(cyclic loading); load = 'grains' (their push) or 'total' (with the pore water's thrust, on a "
            "wall that displaces the fluid)")
-      .def("set_fluid_source", &M::set_fluid_source, py::arg("name"), py::arg("inflow"),
-           "sets a [[fluid.source]]'s inflow between steps, as a stage's fluid.sources.NAME = { inflow = ... "
-           "} "
-           "does: m^3/s into the pore water (2D: per metre), negative pumping out; a number or {'times': [s "
-           "from now], 'values': [...]}")
+      .def("set_fluid_source", &M::set_fluid_source, py::arg("name"), py::arg("inflow") = py::none(),
+           py::arg("pressure") = py::none(),
+           "sets a [[fluid.source]]'s condition between steps, as a stage's fluid.sources.NAME does: one of "
+           "inflow (m^3/s into the pore water, 2D per metre, negative pumping out) and pressure (Pa, held in "
+           "its cell), each a number or {'times': [s from now], 'values': [...]}")
       .def("set_wall_motion", &M::set_wall_motion, py::arg("name"), py::arg("velocity") = py::none(),
            py::arg("angular_velocity") = py::none(), py::arg("radial_velocity") = py::none(),
            py::arg("oscillation") = py::none(),

@@ -698,10 +698,18 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
       rhs_[bf.cell] += dt * side.value.at(time) * open * area;
     }
   }
-  // Sources: their water into their cells.
+  // Sources: their water into their cells; or their pressure, held in
+  // their cells (hold_pressure); what water that takes is found after the
+  // solve.
+  held_sources_.clear();
   for (std::size_t i = 0; i < sources.size(); ++i) {
-    source_inflow_[i] = sources[i].inflow.at(time);
-    rhs_[source_cells_[i]] += dt * source_inflow_[i];
+    const std::size_t c = source_cells_[i];
+    if (sources[i].type == FluidSourceType::inflow) {
+      source_inflow_[i] = sources[i].value.at(time);
+      rhs_[c] += dt * source_inflow_[i];
+    } else {
+      hold_pressure(i, sources[i].value.at(time));
+    }
   }
 
   // Initial guess (CG): the pressure extrapolated linearly from the last
@@ -733,6 +741,15 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
                                                                : solver_.solve(operator_, rhs_, solution_);
   last_times_.solve = lap();
   for (std::size_t c = 0; c < n; ++c) pressure_[c] = solution_[static_cast<Eigen::Index>(c)];
+  // A source that holds a pressure gives the water its cell's own balance
+  // lacks, with the cell at that pressure: its diagonal times it, less what
+  // its neighbours draw, less its right-hand side.
+  for (const HeldSource& h : held_sources_) {
+    double lacking = h.diagonal * h.pressure - h.rhs;
+    for (const auto& [neighbour, conductance] : h.couplings)
+      lacking -= conductance * solution_[static_cast<Eigen::Index>(neighbour)];
+    source_inflow_[h.source] = lacking / dt;
+  }
 
   compute_face_fields(time);
   // Balance: summed over the cells, the interior fluxes cancel and
@@ -769,6 +786,41 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   time_ = time;
   ++updates_;
   last_times_.fields = lap();
+}
+
+template <int D>
+void PoreFluid<D>::hold_pressure(std::size_t source, double pressure) {
+  // The cell is taken out of the system: its couplings to its neighbours
+  // move to their right-hand sides at the held pressure (their diagonals
+  // keep them), and its own row becomes diagonal * u = diagonal * p, its
+  // scale kept. Exact: the cell is at p to the solver's tolerance, and the
+  // matrix stays symmetric and positive definite.
+  const std::size_t c = source_cells_[source];
+  const auto ci = static_cast<Eigen::Index>(c);
+  HeldSource h;
+  h.source = source;
+  h.pressure = pressure;
+  h.diagonal = operator_.diagonal[ci];
+  h.rhs = rhs_[c];
+  const auto at = grid.coords(c);
+  auto decouple = [&](std::size_t neighbour, double& conductance) {
+    if (conductance == 0.0) return;
+    h.couplings.emplace_back(neighbour, conductance);
+    rhs_[neighbour] += conductance * pressure;
+    conductance = 0.0;
+  };
+  for (int k = 0; k < D; ++k) {
+    const std::size_t s = grid.stride(k);
+    auto& upper = operator_.upper[static_cast<std::size_t>(k)];
+    if (at[k] + 1 < grid.cells[k]) decouple(c + s, upper[ci]);
+    if (at[k] > 0) decouple(c - s, upper[static_cast<Eigen::Index>(c - s)]);
+  }
+  for (auto& coupling : operator_.extra) {
+    if (static_cast<std::size_t>(coupling.a) == c) decouple(static_cast<std::size_t>(coupling.b), coupling.g);
+    if (static_cast<std::size_t>(coupling.b) == c) decouple(static_cast<std::size_t>(coupling.a), coupling.g);
+  }
+  rhs_[c] = h.diagonal * pressure;
+  held_sources_.push_back(std::move(h));
 }
 
 template <int D>

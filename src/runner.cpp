@@ -258,9 +258,11 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
       condition = b;
       condition.value.start = sim.time;
     }
-    for (const auto& [source, inflow] : stage.fluid_sources) {
-      fluid->sources[source].inflow = inflow;
-      fluid->sources[source].inflow.start = sim.time;
+    for (const auto& change : stage.fluid_sources) {
+      auto& source = fluid->sources[change.source];
+      source.type = change.type;
+      source.value = change.value;
+      source.value.start = sim.time;
     }
   }
   if (stage.gravity) sim.gravity = *stage.gravity;
@@ -731,12 +733,14 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::
       at += fmt::format("{}{:.6g}", a == 0 ? "" : ", ", source.position[a]);
       index += fmt::format("{}{}", a == 0 ? "" : ", ", cell[a]);
     }
-    const bool steady = source.inflow.times.size() == 1;
+    const bool steady = source.value.times.size() == 1;
+    const std::string unit =
+        source.type == FluidSourceType::inflow ? fmt::format("m^{}/s", D) : std::string("Pa held");
     out += fmt::format(
         "source {} at ({}) m, into cell ({}): {}\n", source.name, at, index,
-        steady ? fmt::format("{:.6g} m^{}/s", source.inflow.at(0.0), D)
-               : fmt::format("{:.6g} to {:.6g} m^{}/s over {} points in time", source.inflow.values.front(),
-                             source.inflow.values.back(), D, source.inflow.values.size()));
+        steady ? fmt::format("{:.6g} {}", source.value.at(0.0), unit)
+               : fmt::format("{:.6g} to {:.6g} {} over {} points in time", source.value.values.front(),
+                             source.value.values.back(), unit, source.value.values.size()));
   }
   for (std::size_t k = 0; k < fluid.barriers.size(); ++k) {
     const auto& b = fluid.barriers[k];

@@ -1,6 +1,7 @@
 #include "darcydem/scene/scene_fluid.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -314,8 +315,26 @@ FluidBarrier<D> read_barrier(const toml::table& table, const std::string& where,
   return barrier;
 }
 
-/// One [[fluid.source]]: 'name', 'position' (in the grid), 'inflow'
-/// (m^3/s, a number or a series). `taken` holds the names the sides,
+/// A source's condition: one of 'inflow' (m^3/s; 2D: per metre) and
+/// 'pressure' (Pa held in its cell), each a number or a series.
+template <int D>
+void read_source_condition(TableReader& r, FluidSourceType& type, TimeSeries& value) {
+  const bool inflow = r.has("inflow");
+  if (inflow == r.has("pressure")) {
+    r.fail_table(
+        fmt::format("give one of 'inflow' ({} into the pore water, negative out; a number or a series) "
+                    "and 'pressure' (Pa, the excess pore pressure it holds in its cell)",
+                    D == 2 ? "m^2/s per metre" : "m^3/s"));
+  }
+  type = inflow ? FluidSourceType::inflow : FluidSourceType::pressure;
+  value = inflow ? read_time_series(r, "inflow",
+                                    D == 2 ? "m^2/s per metre into the grid, negative out"
+                                           : "m^3/s into the grid, negative out")
+                 : read_time_series(r, "pressure", "excess pore pressure held in its cell, Pa");
+}
+
+/// One [[fluid.source]]: 'name', 'position' (in the grid), 'inflow' or
+/// 'pressure'. `taken` holds the names the sides,
 /// patches and earlier sources already use.
 template <int D>
 FluidSource<D> read_source(const toml::table& table, const std::string& where, const std::string& file,
@@ -341,9 +360,7 @@ FluidSource<D> read_source(const toml::table& table, const std::string& where, c
     }
     source.position[k] = x[k];
   }
-  source.inflow = read_time_series(
-      r, "inflow",
-      D == 2 ? "m^2/s per metre into the grid, negative out" : "m^3/s into the grid, negative out");
+  read_source_condition<D>(r, source.type, source.value);
   r.finish();
   return source;
 }
@@ -351,14 +368,12 @@ FluidSource<D> read_source(const toml::table& table, const std::string& where, c
 }  // namespace
 
 template <int D>
-std::vector<std::pair<std::size_t, TimeSeries>> read_source_changes(const toml::table& table,
-                                                                    const std::string& where,
-                                                                    const std::string& file,
-                                                                    const PoreFluid<D>& fluid) {
+std::vector<FluidSourceChange> read_source_changes(const toml::table& table, const std::string& where,
+                                                   const std::string& file, const PoreFluid<D>& fluid) {
   std::vector<std::string> names;
   for (const auto& s : fluid.sources) names.push_back(s.name);
   TableReader r(table, where, file);
-  std::vector<std::pair<std::size_t, TimeSeries>> out;
+  std::vector<FluidSourceChange> out;
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     r.allow({name});
@@ -370,16 +385,22 @@ std::vector<std::pair<std::size_t, TimeSeries>> read_source_changes(const toml::
                                  : fmt::format("is not a [[fluid.source]] of the scene{}", hint));
     }
     const toml::table* t = node.as_table();
-    if (t == nullptr) r.fail(name, "must be a table, e.g. { inflow = 0.0 } (m^3/s; a number or a series)");
+    if (t == nullptr)
+      r.fail(
+          name,
+          "must be a table, e.g. { inflow = 0.0 } (m^3/s) or { pressure = 0.0 } (Pa); a number or a series");
     TableReader sr(*t, fmt::format("{}.{}", where, name), file);
     for (auto k : {"name", "position"}) {
       if (sr.has(k))
         sr.fail(k,
-                "a stage changes a source's inflow only; its name and position are set in [[fluid.source]]");
+                "a stage changes a source's inflow or pressure only; its name and position are set in "
+                "[[fluid.source]]");
     }
-    out.emplace_back(static_cast<std::size_t>(at - names.begin()),
-                     read_time_series(sr, "inflow", "m^3/s into the grid, negative out"));
+    FluidSourceChange change;
+    change.source = static_cast<std::size_t>(at - names.begin());
+    read_source_condition<D>(sr, change.type, change.value);
     sr.finish();
+    out.push_back(change);
   }
   r.finish();
   return out;
@@ -618,9 +639,26 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
       ++index;
       const toml::table* t = node.as_table();
       if (t == nullptr) r.fail("source", "must be an array of tables: [[fluid.source]]");
-      fluid->sources.push_back(
-          read_source<D>(*t, fmt::format("[[fluid.source]] #{}", index), file, fluid->grid, taken));
+      const std::string where = fmt::format("[[fluid.source]] #{}", index);
+      fluid->sources.push_back(read_source<D>(*t, where, file, fluid->grid, taken));
       taken.push_back(fluid->sources.back().name);
+      // Each in a cell of its own: two pressures held in one cell would fight.
+      auto cell_of = [&](const FluidSource<D>& s) {
+        std::array<int, D> c{};
+        for (int k = 0; k < D; ++k)
+          c[k] = std::clamp(fluid->grid.cell_along(k, s.position[k]), 0, fluid->grid.cells[k] - 1);
+        return fluid->grid.index(c);
+      };
+      for (std::size_t j = 0; j + 1 < fluid->sources.size(); ++j) {
+        if (cell_of(fluid->sources[j]) == cell_of(fluid->sources.back())) {
+          TableReader(*t, where, file)
+              .fail("position",
+                    fmt::format("lies in the cell of source \"{}\": each source needs a cell of its "
+                                "own (a source gives its water to, or holds its pressure in, its "
+                                "whole cell)",
+                                fluid->sources[j].name));
+        }
+      }
     }
   }
   // Impermeable box walls: barriers on their planes, checked like the
@@ -639,14 +677,10 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
   return fluid;
 }
 
-template std::vector<std::pair<std::size_t, TimeSeries>> read_source_changes<2>(const toml::table&,
-                                                                                const std::string&,
-                                                                                const std::string&,
-                                                                                const PoreFluid<2>&);
-template std::vector<std::pair<std::size_t, TimeSeries>> read_source_changes<3>(const toml::table&,
-                                                                                const std::string&,
-                                                                                const std::string&,
-                                                                                const PoreFluid<3>&);
+template std::vector<FluidSourceChange> read_source_changes<2>(const toml::table&, const std::string&,
+                                                               const std::string&, const PoreFluid<2>&);
+template std::vector<FluidSourceChange> read_source_changes<3>(const toml::table&, const std::string&,
+                                                               const std::string&, const PoreFluid<3>&);
 template FluidBoundaryChanges read_fluid_boundary_changes<2>(const toml::table&, const std::string&,
                                                              const std::string&, const PoreFluid<2>*,
                                                              std::vector<FluidPatch<2>>*);

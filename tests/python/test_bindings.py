@@ -1133,6 +1133,20 @@ class PumpingWell(unittest.TestCase):
             model.set_fluid_source("well", inflow={"times": [0.0, 1.0], "values": [0.0]})
         with self.assertRaisesRegex(ValueError, "the inflow must be finite, got nan"):
             model.set_fluid_source("well", inflow=float("nan"))
+        with self.assertRaisesRegex(ValueError, "give one of inflow"):
+            model.set_fluid_source("well", inflow=0.0, pressure=1.0)
+        with self.assertRaisesRegex(ValueError, "give one of inflow"):
+            model.set_fluid_source("well")
+        # A pressure held in the well's cell (a well at a set head): exact
+        # there, and the water it takes comes in by the sides.
+        held = darcydem.load(self.EXAMPLE)
+        held.set_fluid_source("well", pressure=-5.0)
+        held.step(1000)
+        self.assertEqual(held.fluid.sources[0]["type"], "pressure")
+        self.assertAlmostEqual(held.fluid.pressure[20, 20], -5.0, delta=1e-10)
+        self.assertLess(held.fluid.sources[0]["inflow"], 0.0)  # it pumps
+        balance = held.fluid.balance
+        self.assertLess(abs(balance["imbalance"]), 1e-9 * balance["gross"])
         # A ramp is taken from now.
         model.step(10)
         model.set_fluid_source("well", inflow={"times": [0.0, 0.01], "values": [0.0, 1e-6]})

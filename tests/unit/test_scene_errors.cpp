@@ -972,12 +972,18 @@ TEST(SceneErrors, FluidSourcesAreChecked) {
   const std::string well = "\n[[fluid.source]]\nname = \"well\"\nposition = [0.0, 0.001]\ninflow = 1e-9\n";
   ASSERT_EQ(load_error(with_fluid(well)), "");
   {
-    const auto scene = built_scene<2>(
-        with_fluid(well + replace(well, "1e-9", "-2e-9").replace(well.find("well"), 4, "pump")));
+    // A second source, holding 50 Pa in the upper cell.
+    const std::string held =
+        "\n[[fluid.source]]\nname = \"head\"\nposition = [0.0, 0.003]\npressure = 50.0\n";
+    const auto scene = built_scene<2>(with_fluid(well + held));
     ASSERT_EQ(scene.fluid->sources.size(), 2U);
-    EXPECT_EQ(scene.fluid->sources[1].name, "pump");
-    EXPECT_EQ(scene.fluid->sources[1].inflow.at(0.0), -2e-9);
+    EXPECT_EQ(scene.fluid->sources[0].type, FluidSourceType::inflow);
+    EXPECT_EQ(scene.fluid->sources[0].value.at(0.0), 1e-9);
+    EXPECT_EQ(scene.fluid->sources[1].name, "head");
+    EXPECT_EQ(scene.fluid->sources[1].type, FluidSourceType::pressure);
+    EXPECT_EQ(scene.fluid->sources[1].value.at(0.0), 50.0);
     EXPECT_EQ(scene.fluid->source_cell(0), 0U);  // y = 1 mm: the first cell
+    EXPECT_EQ(scene.fluid->source_cell(1), 1U);
   }
   auto expect = [&](const std::string& text, const std::string& wanted) {
     const auto msg = load_error(text);
@@ -991,7 +997,15 @@ TEST(SceneErrors, FluidSourcesAreChecked) {
   expect(with_fluid(replace(well, "\"well\"", "\"y_max\"")),
          "[[fluid.source]] #1 key 'name': \"y_max\" is already a side, a patch or a source of the fluid");
   expect(with_fluid(well + well), "[[fluid.source]] #2 key 'name': \"well\" is already a side");
-  expect(with_fluid(replace(well, "inflow = 1e-9\n", "")), "missing required key 'inflow'");
+  expect(with_fluid(replace(well, "inflow = 1e-9\n", "")),
+         "[[fluid.source]] #1: give one of 'inflow' (m^2/s per metre into the pore water, negative out; a "
+         "number "
+         "or a series) and 'pressure' (Pa, the excess pore pressure it holds in its cell)");
+  expect(with_fluid(replace(well, "inflow = 1e-9", "inflow = 1e-9\npressure = 1.0")), "give one of 'inflow'");
+  expect(
+      with_fluid(well + replace(replace(well, "\"well\"", "\"other\""), "[0.0, 0.001]", "[0.0, 0.0015]")),
+      "[[fluid.source]] #2 key 'position': lies in the cell of source \"well\": each source needs a cell of "
+      "its own");
   expect(with_fluid(replace(well, "inflow = 1e-9", "inflow = { times = [0.0, 1.0], values = [1e-9] }")),
          "key 'values': must have as many entries as 'times'");
   expect(with_fluid(replace(well, "inflow = 1e-9", "inflow = 1e-9\nradius = 0.001")), "unknown key 'radius'");
@@ -1002,16 +1016,18 @@ TEST(SceneErrors, FluidSourcesAreChecked) {
                    stage + "[stage.fluid.sources]\n" + change);
   };
   EXPECT_EQ(load_error(in_stage("well = { inflow = 0.0 }\n")), "");
+  EXPECT_EQ(load_error(in_stage("well = { pressure = 20.0 }\n")), "");
+  expect(in_stage("well = { }\n"), "give one of 'inflow'");
   {
     const auto scene =
         built_scene<2>(in_stage("well = { inflow = { times = [0.0, 1.0], values = [0.0, 3e-9] } }\n"));
     ASSERT_EQ(scene.stages[0].fluid_sources.size(), 1U);
-    EXPECT_NEAR(scene.stages[0].fluid_sources[0].second.at(0.5), 1.5e-9, 1e-24);
+    EXPECT_NEAR(scene.stages[0].fluid_sources[0].value.at(0.5), 1.5e-9, 1e-24);
   }
   expect(in_stage("wel = { inflow = 0.0 }\n"),
          "is not a [[fluid.source]] of the scene (did you mean \"well\"?)");
   expect(in_stage("well = { inflow = 0.0, position = [0.0, 0.002] }\n"),
-         "key 'position': a stage changes a source's inflow only");
+         "key 'position': a stage changes a source's inflow or pressure only");
   expect(in_stage("well = 0.0\n"), "must be a table, e.g. { inflow = 0.0 }");
   expect(replace(with_fluid(), stage, stage + "[stage.fluid.sources]\nwell = { inflow = 0.0 }\n"),
          "the scene has no [[fluid.source]]");

@@ -522,6 +522,16 @@ TEST(Checkpoint, ResumedPumpingWellKeepsItsSourcesSeries) {
       "pumping_well", 2, 1500, 1);
 }
 
+TEST(Checkpoint, ResumedPumpingWellKeepsTheHeadItHolds) {
+  // The same with the recovery stage's well holding a pressure that rises
+  // from -10 to 0 Pa over 0.1 s: the source's kind (a held pressure, not
+  // an inflow) must come back with its series.
+  expect_resumed_variant_writes_the_same_files<2>(
+      "examples/fluid_cases/pumping_well.toml",
+      {{"well = { inflow = 0.0 }", "well = { pressure = { times = [0.0, 0.1], values = [-10.0, 0.0] } }"}},
+      "held_well", 2, 1500, 1);
+}
+
 TEST(Checkpoint, ResumedCantileverKeepsItsBondsScatteredStrengths) {
   // The same cantilever with strengths scattered from bond to bond
   // (strength_weibull_modulus), stopped in stage "sag": each bond's factor

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -30,15 +31,16 @@ constexpr double mu = 1e-3;             // Pa s
 constexpr double bulk = 1e5;            // Pa: the storage n / K_f = 1e-5 1/Pa
 constexpr double centre = 0.5 * n * h;  // m: the middle cell's centre
 
-PoreFluid<2> well_grid(const TimeSeries& inflow) {
-  PoreFluid<2> f(PressureSolverKind::cg, 1e-13);
+PoreFluid<2> well_grid(const TimeSeries& value, FluidSourceType type = FluidSourceType::inflow,
+                       PressureSolverKind solver = PressureSolverKind::cg) {
+  PoreFluid<2> f(solver, 1e-13);
   f.grid.spacing = Vec<2>::Constant(h);
   f.grid.cells = {n, n};
   f.fluid = {1000.0, mu, bulk};
   f.permeability.model = PermeabilityModel::constant;
   f.permeability.intrinsic = Vec<2>::Constant(kappa);
   for (auto& side : f.sides) side = {FluidBoundaryType::drained, TimeSeries::constant(0.0)};
-  f.sources.push_back({"well", Vec<2>(centre, centre), inflow});
+  f.sources.push_back({"well", Vec<2>(centre, centre), type, value});
   ParticleData<2> none;
   f.initialize(none, {});
   return f;
@@ -126,6 +128,51 @@ TEST(FluidSources, APumpedWellDrawsDownAsThiemSaysAndEveryDropLeavesByTheSides) 
   EXPECT_LT(at(5, 0), 0.0);  // a drawdown: pumping lowers the pressure
 }
 
+TEST(FluidSources, AWellHeldAtAPressureTakesTheInflowThatGivesThatPressure) {
+  // Linearity and uniqueness: at steady state a well giving Q raises its
+  // cell to some p_w; a well holding p_w in that cell must then take
+  // exactly Q, and the two fields be the same. Both solvers. The held cell
+  // is taken out of the system (its pressure exact), the solves are to
+  // 1e-13: bounds 1e-9, far above that and far below any error of the
+  // scheme (a cell's share of the well's flow is 1/4 of it or more).
+  for (const auto solver : {PressureSolverKind::cg, PressureSolverKind::cholesky}) {
+    const double q = 1e-6;
+    PoreFluid<2> given = well_grid(TimeSeries::constant(q), FluidSourceType::inflow, solver);
+    ParticleData<2> none;
+    for (int s = 1; s <= 10; ++s) given.update(none, 100.0, 100.0 * s, {});
+    const double p_w = given.pressure()[given.source_cell(0)];
+    PoreFluid<2> held = well_grid(TimeSeries::constant(p_w), FluidSourceType::pressure, solver);
+    for (int s = 1; s <= 10; ++s) {
+      held.update(none, 100.0, 100.0 * s, {});
+      ASSERT_LT(std::abs(held.last_balance().imbalance()), 1e-10 * held.last_balance().gross) << "step " << s;
+    }
+    double field = 0.0;
+    for (std::size_t c = 0; c < given.pressure().size(); ++c)
+      field = std::max(field, std::abs(held.pressure()[c] - given.pressure()[c]));
+    std::printf("held at p_w = %.6f Pa: the well takes %.9e m^2/s (given %.9e), the fields %.2e Pa apart\n",
+                p_w, held.source_inflow(0), q, field);
+    EXPECT_NEAR(held.source_inflow(0), q, 1e-9 * q);
+    EXPECT_LT(field, 1e-9 * p_w);
+    EXPECT_NEAR(held.pressure()[held.source_cell(0)], p_w, 1e-12 * p_w);
+    double sides = 0.0;
+    for (int side = 0; side < 4; ++side) sides += held.side_inflow(side);
+    EXPECT_NEAR(sides, -held.source_inflow(0), 1e-9 * q);
+  }
+  // Switched on from rest, a held pressure draws water at once, then less
+  // as the pressure spreads (the inflow falls towards its steady value).
+  PoreFluid<2> f = well_grid(TimeSeries::constant(10.0), FluidSourceType::pressure);
+  ParticleData<2> none;
+  double last = std::numeric_limits<double>::infinity();
+  for (int s = 1; s <= 50; ++s) {
+    f.update(none, 1e-3, 1e-3 * s, {});
+    EXPECT_NEAR(f.pressure()[f.source_cell(0)], 10.0, 1e-12);
+    EXPECT_LT(f.source_inflow(0), last) << "step " << s;
+    EXPECT_GT(f.source_inflow(0), 0.0);
+    last = f.source_inflow(0);
+    ASSERT_LT(std::abs(f.last_balance().imbalance()), 1e-10 * f.last_balance().gross) << "step " << s;
+  }
+}
+
 TEST(FluidSources, APumpingTestDrawsDownAndRecoversAsTheisSays) {
   // examples/fluid_cases/pumping_well.toml: an aquifer of fixed discs, one
   // to a cell (n = 1 - pi / 4), kappa = 1e-10 m^2, c = 0.01 m^2/s; the well
@@ -193,7 +240,7 @@ TEST(FluidSources, APointSourceIn3DSpreadsAsTheContinuousSource) {
   for (auto& side : f.sides) side = {FluidBoundaryType::drained, TimeSeries::constant(0.0)};
   const double mid = 0.5 * m * h;
   const double q = 1e-9;  // m^3/s
-  f.sources.push_back({"injection", Vec<3>(mid, mid, mid), TimeSeries::constant(q)});
+  f.sources.push_back({"injection", Vec<3>(mid, mid, mid), FluidSourceType::inflow, TimeSeries::constant(q)});
   ParticleData<3> none;
   f.initialize(none, {});
   const double c = kappa * bulk / mu;

@@ -26,21 +26,35 @@ struct FluidBoundary {
   }
 };
 
+enum class FluidSourceType {
+  inflow,    ///< imposed inflow, m^3/s (2D: per metre)
+  pressure,  ///< imposed excess pore pressure in its cell, Pa
+};
+
 /// A source of pore water inside the grid (a well, an injection point, a
-/// drain; YADE's imposeFlux at a point, PFC's fluid source): the water it
-/// gives enters the cell holding `position`, m^3/s (2D: per metre of
-/// thickness), negative where it pumps water out.
+/// drain; YADE's imposeFlux and imposePressure at a point, PFC's fluid
+/// source) in the cell holding `position`: the water it gives, m^3/s (2D:
+/// per metre of thickness), negative where it pumps water out; or the
+/// pressure it holds in that cell, giving or taking what water that needs.
 template <int D>
 struct FluidSource {
   std::string name;
   Vec<D> position = Vec<D>::Zero();
-  TimeSeries inflow;  ///< m^3/s into the grid
-  /// Only the inflow changes in a run (stages); where it lies comes from
-  /// the scene.
+  FluidSourceType type = FluidSourceType::inflow;
+  TimeSeries value;  ///< m^3/s into the grid, or Pa
+  /// Only the condition changes in a run (stages); where it lies comes
+  /// from the scene.
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(inflow);
+    ar(type, value);
   }
+};
+
+/// A stage's change of a source: its new condition.
+struct FluidSourceChange {
+  std::size_t source = 0;  ///< index in PoreFluid::sources
+  FluidSourceType type = FluidSourceType::inflow;
+  TimeSeries value;
 };
 
 /// Whether `centre` lies in [lo, hi] along every axis but `skip`: for a

@@ -85,7 +85,9 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<FluidPatch<D>> patches;
   /// Sources of water inside the grid, each into the cell holding its
   /// position (a position outside the grid is a logic error; the scene
-  /// reader checks it). Set before initialize(), which finds their cells.
+  /// reader checks it), giving an inflow or holding a pressure there (at
+  /// most one that holds a pressure in a cell). Set before initialize(),
+  /// which finds their cells.
   std::vector<FluidSource<D>> sources;
   /// Impermeable walls inside the grid. Set before initialize(), which
   /// finds their faces.
@@ -316,6 +318,9 @@ class PoreFluid final : public ParticleForceField<D> {
                                                             std::size_t skip = std::size_t(-1)) const;
   /// face_open_ from the impermeable_walls among `walls` (empty if none).
   void compute_open_faces(const std::vector<Wall<D>>& walls);
+  /// Holds `pressure` in source `source`'s cell in this step's system
+  /// (held_sources_).
+  void hold_pressure(std::size_t source, double pressure);
   /// wall_solid_ from the solid_walls among `walls`.
   void compute_wall_solid(const std::vector<Wall<D>>& walls);
   void compute_cell_properties();
@@ -619,8 +624,19 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<double> patch_inflow_;       ///< m^3/s, per patch
   std::vector<double> source_inflow_;      ///< m^3/s, per source, in the last fluid step
   std::vector<std::size_t> source_cells_;  ///< the cell each source feeds
-  std::vector<std::size_t> patch_faces_;   ///< boundary faces per patch
-  std::vector<double> patch_area_;         ///< their area per patch, m^2
+  /// A source that holds a pressure, in this fluid step: its index, the
+  /// pressure, its cell's diagonal and right-hand side, and the couplings
+  /// to its neighbours (cell, conductance) taken out of the system.
+  struct HeldSource {
+    std::size_t source = 0;
+    double pressure = 0.0;
+    double diagonal = 0.0;
+    double rhs = 0.0;
+    std::vector<std::pair<std::size_t, double>> couplings;
+  };
+  std::vector<HeldSource> held_sources_;
+  std::vector<std::size_t> patch_faces_;  ///< boundary faces per patch
+  std::vector<double> patch_area_;        ///< their area per patch, m^2
   /// An interior face a barrier closes: the cell below it along `axis`
   /// (index into face_lambda_ and carried_) and its index in face_gq_.
   struct BlockedFace {

@@ -18,12 +18,10 @@ namespace darcydem {
 
 /// New conditions of sides and patches.
 /// A stage's `fluid.sources` table: each [[fluid.source]] by its name, a
-/// table { inflow = ... }: (index in PoreFluid::sources, its new inflow).
+/// table { inflow = ... } or { pressure = ... }: its new condition.
 template <int D>
-std::vector<std::pair<std::size_t, TimeSeries>> read_source_changes(const toml::table& table,
-                                                                    const std::string& where,
-                                                                    const std::string& file,
-                                                                    const PoreFluid<D>& fluid);
+std::vector<FluidSourceChange> read_source_changes(const toml::table& table, const std::string& where,
+                                                   const std::string& file, const PoreFluid<D>& fluid);
 
 struct FluidBoundaryChanges {
   std::vector<std::pair<int, FluidBoundary>> sides;    ///< (side index, condition)
