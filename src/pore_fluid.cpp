@@ -72,15 +72,11 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles, const std::vecto
   build_pattern();
   source_cells_.clear();
   for (const FluidSource<D>& source : sources) {
-    std::array<int, D> c{};
     for (int k = 0; k < D; ++k) {
-      const double lo = grid.face_at(k, 0);
-      const double hi = grid.face_at(k, grid.cells[k]);
-      if (!(source.position[k] >= lo && source.position[k] <= hi))
+      if (!(source.position[k] >= grid.face_at(k, 0) && source.position[k] <= grid.face_at(k, grid.cells[k])))
         throw std::logic_error("PoreFluid: the source \"" + source.name + "\" is outside the grid");
-      c[k] = std::clamp(grid.cell_along(k, source.position[k]), 0, grid.cells[k] - 1);
     }
-    source_cells_.push_back(grid.index(c));
+    source_cells_.push_back(grid.cell_holding(source.position));
   }
   source_inflow_.assign(sources.size(), 0.0);
   compute_solid(particles);

@@ -643,14 +643,9 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
       fluid->sources.push_back(read_source<D>(*t, where, file, fluid->grid, taken));
       taken.push_back(fluid->sources.back().name);
       // Each in a cell of its own: two pressures held in one cell would fight.
-      auto cell_of = [&](const FluidSource<D>& s) {
-        std::array<int, D> c{};
-        for (int k = 0; k < D; ++k)
-          c[k] = std::clamp(fluid->grid.cell_along(k, s.position[k]), 0, fluid->grid.cells[k] - 1);
-        return fluid->grid.index(c);
-      };
+      const std::size_t cell = fluid->grid.cell_holding(fluid->sources.back().position);
       for (std::size_t j = 0; j + 1 < fluid->sources.size(); ++j) {
-        if (cell_of(fluid->sources[j]) == cell_of(fluid->sources.back())) {
+        if (fluid->grid.cell_holding(fluid->sources[j].position) == cell) {
           TableReader(*t, where, file)
               .fail("position",
                     fmt::format("lies in the cell of source \"{}\": each source needs a cell of its "

@@ -155,6 +155,13 @@ struct FluidGrid {
     const double s = std::floor((x - origin[axis]) / spacing[axis]);
     return static_cast<int>(std::clamp(s, -1.0, static_cast<double>(cells[axis])));
   }
+  /// Index of the cell holding x, a point on or inside the grid's box (on
+  /// one of its sides: the outer cell there).
+  [[nodiscard]] std::size_t cell_holding(const Vec<D>& x) const {
+    std::array<int, D> c{};
+    for (int k = 0; k < D; ++k) c[k] = std::clamp(cell_along(k, x[k]), 0, cells[k] - 1);
+    return index(c);
+  }
   /// The face (0 .. cells) along `axis` nearest to x.
   [[nodiscard]] int nearest_face(int axis, double x) const {
     if (!graded(axis)) return clamp_cell(std::round((x - origin[axis]) / spacing[axis]), 0, cells[axis]);

@@ -22,6 +22,7 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -165,6 +166,18 @@ class PoreFluid final : public ParticleForceField<D> {
   /// hold_forces, whether the forces it holds are current is stored, not
   /// the address. Load it into a fluid built from the same scene and
   /// initialized.
+  /// The items' count, which must match the scene's on loading, then each
+  /// item's checkpoint; `what` names them in the message.
+  template <class Archive, class Item>
+  static void checkpoint_each(Archive& ar, std::vector<Item>& items, const char* what) {
+    std::size_t count = items.size();
+    ar(count);
+    if constexpr (Archive::loading) {
+      if (count != items.size())
+        throw std::runtime_error(std::string("checkpoint: the pore fluid has another number of ") + what);
+    }
+    for (auto& item : items) ar(item);
+  }
   template <class Archive>
   void checkpoint(Archive& ar, const std::vector<Vec<D>>* held_output) {
     ar(steps_per_update, hold_forces, sides, permeability_frozen, pressure_, pressure_old_, pressure_older_,
@@ -172,21 +185,9 @@ class PoreFluid final : public ParticleForceField<D> {
        solid_velocity_, kappa_, cell_drag_, blend_atan_, n_power_, face_lambda_, carried_, face_gq_,
        solid_face_flux_, face_open_, face_covered_, side_inflow_, last_solve_, last_, total_, updates_, time_,
        initialized_, wrap_lambda_, wrap_carried_, boundary_carried_);
-    std::size_t patch_count = patches.size();
-    ar(patch_count);
-    if constexpr (Archive::loading) {
-      if (patch_count != patches.size())
-        throw std::runtime_error("checkpoint: the pore fluid has another number of boundary patches");
-    }
-    for (auto& patch : patches) ar(patch);
+    checkpoint_each(ar, patches, "boundary patches");
     ar(patch_inflow_);
-    std::size_t source_count = sources.size();
-    ar(source_count);
-    if constexpr (Archive::loading) {
-      if (source_count != sources.size())
-        throw std::runtime_error("checkpoint: the pore fluid has another number of sources");
-    }
-    for (auto& source : sources) ar(source);
+    checkpoint_each(ar, sources, "sources");
     ar(source_inflow_);
     bool held = held_.force != nullptr;
     if constexpr (!Archive::loading) {
