@@ -28,6 +28,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from darcydem_module import load_module  # noqa: E402
 SCENE = os.path.join(HERE, "oedometer.toml")
 GAMMA_W_G = 9.80665  # standard gravity, m/s^2
 
@@ -36,18 +38,6 @@ def probes(out):
     with open(os.path.join(out, "probes.csv")) as f:
         rows = list(csv.DictReader(f))
     return {k: [float(r[k]) for r in rows] for k in rows[0]}
-
-
-def load_module(darcydem_exe):
-    """The darcydem Python module built next to the program (build/python):
-    its closed forms are the ones the tests check against."""
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(darcydem_exe)), "python"))
-    try:
-        import darcydem
-    except ImportError as e:
-        sys.exit(f"the darcydem Python module is not next to {darcydem_exe} ({e}); build it with "
-                 "scripts/build.sh (DARCYDEM_BUILD_PYTHON=ON, the default)")
-    return darcydem
 
 
 def platen_area(scene):

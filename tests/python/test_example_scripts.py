@@ -23,6 +23,7 @@ triaxial_plot = load("examples/dem_cases/triaxial_plot.py")
 vibrated_plot = load("examples/dem_cases/vibrated_plot.py")
 undrained_plot = load("examples/fluid_cases/undrained_triaxial_plot.py")
 pumping_plot = load("examples/fluid_cases/pumping_plot.py")
+undrained_biaxial = load("examples/fluid_cases/undrained_biaxial.py")
 
 
 def tilted_bed(angle, spacing, drum_radius=8e-3, depth=-2e-3):
@@ -319,6 +320,28 @@ class PumpingPlot(unittest.TestCase):
                            capture_output=True, text=True)
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("probes.csv: no such file", r.stderr)
+
+
+
+class UndrainedBiaxialScript(unittest.TestCase):
+    """undrained_biaxial.py's reading of a path and its refusals (the runs
+    themselves: tests/python/test_undrained_biaxial.py)."""
+
+    SCRIPT = "examples/fluid_cases/undrained_biaxial.py"
+
+    def test_p_and_q_of_a_path_made_by_hand(self):
+        rows = {"axial_strain": [0.0, 0.001, 0.002], "sigma_x": [1e5, 9e4, 8e4], "sigma_y": [1e5, 2e5, 3e5],
+                "pore_pressure": [0.0, 1e4, 2e4], "area_change": [0.0, 0.0, 0.0]}
+        self.assertEqual(undrained_biaxial.at_strain(rows, 0.0015), 2)
+        self.assertEqual(undrained_biaxial.p_q(rows, 1), (1.45e5, 5.5e4))  # half the sum, half the difference
+        with self.assertRaisesRegex(ValueError, "stops at an axial strain of 0.002, before 0.003"):
+            undrained_biaxial.at_strain(rows, 0.003)
+
+    def test_a_strain_beyond_the_stage_is_refused(self):
+        r = subprocess.run([sys.executable, os.path.join(SOURCE, self.SCRIPT), "build/darcydem", tempfile.mkdtemp(),
+                            "--strain", "0.05"], capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("--strain 0.05: give an axial strain in (0, 0.025]", r.stderr)
 
 
 if __name__ == "__main__":
