@@ -29,14 +29,18 @@ class UndrainedBiaxial(unittest.TestCase):
     def test_the_sealed_water_keeps_the_volume_by_its_compressibility(self):
         # Sealed, with rigid grains, the sample's area changes by the pore
         # water's: dA / A0 = -n0 u / K_f (u = K_f times the pore area's
-        # relative loss). Tolerance 3 % of the largest n0 |u| / K_f
-        # (1.2e-5), for what the platens' area does not see: the lenses
-        # where discs press into a platen count as solid twice (the disc's
-        # and the platen's half-space), and they change as the platens'
-        # loads do (the fluid's pore area is 3.7e-8 m^2, 4.8e-5 of A0, below
-        # the platens' area less the discs' as the shear starts, and that
-        # gap moves by about 1e-8 of A0 per 0.5 % of axial strain). Biot's
-        # law taking the porosity of each step, and the area read from the
+        # relative loss). Tolerance 2 % of the largest n0 |u| / K_f
+        # (1.2e-5), for what the platens' positions do not show: a plane
+        # that displaces the water and stands in the grid's first layer of
+        # cells takes 1e-5 of the layer's width it has not crossed as solid
+        # in front of it (so that a platen on the grid's side stands on it;
+        # PoreFluid::displaced_box). With one cell all four platens keep
+        # theirs, 2.4e-7 m at the sides and 4.7e-7 m at the top and bottom
+        # (3.7e-8 m^2 of water less than W H less the discs, as measured),
+        # and as the sample shortens and widens these slivers lose by hand
+        # 4.8e-7 m x 4.4e-4 m - 9.4e-7 m x 1.8e-4 m = 4e-11 m^2 per 1 % of
+        # axial strain, 5e-8 of A0: 0.9 % of the scale at 2 %. Biot's law
+        # taking the porosity of each step, and the area read from the
         # platens, add 1e-5 and 1e-12 of it. Measured: 0.9 %.
         # The constant-volume twin keeps its area to round-off (its
         # control), and with the drainage held open its u is zero.
@@ -44,7 +48,7 @@ class UndrainedBiaxial(unittest.TestCase):
         self.assertGreater(scale, 5e-6)  # the water took a pressure worth measuring
         worst = max(abs(da + self.porosity * u / K_F)
                     for da, u in zip(self.undrained["area_change"], self.undrained["pore_pressure"]))
-        self.assertLess(worst, 3e-2 * scale)
+        self.assertLess(worst, 2e-2 * scale)
         self.assertLess(max(abs(da) for da in self.dry["area_change"]), 1e-12)
         self.assertEqual(max(abs(u) for u in self.dry["pore_pressure"]), 0.0)
 
