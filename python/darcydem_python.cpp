@@ -168,7 +168,7 @@ template <int D>
 class Model {
  public:
   Model(const toml::table& root, const std::string& file, const std::string& text)
-      : scene_(build_scene<D>(root, file, text)) {
+      : scene_(build_scene<D>(root, file, text)), contact_frictions_(sim().contact_table.frictions()) {
     // As a run starts: the first stage's settings, and the contact forces'
     // magnitudes summed (for unbalanced_force_ratio).
     if (!scene_.stages.empty()) {
@@ -413,6 +413,59 @@ class Model {
             fmt::format("{}: {} must be finite{}, got {}", who, what, nonnegative ? " and >= 0" : "", v));
     }
     return s;
+  }
+
+  /// A pair of materials' Coulomb coefficient set between steps, as a
+  /// stage's contacts = [{ materials = [...], friction = mu }] entry does
+  /// (YADE's compaction friction set from a script, PFC's contact property
+  /// change): the contacts' tangential springs are held to it from the
+  /// next force evaluation.
+  void set_friction(const std::vector<std::string>& names, double mu) {
+    const auto [a, b] = material_pair(names, "set_friction");
+    if (!(mu >= 0.0 && std::isfinite(mu)))
+      throw py::value_error(fmt::format("set_friction: friction must be a finite number >= 0, got {}", mu));
+    auto& table = sim().contact_table;
+    if (mu > 0.0 && contact_frictions_[a * table.materials() + b] == 0.0 && !table(a, b).bondable)
+      throw py::value_error(fmt::format(
+          "set_friction: the [[contact]] of {} / {} has no friction, so the time step does not allow for the "
+          "grains its tangential spring turns; give the [[contact]] the most friction the run uses and lower "
+          "it with set_friction or a stage",
+          names[0], names[1]));
+    table.set_friction(a, b, mu);
+  }
+
+  /// A pair of materials' Coulomb coefficient now.
+  [[nodiscard]] double friction(const std::vector<std::string>& names) const {
+    const auto [a, b] = material_pair(names, "friction");
+    return sim().contact_table(a, b).friction;
+  }
+
+  /// The materials' indices of a pair with a [[contact]], by their names;
+  /// `who` names the caller in the error.
+  [[nodiscard]] std::pair<std::size_t, std::size_t> material_pair(const std::vector<std::string>& names,
+                                                                  const char* who) const {
+    const auto& s = sim();
+    if (names.size() != 2)
+      throw py::value_error(
+          fmt::format("{}: materials must name exactly two materials, e.g. ['sand', 'sand']", who));
+    std::array<std::size_t, 2> m{};
+    for (int k = 0; k < 2; ++k) {
+      std::string allowed;
+      m[k] = s.materials.size();
+      for (std::size_t j = 0; j < s.materials.size(); ++j) {
+        allowed += (allowed.empty() ? "'" : ", '") + s.materials[j].name + "'";
+        if (s.materials[j].name == names[k]) m[k] = j;
+      }
+      if (m[k] == s.materials.size())
+        throw py::value_error(
+            fmt::format("{}: no material '{}' (the scene's materials: {})", who, names[k], allowed));
+    }
+    const PairParameters& pair = s.contact_table(m[0], m[1]);
+    const bool defined =
+        pair.law == NormalLaw::linear ? pair.normal_stiffness > 0.0 : pair.hertz_modulus > 0.0;
+    if (!defined)
+      throw py::value_error(fmt::format("{}: the pair {} / {} has no [[contact]]", who, names[0], names[1]));
+    return {m[0], m[1]};
   }
 
   /// Sets a [[fluid.source]]'s inflow or the pressure it holds between
@@ -815,6 +868,11 @@ class Model {
 
  private:
   Scene<D> scene_;
+  /// The [[contact]]s' Coulomb coefficients as the scene gives them,
+  /// before any stage: set_friction gives friction only to pairs that
+  /// have it there, as a stage's contacts entry may (the time step counts
+  /// the tangential spring's turning only for them).
+  std::vector<double> contact_frictions_;
   std::uint64_t since_update_ = 0;  ///< DEM steps since the last fluid step
   std::size_t stage_ = 0;           ///< the stage applied last (the first at the start)
   std::uint64_t stage_start_step_ = 0;
@@ -1144,6 +1202,15 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "'phase': degrees (optional, 0)} adds amplitude sin(2 pi f t + phase) to the target, t from now "
            "(cyclic loading); load = 'grains' (their push) or 'total' (with the pore water's thrust, on a "
            "wall that displaces the fluid)")
+      .def("set_friction", &M::set_friction, py::arg("materials"), py::arg("friction"),
+           "sets the Coulomb coefficient of a pair of materials between steps, as a stage's contacts = [{ "
+           "materials = [...], friction = mu }] entry does: materials = ['sand', 'sand'] (a pair with a "
+           "[[contact]]), friction >= 0, more than 0 only where the [[contact]] has friction (the time step "
+           "counts the turning of the tangential spring only there); the contacts' tangential springs are "
+           "held "
+           "to it from the next step (YADE's compaction friction, PFC's contact property change)")
+      .def("friction", &M::friction, py::arg("materials"),
+           "the Coulomb coefficient of a pair of materials now, materials = ['sand', 'sand']")
       .def("set_fluid_source", &M::set_fluid_source, py::arg("name"), py::arg("inflow") = py::none(),
            py::arg("pressure") = py::none(),
            "sets a [[fluid.source]]'s condition between steps, as a stage's fluid.sources.NAME does: one of "

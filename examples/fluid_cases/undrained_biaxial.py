@@ -3,7 +3,8 @@
 constant-volume twin, with the darcydem Python module built next to the
 program.
 
-    /usr/bin/python3 examples/fluid_cases/undrained_biaxial.py build/darcydem OUT [--strain 0.02] [--no-plot]
+    /usr/bin/python3 examples/fluid_cases/undrained_biaxial.py build/darcydem OUT [--strain 0.02]
+        [--compaction-friction 0.5] [--no-plot]
 
 Both runs consolidate the same packing (the scene's stage "consolidate",
 bit for bit the same), then shear it at the scene's platen speeds:
@@ -16,11 +17,16 @@ bit for bit the same), then shear it at the scene's platen speeds:
   water).
 If the coupling is right, the effective stresses (the grains' loads on
 the platens) follow the same path, and the pore pressure is the total cell
-pressure less the constant-volume test's lateral stress.
+pressure less the constant-volume test's lateral stress. Consolidated with
+the discs' friction at 0.5 (--compaction-friction 0.5), the packing is
+loose (porosity 0.248), contracts as it is sheared and liquefies: the
+effective stresses fall to nothing at 0.6 % axial strain and the pore
+pressure takes the whole cell pressure (static liquefaction, as in loose
+sand's undrained tests), in both runs.
 
 Writes OUT/undrained.csv and OUT/constant_volume.csv (axial strain;
 sigma_x, sigma_y the grains' stresses on the platens x_max and top, Pa;
-u, Pa; the area's change) and OUT/paths.png, and prints the paths side by
+u, Pa; the area's change; the sample's width and height, m) and OUT/paths.png, and prints the paths side by
 side. Ctrl-C stops a run and keeps what it has. About 45 s on one core.
 """
 import argparse
@@ -32,7 +38,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from darcydem_module import load_module  # noqa: E402
 SCENE = os.path.join(HERE, "undrained_biaxial.toml")
-COLUMNS = ("axial_strain", "sigma_x", "sigma_y", "pore_pressure", "area_change")
+COLUMNS = ("axial_strain", "sigma_x", "sigma_y", "pore_pressure", "area_change", "width", "height")
 
 
 def stage(scene, name):
@@ -48,16 +54,20 @@ def sample(model):
     return w, w["x_max"]["point"][0] - w["x_min"]["point"][0], w["top"]["point"][1] - w["bottom"]["point"][1]
 
 
-def shear(darcydem, constant_volume, strain=0.02, chunk=50, scene_file=SCENE, log=None):
-    """Consolidates the scene's packing and shears it to `strain` (axial),
-    undrained or at constant volume; returns a dict of lists (COLUMNS) read
-    every `chunk` steps, and the porosity as the shear starts."""
+def shear(darcydem, constant_volume, strain=0.02, chunk=50, scene_file=SCENE, log=None, compaction_friction=None):
+    """Consolidates the scene's packing (with the discs' friction
+    `compaction_friction` instead of the stage's if given: 0.5 packs them
+    loosely) and shears it to `strain` (axial), undrained or at constant
+    volume; returns a dict of lists (COLUMNS) read every `chunk` steps, and
+    the porosity as the shear starts."""
     with open(scene_file, "rb") as f:
         scene = tomllib.load(f)
     closing = stage(scene, "shear")["walls"]["bottom"]["velocity"][1] - stage(scene, "shear")["walls"]["top"][
         "velocity"][1]
     model = darcydem.load(scene_file)
     model.apply_stage("consolidate")
+    if compaction_friction is not None:
+        model.set_friction(["sand", "sand"], compaction_friction)
     dt = model.time_step
     model.step(int(round(stage(scene, "consolidate")["duration"] / dt)))
     model.apply_stage("shear")
@@ -73,7 +83,8 @@ def shear(darcydem, constant_volume, strain=0.02, chunk=50, scene_file=SCENE, lo
             w, width, height = sample(model)
             e1 = 1.0 - height / height0
             for k, v in zip(COLUMNS, (e1, w["x_max"]["stress"], w["top"]["stress"],
-                                      float(model.fluid.pressure.ravel()[0]), width * height / area0 - 1.0)):
+                                      float(model.fluid.pressure.ravel()[0]), width * height / area0 - 1.0, width,
+                                      height)):
                 rows[k].append(v)
             if log and len(rows[k]) % 200 == 1:
                 print(f"{'constant volume' if constant_volume else 'undrained'}: axial strain {e1:.4f} of "
@@ -145,6 +156,9 @@ def main():
     ap.add_argument("darcydem", help="the darcydem program (its Python module is in python/ next to it)")
     ap.add_argument("out", help="output directory")
     ap.add_argument("--strain", type=float, default=0.02, help="axial strain to shear to (default 0.02)")
+    ap.add_argument("--compaction-friction", type=float, default=None,
+                    help="the discs' friction while they consolidate (default: the scene's, 0.02, a dense "
+                         "packing; 0.5 packs them loosely, and the loose packing liquefies)")
     ap.add_argument("--no-plot", action="store_true")
     args = ap.parse_args()
     if not 0.0 < args.strain <= 0.025:
@@ -152,8 +166,12 @@ def main():
                  "0.025")
     darcydem = load_module(args.darcydem)
     os.makedirs(args.out, exist_ok=True)
-    undrained, porosity = shear(darcydem, False, args.strain, log=sys.stdout)
-    dry, _ = shear(darcydem, True, args.strain, log=sys.stdout)
+    if args.compaction_friction is not None and not 0.0 <= args.compaction_friction <= 0.5:
+        sys.exit(f"--compaction-friction {args.compaction_friction}: give a friction in [0, 0.5], the scene's "
+                 "[[contact]] of sand / sand has 0.5")
+    undrained, porosity = shear(darcydem, False, args.strain, log=sys.stdout,
+                                compaction_friction=args.compaction_friction)
+    dry, _ = shear(darcydem, True, args.strain, log=sys.stdout, compaction_friction=args.compaction_friction)
     write(undrained, os.path.join(args.out, "undrained.csv"))
     write(dry, os.path.join(args.out, "constant_volume.csv"))
     print(f"porosity at the shear's start {porosity:.4f}")

@@ -6,6 +6,7 @@ the source tree as the first argument.
 import csv
 import math
 import os
+import re
 import signal
 import sys
 import tempfile
@@ -1431,6 +1432,51 @@ class Contacts(unittest.TestCase):
         given = 0.5 * mass * v0**2 + 0.5 * inertia * w0**2 - before
         self.assertAlmostEqual(e["external_work"], given, delta=1e-12 * given)
         self.assertLess(abs(e["unaccounted"]), 1e-9 * given)
+
+    def test_friction_set_from_python_slows_a_sliding_sphere_as_by_hand(self):
+        # slip_to_roll.toml's sphere launched at v0 = 0.2 m/s without spin,
+        # its friction lowered from the [[contact]]'s 0.3 to 0.1 from Python:
+        # while it slides, friction decelerates it at mu g and spins it up at
+        # 5 mu g / (2 r), so it slides until t = 2 v0 / (7 mu g) = 0.0583 s
+        # (0.0194 s with 0.3). At t = 0.03 s it still slides, at
+        # v0 - mu g t = 0.170570 m/s (with 0.3 it would already roll at
+        # 5 v0 / 7 = 0.142857). The normal force swings about m g as the
+        # sphere settles on its spring, but its impulse beyond m g t is the
+        # sphere's vertical momentum, zero again once it rests: bound 1e-4
+        # of v0 (its residual bounce, damped by e = 0.5 over five periods of
+        # 6.4 ms). Measured: 2e-12 in the speed, 3.8e-6 in the spin (the
+        # tangential spring stretched at the contact).
+        model = darcydem.load(os.path.join(SOURCE, "examples", "dem_cases", "slip_to_roll.toml"))
+        self.assertEqual(model.friction(["glass", "glass"]), 0.3)
+        model.set_friction(["glass", "glass"], 0.1)
+        self.assertEqual(model.friction(["glass", "glass"]), 0.1)
+        model.step(round(0.03 / model.time_step))
+        g, mu, v0, r = 9.81, 0.1, 0.2, 1e-3
+        t = model.time
+        self.assertAlmostEqual(model.velocities[0, 0], v0 - mu * g * t, delta=1e-4 * v0)
+        self.assertAlmostEqual(model.angular_velocities[0, 1] * r, 2.5 * mu * g * t, delta=1e-4 * v0)
+        # Back to the [[contact]]'s 0.3: it rolls on at 5/7 of its speed and
+        # spin's balance, (5 v + 2 r w) / 7, as the slip-to-roll test.
+        model.set_friction(["glass", "glass"], 0.3)
+        rolling = (5.0 * model.velocities[0, 0] + 2.0 * r * model.angular_velocities[0, 1]) / 7.0
+        model.step(round(0.05 / model.time_step))
+        self.assertAlmostEqual(model.velocities[0, 0], rolling, delta=1e-3 * rolling)
+
+    def test_bad_frictions_are_refused(self):
+        model = darcydem.load(os.path.join(SOURCE, "examples", "fluid_cases", "undrained_biaxial.toml"))
+        for materials, mu, says in (
+                (["sand"], 0.1, "must name exactly two materials"),
+                (["sand", "clay"], 0.1, "no material 'clay' (the scene's materials: 'sand', 'platen')"),
+                (["platen", "platen"], 0.1, "the pair platen / platen has no [[contact]]"),
+                (["sand", "platen"], 0.3, "the [[contact]] of sand / platen has no friction"),
+                (["sand", "sand"], float("nan"), "friction must be a finite number >= 0, got nan"),
+                (["sand", "sand"], -1.0, "friction must be a finite number >= 0, got -1")):
+            with self.subTest(materials=materials, friction=mu):
+                with self.assertRaisesRegex(ValueError, re.escape(says)):
+                    model.set_friction(materials, mu)
+        self.assertEqual(model.friction(["sand", "sand"]), 0.02)  # the first stage's, unchanged
+        with self.assertRaisesRegex(ValueError, re.escape("friction: no material 'clay'")):
+            model.friction(["sand", "clay"])
 
     def test_a_fixed_grain_set_moving_keeps_its_velocity(self):
         model = darcydem.load(os.path.join(SOURCE, "examples", "dem_cases", "cemented_chain.toml"))
