@@ -1,7 +1,6 @@
 // darcydem: the command-line program, a thin layer over the library.
-//   darcydem run SCENE --out DIR [--force | --resume] [--checkpoint-every S] [--threads N]
-//   darcydem check SCENE
-//   darcydem --version
+//   darcydem run SCENE --out DIR [--force | --resume] [--checkpoint-every S] [--threads N] [--set
+//   PATH=VALUE]... darcydem check SCENE [--set PATH=VALUE]... darcydem --version
 #include <omp.h>
 #include <unistd.h>
 
@@ -19,6 +18,7 @@
 #include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/particles/grading.hpp"
 #include "darcydem/scene/scene.hpp"
+#include "darcydem/scene/scene_overrides.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/describe_walls.hpp"
 #include "darcydem/simulation/runner.hpp"
@@ -36,6 +36,7 @@ struct RunFlags {
   bool check_only = false;
   bool resume = false;
   double checkpoint_every = 0.0;
+  std::vector<std::string> overrides;  ///< --set PATH=VALUE
 };
 
 template <int D>
@@ -43,6 +44,7 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
   const std::string& out = flags.out;
   const bool check_only = flags.check_only;
   auto scene = darcydem::build_scene<D>(root, file, text);
+  scene.overrides = flags.overrides;
   if (check_only) {
     // The stages' durations in steps: at most, as a stage may stop early.
     double duration = 0.0;
@@ -56,6 +58,7 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
     if (scene.simulation.particles.size() > 0) {
       std::cout << "  " << darcydem::describe_grading<D>(scene.simulation.particles.radius);
     }
+    for (const auto& set : scene.overrides) std::cout << "  set: " << set << '\n';
     for (const auto& note : scene.notes) std::cout << "  note: " << note << '\n';
     {
       std::istringstream lines(darcydem::describe_wall_motions(scene));
@@ -96,14 +99,17 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
     const auto bytes = std::filesystem::file_size(std::filesystem::path(out) / "checkpoint.bin", ec);
     std::cerr << fmt::format("checkpoint: {}/checkpoint.bin ({:.3g} MB)\n", out,
                              ec ? 0.0 : static_cast<double>(bytes) / 1e6);
-    std::cerr << fmt::format("to go on from here: darcydem run {} --out {} --resume\n", file, out);
+    std::string sets;
+    for (const auto& set : flags.overrides) sets += fmt::format(" --set '{}'", set);
+    std::cerr << fmt::format("to go on from here: darcydem run {} --out {} --resume{}\n", file, out, sets);
   }
   return summary.interrupted ? 130 : 0;
 }
 
 int dispatch(const std::string& file, const RunFlags& flags) {
   std::string text;
-  const toml::table root = darcydem::parse_toml_file(file, text);
+  toml::table root = darcydem::parse_toml_file(file, text);
+  darcydem::apply_scene_overrides(root, flags.overrides, file, text);
   const int dim = darcydem::scene_dimension(root, file);
   return dim == 2 ? run<2>(root, file, text, flags) : run<3>(root, file, text, flags);
 }
@@ -153,13 +159,28 @@ int main(int argc, char** argv) {
           },
           "N >= 0"));
 
+  std::vector<std::string> overrides;
+  const std::string set_help =
+      "change the scene before it is built, as if the file said so (repeatable): PATH=VALUE, PATH dotted "
+      "keys "
+      "through its tables, an array's element by its name or number from 1 (fluid.bulk_modulus=1e5, "
+      "wall.floor.velocity=[0.0,-0.1], stage.shear.duration=0.2, contact.1.friction=0.3), VALUE in TOML";
+  run_cmd->add_option("--set", overrides, set_help)
+      ->type_name("PATH=VALUE")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+
   std::string check_file;
   auto* check_cmd = app.add_subcommand("check", "validate a scene without running it");
   check_cmd->add_option("scene", check_file, "scene file (TOML)")->required()->check(CLI::ExistingFile);
+  check_cmd->add_option("--set", overrides, set_help)
+      ->type_name("PATH=VALUE")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*check_cmd) return dispatch(check_file, RunFlags{"", true});
+    if (*check_cmd) return dispatch(check_file, RunFlags{"", true, false, 0.0, overrides});
     if (std::error_code ec;
         std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec)) {
       std::cerr << fmt::format("error: --out '{}' is a file; give a directory (it is made if absent)\n",
@@ -177,7 +198,7 @@ int main(int argc, char** argv) {
     // A reader of the log that goes away (`darcydem run ... | head`) stops
     // the run as Ctrl-C does, with its output kept, instead of killing it.
     std::signal(SIGPIPE, on_signal);
-    return dispatch(scene_file, RunFlags{out_dir, false, resume, checkpoint_every});
+    return dispatch(scene_file, RunFlags{out_dir, false, resume, checkpoint_every, overrides});
   } catch (const darcydem::SceneError& e) {
     std::cerr << e.what() << "\n";
     return 2;

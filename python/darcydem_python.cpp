@@ -42,9 +42,11 @@
 
 #include "contact_view.hpp"
 #include "darcydem/analysis/seepage_analytic.hpp"
+#include "darcydem/core/quoted.hpp"
 #include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/particles/grading.hpp"
 #include "darcydem/scene/scene.hpp"
+#include "darcydem/scene/scene_overrides.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/run_checkpoint.hpp"
 #include "darcydem/simulation/runner.hpp"
@@ -892,11 +894,59 @@ struct FluidView {
   PoreFluid<D>* fluid = nullptr;
 };
 
-/// Reads and parses the scene file, then calls f.template operator()<D>(root, file, text).
+/// A Python value as TOML text, for a scene override: bool, int, float
+/// (and numpy's), str (a TOML string), list or tuple (an array), dict (an
+/// inline table).
+std::string toml_text(const py::handle& v, const std::string& path) {
+  if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::int_>(v)) return py::str(v).cast<std::string>();
+  if (py::isinstance<py::str>(v)) return quoted(v.cast<std::string>());
+  if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
+    std::string out;
+    for (const auto& item : v) out += (out.empty() ? "" : ", ") + toml_text(item, path);
+    return "[" + out + "]";
+  }
+  if (py::isinstance<py::dict>(v)) {
+    std::string out;
+    for (const auto& [key, item] : v.cast<py::dict>()) {
+      out += fmt::format("{}{} = {}", out.empty() ? "" : ", ", toml_text(key, path), toml_text(item, path));
+    }
+    return "{ " + out + " }";
+  }
+  if (py::hasattr(v, "__float__")) {
+    const double x = v.cast<double>();
+    if (std::isnan(x)) return "nan";
+    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+    // The shortest text that reads back to x, with a point so that TOML
+    // takes it as a float.
+    const std::string text = fmt::format("{}", x);
+    return text.find_first_of(".e") == std::string::npos ? text + ".0" : text;
+  }
+  throw py::value_error(fmt::format("set: the value for '{}' is a {}; give a number, str, bool, list or dict",
+                                    path, py::str(py::type::of(v).attr("__name__")).cast<std::string>()));
+}
+
+/// The `set` argument of load and run, {PATH: value}, as `--set PATH=VALUE`
+/// strings (scene/scene_overrides.hpp).
+std::vector<std::string> scene_overrides(const std::optional<py::dict>& set) {
+  std::vector<std::string> out;
+  if (!set) return out;
+  for (const auto& [key, value] : *set) {
+    if (!py::isinstance<py::str>(key))
+      throw py::value_error("set: its keys are dotted paths, e.g. {'fluid.bulk_modulus': 1e5}");
+    const auto path = key.cast<std::string>();
+    out.push_back(path + "=" + toml_text(value, path));
+  }
+  return out;
+}
+
+/// Reads and parses the scene file, applies the overrides, then calls
+/// f.template operator()<D>(root, file, text).
 template <class F>
-py::object with_scene(const std::string& file, F&& f) {
+py::object with_scene(const std::string& file, const std::vector<std::string>& overrides, F&& f) {
   std::string text;
-  const toml::table root = parse_toml_file(file, text);
+  toml::table root = parse_toml_file(file, text);
+  apply_scene_overrides(root, overrides, file, text);
   const int dim = scene_dimension(root, file);
   return dim == 2 ? f.template operator()<2>(root, file, text) : f.template operator()<3>(root, file, text);
 }
@@ -1341,22 +1391,26 @@ PYBIND11_MODULE(darcydem, m) {
   bind_model<3>(m, "Model3D", "Fluid3D");
   m.def(
       "load",
-      [](const std::string& file, const std::optional<std::string>& checkpoint) {
-        return with_scene(file,
+      [](const std::string& file, const std::optional<std::string>& checkpoint,
+         const std::optional<py::dict>& set) {
+        return with_scene(file, scene_overrides(set),
                           [&]<int D>(const toml::table& root, const std::string& f, const std::string& text) {
                             auto model = std::make_unique<Model<D>>(root, f, text);
                             if (checkpoint) model->restore(*checkpoint);
                             return py::cast(std::move(model));
                           });
       },
-      py::arg("scene"), py::arg("checkpoint") = py::none(),
+      py::arg("scene"), py::arg("checkpoint") = py::none(), py::kw_only(), py::arg("set") = py::none(),
       "builds a scene from its TOML file (checked as `darcydem check` does); raises SceneError on bad input. "
+      "set = {'fluid.bulk_modulus': 1e5, 'wall.floor.velocity': [0.0, -0.1], 'stage.shear.duration': 0.2} "
+      "changes it first, as `--set PATH=VALUE` does (a str is a TOML string, a list an array, a dict an "
+      "inline table). "
       "With checkpoint = a file model.save wrote, or the checkpoint.bin an interrupted `darcydem run` of "
       "the same scene file left, the model goes on from that state (YADE's O.load)");
   m.def(
       "run",
       [](const std::string& file, const std::string& out, bool force, bool resume, double checkpoint_every,
-         int threads, bool log, std::uint64_t stop_at_step) {
+         int threads, bool log, std::uint64_t stop_at_step, const std::optional<py::dict>& set) {
         if (force && resume) throw py::value_error("run: force and resume exclude each other");
         if (!force && !resume && !darcydem::output_dir_is_free(out))
           throw py::value_error(
@@ -1369,16 +1423,19 @@ PYBIND11_MODULE(darcydem, m) {
         options.checkpoint_every = checkpoint_every;
         options.stop_at_step = stop_at_step;
         options.log = log ? &std::cerr : nullptr;  // the program's run log and progress lines
-        return with_scene(file,
+        const auto overrides = scene_overrides(set);
+        return with_scene(file, overrides,
                           [&]<int D>(const toml::table& root, const std::string& f, const std::string& text) {
                             auto scene = darcydem::build_scene<D>(root, f, text);
+                            scene.overrides = overrides;
                             return py::object(run_one<D>(scene, options));
                           });
       },
       py::arg("scene"), py::arg("out"), py::arg("force") = false, py::arg("resume") = false,
       py::arg("checkpoint_every") = 0.0, py::arg("threads") = 0, py::arg("log") = false,
-      py::arg("stop_at_step") = 0,
-      "runs a scene as `darcydem run` does, writing its output directory; returns a summary; with "
+      py::arg("stop_at_step") = 0, py::arg("set") = py::none(),
+      "runs a scene as `darcydem run` does, writing its output directory; returns a summary; set = {PATH: "
+      "value} changes the scene first, as load's set and `--set PATH=VALUE` do; with "
       "log=True the program's run log and progress lines go to stderr; stop_at_step = N stops it as if "
       "interrupted once N steps are done (checked every 256 steps), leaving its checkpoint (resume=True "
       "goes on with it; darcydem.load(scene, checkpoint=out + '/checkpoint.bin') loads it into a model)");

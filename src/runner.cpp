@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "darcydem/core/quoted.hpp"
 #include "darcydem/generation/generators.hpp"
 #include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/output/probes.hpp"
@@ -27,19 +28,13 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", static_cast<int>(c));
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
+std::string json_string(const std::string& s) { return quoted(s); }
+
+/// JSON strings, comma-separated (an array's inside).
+std::string json_strings(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& s : items) out += (out.empty() ? "" : ", ") + json_string(s);
+  return out;
 }
 
 /// Which of the stage's stop conditions holds now ("" if none).
@@ -169,12 +164,12 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
   const std::uint64_t fluid_iterations = pos.fluid_iterations;
   const double fluid_residual = pos.fluid_residual;
   std::ofstream json(path);
-  std::string stages;
-  for (const auto& s : summary.stages_completed) stages += (stages.empty() ? "" : ", ") + json_string(s);
+  const std::string stages = json_strings(summary.stages_completed);
   json << "{\n"
        << fmt::format("  \"version\": {},\n", json_string(version_string))
        << fmt::format("  \"scene\": {},\n", json_string(scene.file))
        << fmt::format("  \"scene_hash\": \"fnv1a64:{}\",\n", scene.text_hash)
+       << fmt::format("  \"overrides\": [{}],\n", json_strings(scene.overrides))
        << fmt::format("  \"dimension\": {},\n", D)
        << fmt::format("  \"particles\": {},\n", sim.particles.size())
        << fmt::format("  \"time_step\": {:.17g},\n", dt) << fmt::format("  \"steps\": {},\n", summary.steps)
@@ -438,6 +433,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
                                    ? fluid->critical_time_step(sim.particles, sim.critical_time_step())
                                    : sim.critical_time_step()));
     if (!sim.particles.radius.empty()) *options.log << describe_grading<D>(sim.particles.radius);
+    for (const auto& set : scene.overrides) *options.log << "set: " << set << '\n';
     for (const auto& note : scene.notes) *options.log << "note: " << note << '\n';
     if (fluid != nullptr) {
       std::string sides;

@@ -1638,9 +1638,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
           std::string hint;
           if (auto h = did_you_mean(name.str(), wall_names); !h.empty())
             hint = fmt::format(" (did you mean \"{}\"?)", h);
-          throw SceneError(fmt::format("{}:{}:{}: error: {} walls: no wall named \"{}\"{}", file,
-                                       node.source().begin.line, node.source().begin.column, r.where(),
-                                       name.str(), hint));
+          throw SceneError(fmt::format("{}: error: {} walls: no wall named \"{}\"{}",
+                                       r.location(node.source()), r.where(), name.str(), hint));
         }
         const toml::table* ct = node.as_table();
         if (ct == nullptr)
@@ -1728,9 +1727,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
           std::string hint;
           if (auto h = did_you_mean(name.str(), inlet_names); !h.empty())
             hint = fmt::format(" (did you mean \"{}\"?)", h);
-          throw SceneError(fmt::format("{}:{}:{}: error: {} inlets: no [[inlet]] named \"{}\"{}", file,
-                                       node.source().begin.line, node.source().begin.column, r.where(),
-                                       name.str(), hint));
+          throw SceneError(fmt::format("{}: error: {} inlets: no [[inlet]] named \"{}\"{}",
+                                       r.location(node.source()), r.where(), name.str(), hint));
         }
         const toml::table* ct = node.as_table();
         if (ct == nullptr)

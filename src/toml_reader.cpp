@@ -64,6 +64,9 @@ TableReader::TableReader(const toml::table& table, std::string where, std::strin
     : table_(table), where_(std::move(where)), file_(std::move(file)) {}
 
 std::string TableReader::location(const toml::source_region& s) const {
+  // A value given on the command line (apply_scene_overrides) carries its
+  // `--set PATH=VALUE` as its source.
+  if (s.path && s.path->starts_with("--set ")) return *s.path;
   return fmt::format("{}:{}:{}", file_, s.begin.line, s.begin.column);
 }
 

@@ -165,5 +165,25 @@ sed -e 's/^gravity = \[0.0, -9.80665\]/gravity = [0.0, -1e308]/' "$scene" > "$wo
 [ $rc -eq 1 ] && [ ! -e "$work/long/checkpoint.bin" ] && ! grep -q '"checkpoint"' "$work/long/run.json" \
   && ok "--force removes an old run's checkpoint" || bad "stale checkpoint after --force (rc $rc)"
 
+# --set: a scene changed on the command line runs as the file edited by
+# hand, bit for bit, and says so in its log and run.json.
+sed -e '0,/^restitution = 0.5/s//restitution = 0.3/' -e 's/^local_damping = 0.7/local_damping = 0.5/' "$scene" > "$work/edited.toml"
+"$exe" run "$work/edited.toml" --out "$work/edited" > /dev/null 2>&1
+"$exe" run "$scene" --out "$work/plain" > /dev/null 2>&1
+"$exe" run "$scene" --out "$work/set" --set contact.1.restitution=0.3 --set 'stage.settle.local_damping=0.5' \
+  > /dev/null 2>"$work/set.log"; rc=$?
+[ $rc -eq 0 ] && ! cmp -s "$work/edited/probes.csv" "$work/plain/probes.csv" && cmp -s "$work/edited/probes.csv" "$work/set/probes.csv" \
+  && grep -q "^set: contact.1.restitution=0.3$" "$work/set.log" \
+  && grep -q '"overrides": \["contact.1.restitution=0.3", "stage.settle.local_damping=0.5"\],' "$work/set/run.json" \
+  && ok "run --set is the scene edited by hand" || bad "run --set (rc $rc)"
+"$exe" check "$src/examples/fluid_cases/undrained_biaxial.toml" --set fluid.bulk_modulus=1e5 \
+  | grep -q "^  pore fluid: 1 cells, K_f = 1e+05 Pa" && ok "check --set changes K_f" || bad "check --set"
+"$exe" check "$scene" --set stage.settle.duration=-1 > /dev/null 2>"$work/set.err"; rc=$?
+[ $rc -eq 2 ] && grep -q "^--set stage.settle.duration=-1: error: \[\[stage\]\] #1 key 'duration': must be > 0" "$work/set.err" \
+  && ok "a bad --set value is refused naming it" || bad "bad --set value (rc $rc): $(cat "$work/set.err")"
+"$exe" check "$scene" --set stage.shear.duration=1 > /dev/null 2>"$work/set.err"; rc=$?
+[ $rc -eq 2 ] && grep -q "has no \[\[stage\]\] named or numbered 'shear' (there are: 'settle'; number them from 1)" "$work/set.err" \
+  && ok "a --set path the scene lacks is refused naming what there is" || bad "bad --set path (rc $rc): $(cat "$work/set.err")"
+
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]

@@ -258,6 +258,62 @@ class BadInput(unittest.TestCase):
         self.assertIn("not empty", str(caught.exception))
 
 
+class SceneOverrides(unittest.TestCase):
+    """load(..., set=...) and run(..., set=...): the scene changed as
+    `--set PATH=VALUE` changes it, Python's values written as TOML."""
+
+    COLUMN = os.path.join(SOURCE, "examples", "column_settling", "column.toml")
+
+    def test_a_scene_set_from_python_is_the_file_edited_by_hand(self):
+        folder = tempfile.mkdtemp()
+        with open(self.COLUMN) as f:
+            text = f.read()
+        edited = text.replace("restitution = 0.5", "restitution = 0.3", 1).replace(
+            "local_damping = 0.7", "local_damping = 0.5")
+        by_hand = darcydem.load(write_scene(folder, edited))
+        # numpy's float, Python's float: both TOML floats.
+        model = darcydem.load(self.COLUMN, set={"contact.1.restitution": np.float64(0.3),
+                                                "stage.settle.local_damping": 0.5})
+        plain = darcydem.load(self.COLUMN)
+        for m in (by_hand, model, plain):
+            m.step(3000)
+        np.testing.assert_array_equal(model.positions, by_hand.positions)
+        self.assertFalse(np.array_equal(model.positions, plain.positions))
+        out = os.path.join(folder, "run")
+        summary = darcydem.run(self.COLUMN, out=out, set={"contact.1.restitution": 0.3})
+        self.assertEqual(summary["status"], "completed")
+        with open(os.path.join(out, "run.json")) as f:
+            self.assertIn('"overrides": ["contact.1.restitution=0.3"],', f.read())
+
+    def test_strings_booleans_lists_and_tables_are_toml(self):
+        scene = os.path.join(SOURCE, "examples", "fluid_cases", "undrained_biaxial.toml")
+        model = darcydem.load(scene, set={
+            "wall.x_max.servo": {"target_stress": 2e5, "gain": 1e-5, "max_speed": 0.1, "load": "total"},
+            "wall.top.point": (0.0, 0.051), "fluid.solver": "cg", "fluid.hold_forces": True,
+            "fluid.bulk_modulus": 100000})
+        walls = {w["name"]: w for w in model.walls}
+        self.assertEqual(walls["x_max"]["servo"], {"target_stress": 2e5})
+        self.assertEqual(walls["top"]["point"][1], 0.051)
+        # K_f = 1e5 Pa instead of 2.2e9: the time step is the dry one's
+        # (6.67e-7 s, against 1.98e-7 s with the water's stiffness).
+        self.assertGreater(model.time_step, 3 * darcydem.load(scene).time_step)
+
+    def test_bad_overrides_are_refused_naming_them(self):
+        for given, error, says in (
+                ({"stage.settle.duration": -1.0}, darcydem.SceneError,
+                 "--set stage.settle.duration=-1.0: error: [[stage]] #1 key 'duration': must be > 0"),
+                ({"stage.settle.local_damping": "high"}, darcydem.SceneError,
+                 "--set stage.settle.local_damping=\"high\": error"),
+                ({"stage.shear.duration": 1.0}, darcydem.SceneError,
+                 "has no [[stage]] named or numbered 'shear' (there are: 'settle'"),
+                ({"stage.settle.duration": object()}, ValueError,
+                 "set: the value for 'stage.settle.duration' is a object; give a number, str, bool, list or dict"),
+                ({1: 0.5}, ValueError, "set: its keys are dotted paths")):
+            with self.subTest(set=given):
+                with self.assertRaisesRegex(error, re.escape(says)):
+                    darcydem.load(self.COLUMN, set=given)
+
+
 class HydrostaticBed(unittest.TestCase):
     """examples/fluid_cases/hydrostatic_bed.toml from Python (issue 3's
     verification 3), and the same scene run as the program runs it."""

@@ -14,44 +14,12 @@
 #include "darcydem/scene/scene.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/runner.hpp"
+#include "good_scene.hpp"
 
 namespace darcydem {
 namespace {
 
-const char* kGood = R"(
-[simulation]
-dimension = 2
-time_step = "auto"
-
-[[material]]
-name = "sand"
-density = 2650.0
-
-[[contact]]
-materials = ["sand", "sand"]
-law = "linear"
-normal_stiffness = 1e5
-restitution = 0.5
-friction = 0.5
-
-[[wall]]
-name = "floor"
-point = [0.0, 0.0]
-normal = [0.0, 1.0]
-material = "sand"
-
-[[particles]]
-generator = "column"
-material = "sand"
-base = [0.0, 0.0]
-count = 3
-radius = 0.0005
-
-[[stage]]
-name = "settle"
-duration = 0.01
-gravity = [0.0, -9.81]
-)";
+const char* kGood = kGoodScene;
 
 std::string write_scene(const std::string& text) {
   static int counter = 0;

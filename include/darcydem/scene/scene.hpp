@@ -169,6 +169,9 @@ struct Scene {
   /// grading the few grains drawn follow loosely): `darcydem check` and the
   /// run log print them.
   std::vector<std::string> notes;
+  /// The `--set PATH=VALUE` changes the scene was built with
+  /// (apply_scene_overrides), for the run log and run.json.
+  std::vector<std::string> overrides;
 };
 
 /// Reads `simulation.dimension` (2 or 3) from a parsed scene.
