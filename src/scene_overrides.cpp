@@ -2,7 +2,6 @@
 #include "darcydem/scene/scene_overrides.hpp"
 
 #include <charconv>
-#include <memory>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -40,28 +39,30 @@ toml::table* element(toml::array& array, const std::string& key, std::string& kn
   return nullptr;
 }
 
+/// Refuses an override: the message names it, `--set PATH=VALUE`.
+[[noreturn]] void refuse(const std::string& source, const std::string& message) {
+  throw SceneError(fmt::format("{}: error: {}", source, message));
+}
+
 }  // namespace
 
 void apply_scene_overrides(toml::table& root, const std::vector<std::string>& overrides,
                            const std::string& file, std::string& text) {
   for (const auto& given : overrides) {
     const std::string source = "--set " + given;
-    auto fail = [&](const std::string& message) -> void {
-      throw SceneError(fmt::format("{}: error: {}", source, message));
-    };
     const std::size_t eq = given.find('=');
     if (eq == std::string::npos || eq == 0) {
-      fail(
-          "give PATH=VALUE, e.g. fluid.bulk_modulus=1e5, wall.floor.velocity=[0.0, -0.1] or "
-          "stage.shear.duration=0.2");
+      refuse(source,
+             "give PATH=VALUE, e.g. fluid.bulk_modulus=1e5, wall.floor.velocity=[0.0, -0.1] or "
+             "stage.shear.duration=0.2");
     }
     const std::string path = given.substr(0, eq);
     const auto keys = split_path(path);
     for (const auto& k : keys) {
-      if (k.empty()) fail(fmt::format("'{}' has an empty key between its dots", path));
+      if (k.empty()) refuse(source, fmt::format("'{}' has an empty key between its dots", path));
       if (k.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-") !=
           std::string::npos) {
-        fail(fmt::format("'{}' in '{}' is not a key: keys are letters, digits, _ and -", k, path));
+        refuse(source, fmt::format("'{}' in '{}' is not a key: keys are letters, digits, _ and -", k, path));
       }
     }
     // Down the tables the scene has; the first key it lacks and those after
@@ -79,17 +80,19 @@ void apply_scene_overrides(toml::table& root, const std::vector<std::string>& ov
         std::string known;
         table = element(*array, keys[i], known);
         if (table == nullptr) {
-          fail(fmt::format("{} has no [[{}]] named or numbered '{}' (there are: {}; number them from 1)",
-                           file, here, keys[i], known.empty() ? "none" : known));
+          refuse(source,
+                 fmt::format("{} has no [[{}]] named or numbered '{}' (there are: {}; number them from 1)",
+                             file, here, keys[i], known.empty() ? "none" : known));
         }
         walked = here + "." + keys[i];
         if (i + 1 == keys.size()) {
-          fail(fmt::format("'{}' is a whole [[{}]]; name one of its keys, e.g. {}.name", path, key, path));
+          refuse(source,
+                 fmt::format("'{}' is a whole [[{}]]; name one of its keys, e.g. {}.name", path, key, path));
         }
         continue;
       }
       table = next->as_table();
-      if (table == nullptr) fail(fmt::format("'{}' in {} is a value, not a table", here, file));
+      if (table == nullptr) refuse(source, fmt::format("'{}' in {} is a value, not a table", here, file));
       walked = here;
     }
     std::string dotted;
@@ -98,12 +101,13 @@ void apply_scene_overrides(toml::table& root, const std::vector<std::string>& ov
     try {
       parsed = toml::parse(dotted + " = " + given.substr(eq + 1), source);
     } catch (const toml::parse_error& e) {
-      fail(
-          fmt::format("'{}' is not a TOML value ({}): give a number, \"text\", true or false, [...] or "
-                      "{{ key = ... }}",
-                      given.substr(eq + 1), e.description()));
+      refuse(source,
+             fmt::format("'{}' is not a TOML value ({}): give a number, \"text\", true or false, [...] or "
+                         "{{ key = ... }}",
+                         given.substr(eq + 1), e.description()));
     }
-    if (parsed.size() != 1) fail(fmt::format("'{}' is more than one TOML value", given.substr(eq + 1)));
+    if (parsed.size() != 1)
+      refuse(source, fmt::format("'{}' is more than one TOML value", given.substr(eq + 1)));
     // Moved, not copied: the nodes keep their source, `--set PATH=VALUE`,
     // which the scene reader's messages name.
     parsed.get(keys[i])->visit([&](auto&& node) { table->insert_or_assign(keys[i], std::move(node)); });
