@@ -894,13 +894,15 @@ struct FluidView {
   PoreFluid<D>* fluid = nullptr;
 };
 
-/// A Python value as TOML text, for a scene override: bool, int, float
-/// (and numpy's), str (a TOML string), list or tuple (an array), dict (an
-/// inline table).
+/// A Python value as TOML text, for a scene override: bool, int, float,
+/// str (a TOML string), list or tuple (an array), dict (an inline table),
+/// and numpy's arrays and scalars (as their tolist()).
 std::string toml_text(const py::handle& v, const std::string& path) {
   if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
   if (py::isinstance<py::int_>(v)) return py::str(v).cast<std::string>();
   if (py::isinstance<py::str>(v)) return quoted(v.cast<std::string>());
+  // A numpy array or scalar: as the Python values it holds.
+  if (py::hasattr(v, "tolist") && !py::isinstance<py::str>(v)) return toml_text(v.attr("tolist")(), path);
   if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
     std::string out;
     for (const auto& item : v) out += (out.empty() ? "" : ", ") + toml_text(item, path);

@@ -289,7 +289,7 @@ class SceneOverrides(unittest.TestCase):
         scene = os.path.join(SOURCE, "examples", "fluid_cases", "undrained_biaxial.toml")
         model = darcydem.load(scene, set={
             "wall.x_max.servo": {"target_stress": 2e5, "gain": 1e-5, "max_speed": 0.1, "load": "total"},
-            "wall.top.point": (0.0, 0.051), "fluid.solver": "cg", "fluid.hold_forces": True,
+            "wall.top.point": np.array([0.0, 0.051]), "fluid.solver": "cg", "fluid.hold_forces": True,
             "fluid.bulk_modulus": 100000})
         walls = {w["name"]: w for w in model.walls}
         self.assertEqual(walls["x_max"]["servo"], {"target_stress": 2e5})
