@@ -26,8 +26,10 @@ sand's undrained tests), in both runs.
 
 Writes OUT/undrained.csv and OUT/constant_volume.csv (axial strain;
 sigma_x, sigma_y the grains' stresses on the platens x_max and top, Pa;
-u, Pa; the area's change; the sample's width and height, m) and OUT/paths.png, and prints the paths side by
-side. Ctrl-C stops a run and keeps what it has. About 45 s on one core.
+u, Pa; the area's change; the sample's width and height, m) and
+OUT/paths.png, and prints the paths side by side. Ctrl-C stops it, writing
+the path of the run under way so far (none while the packing
+consolidates). About 45 s on one core.
 """
 import argparse
 import os
@@ -39,6 +41,14 @@ sys.path.insert(0, HERE)
 from darcydem_module import load_module  # noqa: E402
 SCENE = os.path.join(HERE, "undrained_biaxial.toml")
 COLUMNS = ("axial_strain", "sigma_x", "sigma_y", "pore_pressure", "area_change", "width", "height")
+
+
+class Interrupted(Exception):
+    """Ctrl-C during a shear; `rows` holds the path so far."""
+
+    def __init__(self, rows):
+        super().__init__("interrupted")
+        self.rows = rows
 
 
 def stage(scene, name):
@@ -69,7 +79,11 @@ def shear(darcydem, constant_volume, strain=0.02, chunk=50, scene_file=SCENE, lo
     if compaction_friction is not None:
         model.set_friction(["sand", "sand"], compaction_friction)
     dt = model.time_step
-    model.step(int(round(stage(scene, "consolidate")["duration"] / dt)))
+    rows = {k: [] for k in COLUMNS}
+    try:
+        model.step(int(round(stage(scene, "consolidate")["duration"] / dt)))
+    except KeyboardInterrupt:
+        raise Interrupted(rows) from None
     model.apply_stage("shear")
     _, width0, height0 = sample(model)
     area0 = width0 * height0
@@ -77,7 +91,6 @@ def shear(darcydem, constant_volume, strain=0.02, chunk=50, scene_file=SCENE, lo
     porosity = 1.0 - grains / area0
     if constant_volume:
         model.set_fluid_source("drainage", pressure=0.0)
-    rows = {k: [] for k in COLUMNS}
     try:
         while True:
             w, width, height = sample(model)
@@ -99,7 +112,7 @@ def shear(darcydem, constant_volume, strain=0.02, chunk=50, scene_file=SCENE, lo
                 model.set_wall_motion("x_min", velocity=[-speed, 0.0])
             model.step(chunk)
     except KeyboardInterrupt:
-        print("interrupted: keeping the path so far", file=sys.stderr)
+        raise Interrupted(rows) from None
     return rows, porosity
 
 
@@ -169,13 +182,18 @@ def main():
     if args.compaction_friction is not None and not 0.0 <= args.compaction_friction <= 0.5:
         sys.exit(f"--compaction-friction {args.compaction_friction}: give a friction in [0, 0.5], the scene's "
                  "[[contact]] of sand / sand has 0.5")
-    undrained, porosity = shear(darcydem, False, args.strain, log=sys.stdout,
-                                compaction_friction=args.compaction_friction)
-    dry, _ = shear(darcydem, True, args.strain, log=sys.stdout, compaction_friction=args.compaction_friction)
-    write(undrained, os.path.join(args.out, "undrained.csv"))
-    write(dry, os.path.join(args.out, "constant_volume.csv"))
+    runs = {}
+    for name, constant_volume in (("undrained", False), ("constant_volume", True)):
+        try:
+            runs[name], porosity = shear(darcydem, constant_volume, args.strain, log=sys.stdout,
+                                         compaction_friction=args.compaction_friction)
+        except Interrupted as stopped:
+            write(stopped.rows, os.path.join(args.out, name + ".csv"))
+            sys.exit(f"interrupted: the {name} path so far is in {os.path.join(args.out, name + '.csv')}")
+        write(runs[name], os.path.join(args.out, name + ".csv"))
+    undrained, dry = runs["undrained"], runs["constant_volume"]
     print(f"porosity at the shear's start {porosity:.4f}")
-    print(" e1 (%)   p' und    p' cv   q und    q cv   (kPa)   u     sigma_3 - sigma_x(cv)")
+    print(" e1 (%)   p' und    p' cv   q und    q cv   (kPa)   u     sigma_3 - sigma'_x(cv)")
     step = args.strain / 8
     for k in range(1, 9):
         try:

@@ -337,6 +337,43 @@ class UndrainedBiaxialScript(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "stops at an axial strain of 0.002, before 0.003"):
             undrained_biaxial.at_strain(rows, 0.003)
 
+    def test_ctrl_c_keeps_the_path_so_far(self):
+        # A stand-in for the module: a sample 10 mm x 20 mm whose platens
+        # close 1 um per chunk, Ctrl-C on the fourth chunk of the shear.
+        class Model:
+            time_step = 1e-6
+            radii = [1e-3]
+
+            def __init__(self):
+                self.steps, self.height = 0, 0.02
+                pressure = type("Cells", (), {"ravel": lambda cells: [5.0]})()
+                self.fluid = type("Fluid", (), {"pressure": pressure})()
+
+            @property
+            def walls(self):
+                def plane(name, x, y):
+                    return {"name": name, "point": (x, y), "stress": 1e5}
+                return [plane("x_min", 0.0, 0.0), plane("x_max", 0.01, 0.0), plane("bottom", 0.0, 0.0),
+                        plane("top", 0.0, self.height)]
+
+            def apply_stage(self, name):
+                self.stage = name
+
+            def step(self, n):
+                if self.stage == "shear":
+                    self.steps += 1
+                    if self.steps == 4:
+                        raise KeyboardInterrupt
+                    self.height -= 1e-6
+
+        fake = type("darcydem", (), {"load": staticmethod(lambda scene: Model())})
+        with self.assertRaises(undrained_biaxial.Interrupted) as stopped:
+            undrained_biaxial.shear(fake, False, 0.02)
+        rows = stopped.exception.rows
+        self.assertEqual(len(rows["axial_strain"]), 4)  # read before each chunk, the fourth stopped
+        self.assertAlmostEqual(rows["axial_strain"][-1], 3e-6 / 0.02, delta=1e-15)
+        self.assertEqual(rows["pore_pressure"], [5.0] * 4)
+
     def test_a_strain_beyond_the_stage_is_refused(self):
         r = subprocess.run([sys.executable, os.path.join(SOURCE, self.SCRIPT), "build/darcydem", tempfile.mkdtemp(),
                             "--strain", "0.05"], capture_output=True, text=True)
