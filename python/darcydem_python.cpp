@@ -1062,13 +1062,17 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["cell"] = std::vector<int>(c.begin(), c.end());
               d["type"] = source.type == FluidSourceType::inflow ? "inflow" : "pressure";
               d["inflow"] = f.fluid->source_inflow(i);
+              d["radius"] = source.radius;
+              d["well_pressure"] = f.fluid->well_pressure(i);
+              d["well_index"] = f.fluid->well_index(i);
               out.append(d);
             }
             return out;
           },
           "the [[fluid.source]]s: name, position (m), the cell it feeds (indices), type ('inflow' or "
           "'pressure': what it imposes) and inflow, what it gave in the last fluid step, m^3/s (2D: per "
-          "metre)")
+          "metre); radius, a well's, m (0: none), well_pressure, Pa, at its bore with a radius (its cell's "
+          "plus inflow / well_index), else its cell's, and well_index, m^3/(s Pa) (0 without a radius)")
       .def_property_readonly(
           "balance",
           [](const F& f) {

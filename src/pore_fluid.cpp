@@ -4,6 +4,7 @@
 
 #include "darcydem/core/parallel.hpp"
 #include "darcydem/core/vector_math.hpp"
+#include "darcydem/fluid/well_index.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -697,12 +698,20 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   // Sources: their water into their cells; or their pressure, held in
   // their cells (hold_pressure); what water that takes is found after the
   // solve.
+  // A well with a radius holds its pressure at its bore instead: joined to
+  // its cell by its well index, as a drained side's face is to its cell.
   held_sources_.clear();
+  std::vector<std::pair<std::size_t, double>> bore_held;  // (source, its well index)
   for (std::size_t i = 0; i < sources.size(); ++i) {
     const std::size_t c = source_cells_[i];
     if (sources[i].type == FluidSourceType::inflow) {
       source_inflow_[i] = sources[i].value.at(time);
       rhs_[c] += dt * source_inflow_[i];
+    } else if (sources[i].radius > 0.0) {
+      const double index = well_index(i);
+      diagonal[static_cast<Eigen::Index>(c)] += dt * index;
+      rhs_[c] += dt * index * sources[i].value.at(time);
+      bore_held.emplace_back(i, index);
     } else {
       hold_pressure(i, sources[i].value.at(time));
     }
@@ -746,6 +755,9 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
       lacking -= conductance * solution_[static_cast<Eigen::Index>(neighbour)];
     source_inflow_[h.source] = lacking / dt;
   }
+  for (const auto& [i, index] : bore_held) {
+    source_inflow_[i] = index * (sources[i].value.at(time) - pressure_[source_cells_[i]]);
+  }
 
   compute_face_fields(time);
   // Balance: summed over the cells, the interior fluxes cancel and
@@ -782,6 +794,36 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   time_ = time;
   ++updates_;
   last_times_.fields = lap();
+}
+
+template <int D>
+Vec<D> PoreFluid<D>::source_cell_widths(std::size_t source) const {
+  const auto at = grid.coords(grid.cell_holding(sources.at(source).position));
+  Vec<D> widths;
+  for (int k = 0; k < D; ++k) widths[k] = grid.width(k, at[k]);
+  return widths;
+}
+
+template <int D>
+double PoreFluid<D>::equivalent_radius(std::size_t source) const {
+  return darcydem::equivalent_radius<D>(
+      source_cell_widths(source),
+      permeability.model == PermeabilityModel::constant ? permeability.intrinsic : permeability.anisotropy);
+}
+
+template <int D>
+double PoreFluid<D>::well_index(std::size_t source) const {
+  const double radius = sources.at(source).radius;
+  if (radius <= 0.0) return 0.0;
+  return darcydem::well_index<D>(source_cell_widths(source), kappa_[source_cells_.at(source)],
+                                 fluid.viscosity, radius);
+}
+
+template <int D>
+double PoreFluid<D>::well_pressure(std::size_t source) const {
+  const double cell = pressure_[source_cells_.at(source)];
+  const double index = well_index(source);
+  return index > 0.0 ? cell + source_inflow_.at(source) / index : cell;
 }
 
 template <int D>

@@ -187,10 +187,11 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
     }
     case ProbeQuantity::side_pressure: {
       if (fluid == nullptr) return 0.0;
-      // A source's: the pressure in the cell it feeds (a piezometer in the well).
+      // A source's: the pressure in the cell it feeds (a piezometer in the
+      // well), or with a radius at its bore.
       const auto i = static_cast<std::size_t>(std::max(probe.side - 2 * D, 0));
       if (probe.side >= 2 * D && i >= fluid->patches.size())
-        return fluid->pressure()[fluid->source_cell(i - fluid->patches.size())];
+        return fluid->well_pressure(i - fluid->patches.size());
       return fluid->side_pressure(probe.side);
     }
     case ProbeQuantity::fluid_balance:

@@ -733,10 +733,14 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::
     const std::string unit =
         source.type == FluidSourceType::inflow ? fmt::format("m^{}/s", D) : std::string("Pa held");
     out += fmt::format(
-        "source {} at ({}) m, into cell ({}): {}\n", source.name, at, index,
+        "source {} at ({}) m, into cell ({}): {}{}\n", source.name, at, index,
         steady ? fmt::format("{:.6g} {}", source.value.at(0.0), unit)
                : fmt::format("{:.6g} to {:.6g} {} over {} points in time", source.value.values.front(),
-                             source.value.values.back(), unit, source.value.values.size()));
+                             source.value.values.back(), unit, source.value.values.size()),
+        source.radius > 0.0
+            ? fmt::format("; a well of radius {:.6g} m, its cell's equivalent radius {:.6g} m", source.radius,
+                          fluid.equivalent_radius(k))
+            : std::string());
   }
   for (std::size_t k = 0; k < fluid.barriers.size(); ++k) {
     const auto& b = fluid.barriers[k];

@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "darcydem/fluid/well_index.hpp"
+
 namespace darcydem {
 namespace {
 
@@ -334,11 +336,12 @@ void read_source_condition(TableReader& r, FluidSourceType& type, TimeSeries& va
 }
 
 /// One [[fluid.source]]: 'name', 'position' (in the grid), 'inflow' or
-/// 'pressure'. `taken` holds the names the sides,
+/// 'pressure', and a well's 'radius'. `taken` holds the names the sides,
 /// patches and earlier sources already use.
 template <int D>
 FluidSource<D> read_source(const toml::table& table, const std::string& where, const std::string& file,
-                           const FluidGrid<D>& grid, const std::vector<std::string>& taken) {
+                           const FluidGrid<D>& grid, const PermeabilitySpec<D>& permeability,
+                           const std::vector<std::string>& taken) {
   TableReader r(table, where, file);
   FluidSource<D> source;
   source.name = r.string("name");
@@ -361,6 +364,42 @@ FluidSource<D> read_source(const toml::table& table, const std::string& where, c
     source.position[k] = x[k];
   }
   read_source_condition<D>(r, source.type, source.value);
+  if (r.has("radius")) {
+    source.radius = r.check("radius", r.number("radius"), is_positive, "> 0 m, the well's radius");
+    // Its cell's widths and its permeability's proportions along the axes
+    // (a constant one's, or Kozeny-Carman's anisotropy): the equivalent
+    // radius depends on nothing else.
+    const auto at = grid.coords(grid.cell_holding(source.position));
+    Vec<D> widths;
+    for (int k = 0; k < D; ++k) widths[k] = grid.width(k, at[k]);
+    const Vec<D> shape =
+        permeability.model == PermeabilityModel::constant ? permeability.intrinsic : permeability.anisotropy;
+    if constexpr (D == 3) {
+      const bool cubic = std::abs(widths[1] - widths[0]) <= 1e-9 * widths[0] &&
+                         std::abs(widths[2] - widths[0]) <= 1e-9 * widths[0];
+      const bool isotropic = std::abs(shape[1] - shape[0]) <= 1e-12 * shape[0] &&
+                             std::abs(shape[2] - shape[0]) <= 1e-12 * shape[0];
+      if (!cubic || !isotropic) {
+        r.fail("radius",
+               fmt::format("in 3D a well's radius needs its cell to be a cube ({} x {} x {} m here) and the "
+                           "permeability the same along x, y and z (the equivalent radius of its cell, "
+                           "0.3149 h, is known for those only); leave the radius out to read the cell's "
+                           "pressure",
+                           TableReader::format_number(widths[0]), TableReader::format_number(widths[1]),
+                           TableReader::format_number(widths[2])));
+      }
+    }
+    const double r_e = equivalent_radius<D>(widths, shape);
+    if (!(source.radius < r_e)) {
+      r.fail(
+          "radius",
+          fmt::format("must be less than its cell's equivalent radius, {} m (Peaceman's: the cell's pressure "
+                      "is the well's at that distance; {}), got {} m: a well that wide is wider than the "
+                      "cells can tell; model it with coarser cells, or as a box wall",
+                      TableReader::format_number(r_e), D == 2 ? "0.1985 h for a square cell" : "0.3149 h",
+                      TableReader::format_number(source.radius)));
+    }
+  }
   r.finish();
   return source;
 }
@@ -640,7 +679,7 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
       const toml::table* t = node.as_table();
       if (t == nullptr) r.fail("source", "must be an array of tables: [[fluid.source]]");
       const std::string where = fmt::format("[[fluid.source]] #{}", index);
-      fluid->sources.push_back(read_source<D>(*t, where, file, fluid->grid, taken));
+      fluid->sources.push_back(read_source<D>(*t, where, file, fluid->grid, fluid->permeability, taken));
       taken.push_back(fluid->sources.back().name);
       // Each in a cell of its own: two pressures held in one cell would fight.
       const std::size_t cell = fluid->grid.cell_holding(fluid->sources.back().position);

@@ -185,5 +185,9 @@ sed -e '0,/^restitution = 0.5/s//restitution = 0.3/' -e 's/^local_damping = 0.7/
 [ $rc -eq 2 ] && grep -q "has no \[\[stage\]\] named or numbered 'shear' (there are: 'settle'; number them from 1)" "$work/set.err" \
   && ok "a --set path the scene lacks is refused naming what there is" || bad "bad --set path (rc $rc): $(cat "$work/set.err")"
 
+"$exe" check "$src/examples/fluid_cases/pumping_well.toml" --set fluid.source.well.radius=1e-3 \
+  | grep -q "^  source well at (0.205, 0.205) m, into cell (20, 20): -2e-06 m^2/s; a well of radius 0.001 m, its cell's equivalent radius 0.00198506 m$" \
+  && ok "check gives a well's radius and its cell's equivalent radius" || bad "check: well radius"
+
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]

@@ -1180,6 +1180,24 @@ class PumpingWell(unittest.TestCase):
         self.assertLess(abs(balance["imbalance"]), 1e-9 * balance["gross"])
         self.assertGreater(balance["gross"], 2e-7)
 
+    def test_a_wells_bore_is_below_its_cell_by_its_inflow_over_its_well_index(self):
+        # The example's well given a radius of 1 mm (its cell's equivalent
+        # radius is 0.1985 x 1 cm): pumping Q out for 0.1 s, its bore sits
+        # below its cell by Q mu / (2 pi kappa) ln(r_e / r_w) = 2 ln(1.985)
+        # of Q mu / (4 pi kappa) (the well index's closed form, by hand).
+        model = darcydem.load(self.EXAMPLE, set={"fluid.source.well.radius": 1e-3})
+        model.step(1000)
+        well = model.fluid.sources[0]
+        self.assertEqual(well["radius"], 1e-3)
+        scale = 2e-6 * 1e-3 / (4.0 * math.pi * 1e-10)
+        r_e = 0.01 * math.exp(-0.5772156649015329) / (2.0 * math.sqrt(2.0))
+        cell = model.fluid.pressure[20, 20]
+        self.assertAlmostEqual(well["well_pressure"] - cell, -2.0 * scale * math.log(r_e / 1e-3),
+                               delta=1e-12 * scale)
+        self.assertAlmostEqual(well["well_index"], 2.0 * math.pi * 1e-10 / (1e-3 * math.log(r_e / 1e-3)),
+                               delta=1e-12 * well["well_index"])
+        self.assertEqual(darcydem.load(self.EXAMPLE).fluid.sources[0]["well_index"], 0.0)  # no radius
+
     def test_bad_sources_are_refused(self):
         model = darcydem.load(self.EXAMPLE)
         with self.assertRaisesRegex(ValueError, r'no \[\[fluid.source\]\] named "wel" \(the scene has: well\)'):

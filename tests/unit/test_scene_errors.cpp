@@ -976,7 +976,38 @@ TEST(SceneErrors, FluidSourcesAreChecked) {
       "its own");
   expect(with_fluid(replace(well, "inflow = 1e-9", "inflow = { times = [0.0, 1.0], values = [1e-9] }")),
          "key 'values': must have as many entries as 'times'");
-  expect(with_fluid(replace(well, "inflow = 1e-9", "inflow = 1e-9\nradius = 0.001")), "unknown key 'radius'");
+  // A well's radius: below its cell's equivalent radius, Peaceman's for
+  // these 1 x 2 mm cells, (e^-gamma / 4) sqrt(1 + 4) mm = 0.3139 mm.
+  {
+    const auto scene =
+        built_scene<2>(with_fluid(replace(well, "inflow = 1e-9", "inflow = 1e-9\nradius = 1e-4")));
+    EXPECT_EQ(scene.fluid->sources[0].radius, 1e-4);
+    EXPECT_NEAR(scene.fluid->equivalent_radius(0),
+                0.25 * std::exp(-0.5772156649015329) * std::sqrt(5.0) * 1e-3, 1e-15);
+  }
+  expect(with_fluid(replace(well, "inflow = 1e-9", "inflow = 1e-9\nradius = 0.0")),
+         "[[fluid.source]] #1 key 'radius': must be > 0 m, the well's radius, got 0");
+  expect(with_fluid(replace(well, "inflow = 1e-9", "inflow = 1e-9\nradius = 0.001")),
+         "[[fluid.source]] #1 key 'radius': must be less than its cell's equivalent radius, 0.000313");
+  {
+    // In 3D only a cubic cell and isotropic permeability have one.
+    const std::string cubic =
+        replace(replace(replace(in_3d(with_fluid(replace(replace(well, "[0.0, 0.001]", "[0.0, 0.0, 0.0015]"),
+                                                         "inflow = 1e-9", "inflow = 1e-9\nradius = 1e-4"))),
+                                "origin = [-0.0005, 0.0]", "origin = [-0.0005, -0.0005, 0.0]"),
+                        "cells = [1, 2]", "cells = [1, 1, 4]"),
+                "size = [0.001, 0.002]", "size = [0.001, 0.001, 0.001]");
+    ASSERT_EQ(load_error(cubic), "");
+    EXPECT_NEAR(built_scene<3>(cubic).fluid->equivalent_radius(0), 0.31487023135962e-3, 1e-15);
+    expect(
+        replace(replace(cubic, "cells = [1, 1, 4]", "cells = [1, 1, 2]"), "size = [0.001, 0.001, 0.001]",
+                "size = [0.001, 0.001, 0.002]"),
+        "key 'radius': in 3D a well's radius needs its cell to be a cube (0.001 x 0.001 x 0.002 m here) and "
+        "the permeability the same along x, y and z");
+    expect(replace(cubic, "model = \"kozeny_carman\"",
+                   "model = \"constant\"\nhydraulic_conductivity = [1e-3, 1e-3, 2e-3]"),
+           "key 'radius': in 3D a well's radius needs its cell to be a cube");
+  }
   // A stage changes a source's inflow by its name, and nothing else.
   const std::string stage = "gravity = [0.0, -9.81]\n";
   auto in_stage = [&](const std::string& change, const std::string& sources = "") {

@@ -42,6 +42,10 @@ struct FluidSource {
   Vec<D> position = Vec<D>::Zero();
   FluidSourceType type = FluidSourceType::inflow;
   TimeSeries value;  ///< m^3/s into the grid, or Pa
+  /// The well's radius r_w, m (0: none): its pressure is then at its bore,
+  /// which its well index joins to its cell's (fluid/well_index.hpp); a
+  /// held pressure is the bore's.
+  double radius = 0.0;
   /// Only the condition changes in a run (stages); where it lies comes
   /// from the scene.
   template <class Archive>

@@ -251,6 +251,17 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] double source_inflow(std::size_t source) const { return source_inflow_.at(source); }
   /// The cell that source i feeds.
   [[nodiscard]] std::size_t source_cell(std::size_t source) const { return source_cells_.at(source); }
+  /// Source i's well index now, m^3/(s Pa) (2D: per metre), from its
+  /// radius and its cell's widths and permeability (fluid/well_index.hpp);
+  /// 0 for a source without a radius.
+  [[nodiscard]] double well_index(std::size_t source) const;
+  /// Source i's cell's equivalent radius, m (fluid/well_index.hpp): from
+  /// its widths and the permeability's proportions along the axes.
+  [[nodiscard]] double equivalent_radius(std::size_t source) const;
+  /// The pressure at source i, Pa: with a radius, at its bore, its cell's
+  /// plus its last inflow over its well index (a held pressure's, that
+  /// pressure); without, its cell's.
+  [[nodiscard]] double well_pressure(std::size_t source) const;
   /// The excess pressure on a side of the grid (`side` 0 .. 2D-1, as
   /// side_inflow) or on a patch (`side` = 2D + its index in `patches`),
   /// Pa: the mean over its faces, weighted by their areas, of each face's
@@ -322,6 +333,8 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Holds `pressure` in source `source`'s cell in this step's system
   /// (held_sources_).
   void hold_pressure(std::size_t source, double pressure);
+  /// The widths of the cell source i feeds, m.
+  [[nodiscard]] Vec<D> source_cell_widths(std::size_t source) const;
   /// wall_solid_ from the solid_walls among `walls`.
   void compute_wall_solid(const std::vector<Wall<D>>& walls);
   void compute_cell_properties();

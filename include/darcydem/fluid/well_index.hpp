@@ -1,0 +1,60 @@
+#pragma once
+// A source of water with a radius, a well (Peaceman 1978, 1983): its
+// cell's pressure is the continuous solution's at the cell's equivalent
+// radius r_e from it, so the pressure at the well's own radius r_w differs
+// from the cell's by the continuous drop between r_w and r_e, and the
+// well index WI = Q / (p_w - p_cell) joins the two.
+#include <cmath>
+#include <numbers>
+
+#include "darcydem/core/vec.hpp"
+
+namespace darcydem {
+
+/// The simple cubic lattice's Green's function at its origin: G0 = W_S / 2,
+/// W_S Watson's integral (1/pi^3) iiint dk / (3 - cos k1 - cos k2 - cos k3)
+/// over [0, pi]^3 = sqrt(6) / (96 pi^3) Gamma(1/24) Gamma(5/24) Gamma(7/24)
+/// Gamma(11/24) = 0.505462: the pressure of a unit source on the seven-point
+/// stencil of unit conductances, in its own cell.
+inline double simple_cubic_green_at_origin() {
+  const double pi3 = std::numbers::pi * std::numbers::pi * std::numbers::pi;
+  return 0.5 * std::sqrt(6.0) / (96.0 * pi3) * std::tgamma(1.0 / 24.0) * std::tgamma(5.0 / 24.0) *
+         std::tgamma(7.0 / 24.0) * std::tgamma(11.0 / 24.0);
+}
+
+/// A cell's equivalent radius, m, for a source at its centre: in 2D
+/// Peaceman's (1983), (e^-gamma / 2) sqrt(sqrt(ky / kx) hx^2 + sqrt(kx / ky)
+/// hy^2) / ((ky / kx)^(1/4) + (kx / ky)^(1/4)), h e^-gamma / (2 sqrt 2) =
+/// 0.1985 h for a square cell and isotropic permeability (exact for it:
+/// the square lattice's Green's function's constant); in 3D, for a cubic
+/// cell of side h and isotropic permeability, where Q mu / (4 pi kappa r)
+/// equals the seven-point stencil's G0 Q mu / (kappa h): h / (4 pi G0) =
+/// 0.31487 h (other cells in 3D: see the scene reader, which refuses them).
+template <int D>
+[[nodiscard]] double equivalent_radius(const Vec<D>& widths, const Vec<D>& kappa) {
+  if constexpr (D == 2) {
+    const double a = std::sqrt(kappa[1] / kappa[0]);  // sqrt(ky / kx)
+    return 0.5 * std::exp(-std::numbers::egamma) *
+           std::sqrt(a * widths[0] * widths[0] + widths[1] * widths[1] / a) /
+           (std::sqrt(a) + 1.0 / std::sqrt(a));
+  } else {
+    return widths[0] / (4.0 * std::numbers::pi * simple_cubic_green_at_origin());
+  }
+}
+
+/// The well index, m^3/(s Pa) (2D: m^2/(s Pa), per metre): the inflow per
+/// unit of the well's pressure over its cell's, for a well of radius
+/// `radius` < equivalent_radius in a cell of these widths and intrinsic
+/// permeabilities, water of viscosity mu. 2D: 2 pi sqrt(kx ky) / (mu
+/// ln(r_e / r_w)); 3D: 4 pi kappa / (mu (1 / r_w - 1 / r_e)).
+template <int D>
+[[nodiscard]] double well_index(const Vec<D>& widths, const Vec<D>& kappa, double mu, double radius) {
+  const double r_e = equivalent_radius<D>(widths, kappa);
+  if constexpr (D == 2) {
+    return 2.0 * std::numbers::pi * std::sqrt(kappa[0] * kappa[1]) / (mu * std::log(r_e / radius));
+  } else {
+    return 4.0 * std::numbers::pi * kappa[0] / (mu * (1.0 / radius - 1.0 / r_e));
+  }
+}
+
+}  // namespace darcydem
