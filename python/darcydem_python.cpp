@@ -499,6 +499,51 @@ class Model {
     source.value = series;
   }
 
+  /// A side's or a patch's condition set between steps, as a stage's
+  /// fluid.boundary.NAME = { type = ..., ... } does, a series counted from
+  /// now (YADE's FlowEngine bndCondIsPressure and bndCondValue).
+  void set_fluid_boundary(const std::string& name, const py::object& pressure, const py::object& flux,
+                          bool no_flow) {
+    PoreFluid<D>* f = fluid();
+    if (f == nullptr) throw py::value_error("set_fluid_boundary: the scene has no [fluid]");
+    std::vector<std::string> names(side_names, side_names + 2 * D);
+    for (const auto& patch : f->patches) names.push_back(patch.name);
+    const auto at = std::find(names.begin(), names.end(), name);
+    if (at == names.end()) {
+      throw py::value_error(fmt::format("set_fluid_boundary: no side or patch \"{}\" (the grid's: {})", name,
+                                        fmt::join(names, ", ")));
+    }
+    const auto index = static_cast<std::size_t>(at - names.begin());
+    if (index < 2 * D && f->grid.periodic[index / 2]) {
+      throw py::value_error(fmt::format(
+          "set_fluid_boundary: the scene is periodic along {}: the fluid grid's two {} sides are one face "
+          "between its last and first cells, which takes no condition",
+          "xyz"[index / 2], "xyz"[index / 2]));
+    }
+    if (static_cast<int>(!pressure.is_none()) + static_cast<int>(!flux.is_none()) +
+            static_cast<int>(no_flow) !=
+        1)
+      throw py::value_error(
+          "set_fluid_boundary: give one of pressure (Pa: drained at that excess pressure), flux (m/s: the "
+          "Darcy "
+          "velocity into the grid) and no_flow=True");
+    FluidBoundary b;
+    if (no_flow) {
+      b.type = FluidBoundaryType::no_flow;
+    } else {
+      const bool drained = !pressure.is_none();
+      b.type = drained ? FluidBoundaryType::drained : FluidBoundaryType::flux;
+      b.value = read_schedule(drained ? pressure : flux, "set_fluid_boundary",
+                              drained ? "the pressure" : "the flux", false);
+    }
+    b.value.start = sim().time;
+    if (index < 2 * D) {
+      f->sides[index] = b;
+    } else {
+      f->patches[index - 2 * D].condition = b;
+    }
+  }
+
   /// A servo's cycle = {'amplitude': N or Pa, 'frequency': Hz, 'phase':
   /// degrees (optional, 0)} about `target`, which it must not take below 0.
   static ServoCycle read_servo_cycle(const py::object& given, double target) {
@@ -1267,6 +1312,12 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "to it from the next step (YADE's compaction friction, PFC's contact property change)")
       .def("friction", &M::friction, py::arg("materials"),
            "the Coulomb coefficient of a pair of materials now, materials = ['sand', 'sand']")
+      .def("set_fluid_boundary", &M::set_fluid_boundary, py::arg("name"), py::arg("pressure") = py::none(),
+           py::arg("flux") = py::none(), py::arg("no_flow") = false,
+           "sets a side's (x_min ... z_max) or a patch's condition between steps, as a stage's "
+           "fluid.boundary.NAME does: one of pressure (Pa: drained at that excess pressure), flux (m/s: the "
+           "Darcy velocity into the grid, negative out) and no_flow=True; pressure and flux each a number or "
+           "{'times': [s from now], 'values': [...]}")
       .def("set_fluid_source", &M::set_fluid_source, py::arg("name"), py::arg("inflow") = py::none(),
            py::arg("pressure") = py::none(),
            "sets a [[fluid.source]]'s condition between steps, as a stage's fluid.sources.NAME does: one of "

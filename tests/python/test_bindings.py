@@ -314,6 +314,62 @@ class SceneOverrides(unittest.TestCase):
                     darcydem.load(self.COLUMN, set=given)
 
 
+class FluidBoundaries(unittest.TestCase):
+    """set_fluid_boundary: a side's or a patch's condition from Python, as a
+    stage's fluid.boundary entry sets it."""
+
+    def opened_both_ways(self, example, name):
+        # The example's second stage only opens the side or patch: done by
+        # the stage in one model and from Python in the other, at the same
+        # step, the two go on bit for bit.
+        path = os.path.join(SOURCE, "examples", "fluid_cases", example)
+        by_stage, by_python = darcydem.load(path), darcydem.load(path)
+        for model in (by_stage, by_python):
+            model.step(3000)
+        by_stage.apply_stage(by_stage.stages[1])
+        by_python.set_fluid_boundary(name, flux={"times": [0.0, 0.02], "values": [0.0, 0.0134]})
+        for model in (by_stage, by_python):
+            model.step(3000)
+        np.testing.assert_array_equal(by_python.positions, by_stage.positions)
+        np.testing.assert_array_equal(by_python.fluid.pressure, by_stage.fluid.pressure)
+        return by_python
+
+    def test_a_side_opened_from_python_is_the_stages(self):
+        model = self.opened_both_ways("upward_seepage_bed.toml", "z_min")
+        # 3000 steps into the ramp: the inflow through the floor is the
+        # ramp's Darcy velocity at that time over the floor's 6 x 6 mm.
+        self.assertGreater(model.fluid.balance["inflow"], 0.0)
+
+    def test_a_patch_opened_from_python_is_the_stages(self):
+        self.opened_both_ways("bed_with_inlet.toml", "inlet")
+
+    def test_a_side_closed_from_python_lets_no_water_through(self):
+        # The hydrostatic bed settles with its top drained: water leaves.
+        # Its top closed from Python (the only side open), no water crosses
+        # any side any more: the inflow so far stays as it was, exactly.
+        model = darcydem.load(os.path.join(SOURCE, "examples", "fluid_cases", "hydrostatic_bed.toml"))
+        model.step(1000)
+        model.set_fluid_boundary("z_max", no_flow=True)
+        before = model.fluid.balance["inflow"]
+        self.assertNotEqual(before, 0.0)
+        model.step(500)
+        self.assertEqual(model.fluid.balance["inflow"], before)
+
+    def test_bad_conditions_are_refused(self):
+        model = darcydem.load(os.path.join(SOURCE, "examples", "fluid_cases", "upward_seepage_bed.toml"))
+        for kwargs, says in (
+                ({"name": "z_mid", "pressure": 0.0}, "no side or patch \"z_mid\" (the grid's: x_min, x_max"),
+                ({"name": "z_min"}, "give one of pressure (Pa: drained at that excess pressure), flux"),
+                ({"name": "z_min", "pressure": 0.0, "no_flow": True}, "give one of pressure"),
+                ({"name": "z_min", "flux": float("nan")}, "must be finite")):
+            with self.subTest(**{k: str(v) for k, v in kwargs.items()}):
+                with self.assertRaisesRegex(ValueError, re.escape(says)):
+                    model.set_fluid_boundary(**kwargs)
+        periodic = darcydem.load(os.path.join(SOURCE, "examples", "fluid_cases", "periodic_upward_seepage.toml"))
+        with self.assertRaisesRegex(ValueError, "the scene is periodic along x"):
+            periodic.set_fluid_boundary("x_min", no_flow=True)
+
+
 class HydrostaticBed(unittest.TestCase):
     """examples/fluid_cases/hydrostatic_bed.toml from Python (issue 3's
     verification 3), and the same scene run as the program runs it."""
