@@ -797,26 +797,17 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
 }
 
 template <int D>
-Vec<D> PoreFluid<D>::source_cell_widths(std::size_t source) const {
-  const auto at = grid.coords(grid.cell_holding(sources.at(source).position));
-  Vec<D> widths;
-  for (int k = 0; k < D; ++k) widths[k] = grid.width(k, at[k]);
-  return widths;
-}
-
-template <int D>
 double PoreFluid<D>::equivalent_radius(std::size_t source) const {
-  return darcydem::equivalent_radius<D>(
-      source_cell_widths(source),
-      permeability.model == PermeabilityModel::constant ? permeability.intrinsic : permeability.anisotropy);
+  return darcydem::equivalent_radius<D>(cell_widths_at(grid, sources.at(source).position),
+                                        permeability_shape(permeability));
 }
 
 template <int D>
 double PoreFluid<D>::well_index(std::size_t source) const {
   const double radius = sources.at(source).radius;
   if (radius <= 0.0) return 0.0;
-  return darcydem::well_index<D>(source_cell_widths(source), kappa_[source_cells_.at(source)],
-                                 fluid.viscosity, radius);
+  return darcydem::well_index<D>(cell_widths_at(grid, sources.at(source).position),
+                                 kappa_[source_cells_.at(source)], fluid.viscosity, radius);
 }
 
 template <int D>

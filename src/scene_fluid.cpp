@@ -366,14 +366,10 @@ FluidSource<D> read_source(const toml::table& table, const std::string& where, c
   read_source_condition<D>(r, source.type, source.value);
   if (r.has("radius")) {
     source.radius = r.check("radius", r.number("radius"), is_positive, "> 0 m, the well's radius");
-    // Its cell's widths and its permeability's proportions along the axes
-    // (a constant one's, or Kozeny-Carman's anisotropy): the equivalent
-    // radius depends on nothing else.
-    const auto at = grid.coords(grid.cell_holding(source.position));
-    Vec<D> widths;
-    for (int k = 0; k < D; ++k) widths[k] = grid.width(k, at[k]);
-    const Vec<D> shape =
-        permeability.model == PermeabilityModel::constant ? permeability.intrinsic : permeability.anisotropy;
+    // The equivalent radius depends on its cell's widths and the
+    // permeability's proportions only.
+    const Vec<D> widths = cell_widths_at(grid, source.position);
+    const Vec<D> shape = permeability_shape(permeability);
     if constexpr (D == 3) {
       const bool cubic = std::abs(widths[1] - widths[0]) <= 1e-9 * widths[0] &&
                          std::abs(widths[2] - widths[0]) <= 1e-9 * widths[0];

@@ -333,8 +333,6 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Holds `pressure` in source `source`'s cell in this step's system
   /// (held_sources_).
   void hold_pressure(std::size_t source, double pressure);
-  /// The widths of the cell source i feeds, m.
-  [[nodiscard]] Vec<D> source_cell_widths(std::size_t source) const;
   /// wall_solid_ from the solid_walls among `walls`.
   void compute_wall_solid(const std::vector<Wall<D>>& walls);
   void compute_cell_properties();

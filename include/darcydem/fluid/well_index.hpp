@@ -8,6 +8,8 @@
 #include <numbers>
 
 #include "darcydem/core/vec.hpp"
+#include "darcydem/fluid/fluid_grid.hpp"
+#include "darcydem/fluid/fluid_laws.hpp"
 
 namespace darcydem {
 
@@ -20,6 +22,22 @@ inline double simple_cubic_green_at_origin() {
   const double pi3 = std::numbers::pi * std::numbers::pi * std::numbers::pi;
   return 0.5 * std::sqrt(6.0) / (96.0 * pi3) * std::tgamma(1.0 / 24.0) * std::tgamma(5.0 / 24.0) *
          std::tgamma(7.0 / 24.0) * std::tgamma(11.0 / 24.0);
+}
+
+/// The widths of the cell holding x, m.
+template <int D>
+[[nodiscard]] Vec<D> cell_widths_at(const FluidGrid<D>& grid, const Vec<D>& x) {
+  const auto at = grid.coords(grid.cell_holding(x));
+  Vec<D> widths;
+  for (int k = 0; k < D; ++k) widths[k] = grid.width(k, at[k]);
+  return widths;
+}
+
+/// The permeability's proportions along the axes, all the equivalent
+/// radius needs of it: a constant one's, or Kozeny-Carman's anisotropy.
+template <int D>
+[[nodiscard]] Vec<D> permeability_shape(const PermeabilitySpec<D>& spec) {
+  return spec.model == PermeabilityModel::constant ? spec.intrinsic : spec.anisotropy;
 }
 
 /// A cell's equivalent radius, m, for a source at its centre: in 2D
