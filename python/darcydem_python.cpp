@@ -537,11 +537,35 @@ class Model {
                               drained ? "the pressure" : "the flux", false);
     }
     b.value.start = sim().time;
+    if (b.type == FluidBoundaryType::drained && f->uniform_pressure) {
+      // Drained, the one cell's pressure varies and its gradient stiffens
+      // the grains: the step the scene took without that must still do.
+      const double critical = fluid_step_with_gradient();
+      if (sim().time_step > critical) {
+        throw py::value_error(fmt::format(
+            "set_fluid_boundary: draining \"{}\" lets the one cell's pressure vary, and its gradient "
+            "stiffens the grains: the critical step falls to {:.4g} s, below the scene's time step {:.4g} s "
+            "(taken for a sealed cell); drain it in the scene instead, or through a [[fluid.source]]",
+            name, critical, sim().time_step));
+      }
+      f->uniform_pressure = false;
+    }
     if (index < 2 * D) {
       f->sides[index] = b;
     } else {
       f->patches[index - 2 * D].condition = b;
     }
+  }
+
+  /// The pore fluid's critical step with the water's stiffness against the
+  /// grains counted, as if its pressure could vary.
+  [[nodiscard]] double fluid_step_with_gradient() {
+    PoreFluid<D>& f = *fluid();
+    const bool uniform = f.uniform_pressure;
+    f.uniform_pressure = false;
+    const double critical = f.critical_time_step(sim().particles, sim().critical_time_step());
+    f.uniform_pressure = uniform;
+    return critical;
   }
 
   /// A servo's cycle = {'amplitude': N or Pa, 'frequency': Hz, 'phase':
@@ -1317,7 +1341,8 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "sets a side's (x_min ... z_max) or a patch's condition between steps, as a stage's "
            "fluid.boundary.NAME does: one of pressure (Pa: drained at that excess pressure), flux (m/s: the "
            "Darcy velocity into the grid, negative out) and no_flow=True; pressure and flux each a number or "
-           "{'times': [s from now], 'values': [...]}")
+           "{'times': [s from now], 'values': [...]}; draining a grid of one sealed cell, whose time step "
+           "left the water's stiffness out, is refused if the step is then above the critical step")
       .def("set_fluid_source", &M::set_fluid_source, py::arg("name"), py::arg("inflow") = py::none(),
            py::arg("pressure") = py::none(),
            "sets a [[fluid.source]]'s condition between steps, as a stage's fluid.sources.NAME does: one of "

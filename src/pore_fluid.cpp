@@ -991,7 +991,7 @@ double PoreFluid<D>::critical_time_step(const ParticleData<D>& p, double dem_ste
     }
     geometry = std::max(geometry, others / grid.min_width(k));
   }
-  const double k_fluid = fluid.bulk_modulus / n_min * geometry;
+  const double k_fluid = uniform_pressure ? 0.0 : fluid.bulk_modulus / n_min * geometry;
   const double dt_stiff = 1.0 / std::sqrt(1.0 / (dem_step * dem_step) + k_fluid / m_min);
   // Drag relaxation time m / (beta V_p / (1-n)), for the explicit drag.
   const double beta = drag == DragLaw::darcy ? n_min * n_min * fluid.viscosity / kappa_min

@@ -1825,6 +1825,17 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     sim.particles.add(0.5 * (in.lower + in.upper), in.radii.smallest(), sim.materials[in.material].density,
                       in.material, false);
   }
+  // One cell never drained keeps a uniform pressure: no grain feels the
+  // water's stiffness, so the critical step leaves it out.
+  if (scene.fluid) {
+    auto drains = [](const auto& change) { return change.second.type == FluidBoundaryType::drained; };
+    scene.fluid->uniform_pressure =
+        scene.fluid->sealed_single_cell() &&
+        std::none_of(scene.stages.begin(), scene.stages.end(), [&](const auto& st) {
+          return std::any_of(st.fluid_sides.begin(), st.fluid_sides.end(), drains) ||
+                 std::any_of(st.fluid_patches.begin(), st.fluid_patches.end(), drains);
+        });
+  }
   const double critical = scene.fluid
                               ? scene.fluid->critical_time_step(sim.particles, sim.critical_time_step())
                               : sim.critical_time_step();

@@ -290,13 +290,17 @@ class SceneOverrides(unittest.TestCase):
         model = darcydem.load(scene, set={
             "wall.x_max.servo": {"target_stress": 2e5, "gain": 1e-5, "max_speed": 0.1, "load": "total"},
             "wall.top.point": np.array([0.0, 0.051]), "fluid.solver": "cg", "fluid.hold_forces": True,
-            "fluid.bulk_modulus": 100000})
+            "fluid.bulk_modulus": 100000, "simulation.time_step": "auto", "fluid.grid.cells": [1, 2]})
         walls = {w["name"]: w for w in model.walls}
         self.assertEqual(walls["x_max"]["servo"], {"target_stress": 2e5})
         self.assertEqual(walls["top"]["point"][1], 0.051)
-        # K_f = 1e5 Pa instead of 2.2e9: the time step is the dry one's
-        # (6.67e-7 s, against 1.98e-7 s with the water's stiffness).
-        self.assertGreater(model.time_step, 3 * darcydem.load(scene).time_step)
+        self.assertEqual(model.fluid.cells, [1, 2])
+        # K_f = 1e5 Pa instead of 2.2e9, the step "auto" and the grid split
+        # in two cells, so that the water's stiffness counts against the
+        # grains: the time step is nearly the dry one's fifth (6.67e-7 s),
+        # against 1.98e-7 s with K_f = 2.2 GPa.
+        self.assertGreater(model.time_step, 3 * darcydem.load(
+            scene, set={"simulation.time_step": "auto", "fluid.grid.cells": [1, 2]}).time_step)
 
     def test_bad_overrides_are_refused_naming_them(self):
         for given, error, says in (
@@ -369,6 +373,26 @@ class FluidBoundaries(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "the scene is periodic along x"):
             periodic.set_fluid_boundary("x_min", no_flow=True)
 
+    def test_draining_one_sealed_cell_must_keep_the_step(self):
+        # The CU triaxial scene's one cell is never drained, so its
+        # pressure is uniform and "auto" leaves the water's stiffness out
+        # of the step (0.2 of the contacts' critical step, 6.7e-7 s).
+        # Drained through a side the pressure varies and its gradient
+        # stiffens the grains, to a critical step of 3.0e-7 s: refused at
+        # that step, and the side stays sealed. With a step given below
+        # that (1e-7 s, explicitly) the drained top is taken (the top
+        # platen, which displaces the water behind it, still seals it).
+        scene = os.path.join(SOURCE, "examples", "fluid_cases", "undrained_triaxial_packing.toml")
+        model = darcydem.load(scene)
+        with self.assertRaisesRegex(ValueError, r"draining \"z_max\" lets the one cell's pressure vary.*critical "
+                                                r"step falls to 3\.0\d*e-07 s, below the scene's time step 6\.7"):
+            model.set_fluid_boundary("z_max", pressure=0.0)
+        with self.assertRaisesRegex(ValueError, "lets the one cell's pressure vary"):  # still sealed: refused again
+            model.set_fluid_boundary("z_min", pressure=0.0)
+        small = darcydem.load(scene, set={"simulation.time_step": 1e-7})
+        small.set_fluid_boundary("z_max", pressure=0.0)  # taken: no error
+        small.step(100)
+        self.assertTrue(np.all(np.isfinite(small.positions)))
 
 class HydrostaticBed(unittest.TestCase):
     """examples/fluid_cases/hydrostatic_bed.toml from Python (issue 3's

@@ -23,7 +23,7 @@ triaxial_plot = load("examples/dem_cases/triaxial_plot.py")
 vibrated_plot = load("examples/dem_cases/vibrated_plot.py")
 undrained_plot = load("examples/fluid_cases/undrained_triaxial_plot.py")
 pumping_plot = load("examples/fluid_cases/pumping_plot.py")
-undrained_biaxial = load("examples/fluid_cases/undrained_biaxial.py")
+undrained_shear = load("examples/fluid_cases/undrained_shear.py")
 
 
 def tilted_bed(angle, spacing, drum_radius=8e-3, depth=-2e-3):
@@ -323,41 +323,59 @@ class PumpingPlot(unittest.TestCase):
 
 
 
-class UndrainedBiaxialScript(unittest.TestCase):
-    """undrained_biaxial.py's reading of a path and its refusals (the runs
-    themselves: tests/python/test_undrained_biaxial.py)."""
+class UndrainedShearScript(unittest.TestCase):
+    """undrained_shear.py's reading of a path and its refusals (the runs
+    themselves: tests/python/test_undrained_shear.py)."""
 
-    SCRIPT = "examples/fluid_cases/undrained_biaxial.py"
+    SCRIPT = "examples/fluid_cases/undrained_shear.py"
 
     def test_p_and_q_of_a_path_made_by_hand(self):
-        rows = {"axial_strain": [0.0, 0.001, 0.002], "sigma_x": [1e5, 9e4, 8e4], "sigma_y": [1e5, 2e5, 3e5],
-                "pore_pressure": [0.0, 1e4, 2e4], "area_change": [0.0, 0.0, 0.0]}
-        self.assertEqual(undrained_biaxial.at_strain(rows, 0.0015), 2)
-        self.assertEqual(undrained_biaxial.p_q(rows, 1), (1.45e5, 5.5e4))  # half the sum, half the difference
+        rows = {"axial_strain": [0.0, 0.001, 0.002], "sigma_3": [1e5, 9e4, 8e4], "sigma_1": [1e5, 2e5, 3e5],
+                "pore_pressure": [0.0, 1e4, 2e4], "volume_change": [0.0, 0.0, 0.0], "dimension": 2}
+        self.assertEqual(undrained_shear.at_strain(rows, 0.0015), 2)
+        self.assertEqual(undrained_shear.p_q(rows, 1), (1.45e5, 5.5e4))  # half the sum, half the difference
         with self.assertRaisesRegex(ValueError, "stops at an axial strain of 0.002, before 0.003"):
-            undrained_biaxial.at_strain(rows, 0.003)
+            undrained_shear.at_strain(rows, 0.003)
+        rows["dimension"] = 3  # p' = (sigma_1 + 2 sigma_3) / 3 = 380 kPa / 3, q = sigma_1 - sigma_3
+        p, q = undrained_shear.p_q(rows, 1)
+        self.assertAlmostEqual(p, 3.8e5 / 3.0, delta=1e-9)
+        self.assertEqual(q, 1.1e5)
 
-    def test_ctrl_c_keeps_the_path_so_far(self):
-        # A stand-in for the module: a sample 10 mm x 20 mm whose platens
-        # close 1 um per chunk, Ctrl-C on the fourth chunk of the shear.
+    @staticmethod
+    def stand_in(dimension):
+        """A stand-in for the module: a sample 10 mm wide (and deep) and
+        20 mm high whose platens close 1 um per chunk, Ctrl-C on the fourth
+        chunk of the shear; it records the side platens' motions."""
+
         class Model:
             time_step = 1e-6
             radii = [1e-3]
 
             def __init__(self):
-                self.steps, self.height = 0, 0.02
+                self.dimension = dimension
+                self.steps, self.height, self.motions = 0, 0.02, {}
                 pressure = type("Cells", (), {"ravel": lambda cells: [5.0]})()
                 self.fluid = type("Fluid", (), {"pressure": pressure})()
 
             @property
             def walls(self):
-                def plane(name, x, y):
-                    return {"name": name, "point": (x, y), "stress": 1e5}
-                return [plane("x_min", 0.0, 0.0), plane("x_max", 0.01, 0.0), plane("bottom", 0.0, 0.0),
-                        plane("top", 0.0, self.height)]
+                def plane(name, axis, at):
+                    point = [0.0] * dimension
+                    point[axis] = at
+                    return {"name": name, "point": tuple(point), "stress": 1e5}
+                sides = [plane("x_min", 0, 0.0), plane("x_max", 0, 0.01)]
+                if dimension == 3:
+                    sides += [plane("y_min", 1, 0.0), plane("y_max", 1, 0.01)]
+                return sides + [plane("bottom", dimension - 1, 0.0), plane("top", dimension - 1, self.height)]
 
             def apply_stage(self, name):
                 self.stage = name
+
+            def set_fluid_source(self, name, pressure):
+                self.drainage = pressure
+
+            def set_wall_motion(self, name, velocity):
+                self.motions[name] = velocity
 
             def step(self, n):
                 if self.stage == "shear":
@@ -366,20 +384,47 @@ class UndrainedBiaxialScript(unittest.TestCase):
                         raise KeyboardInterrupt
                     self.height -= 1e-6
 
-        fake = type("darcydem", (), {"load": staticmethod(lambda scene: Model())})
-        with self.assertRaises(undrained_biaxial.Interrupted) as stopped:
-            undrained_biaxial.shear(fake, False, 0.02)
+        model = Model()
+        return model, type("darcydem", (), {"load": staticmethod(lambda scene: model)})
+
+    def test_ctrl_c_keeps_the_path_so_far(self):
+        model, fake = self.stand_in(2)
+        with self.assertRaises(undrained_shear.Interrupted) as stopped:
+            undrained_shear.shear(fake, False, 0.02)
         rows = stopped.exception.rows
         self.assertEqual(len(rows["axial_strain"]), 4)  # read before each chunk, the fourth stopped
         self.assertAlmostEqual(rows["axial_strain"][-1], 3e-6 / 0.02, delta=1e-15)
         self.assertEqual(rows["pore_pressure"], [5.0] * 4)
 
-    def test_a_strain_beyond_the_stage_is_refused(self):
-        r = subprocess.run([sys.executable, os.path.join(SOURCE, self.SCRIPT), "build/darcydem", tempfile.mkdtemp(),
-                            "--strain", "0.05"], capture_output=True, text=True)
-        self.assertNotEqual(r.returncode, 0)
-        self.assertIn("--strain 0.05: give an axial strain in (0, 0.025]", r.stderr)
+    def test_the_twin_opens_the_sides_alike_to_keep_the_volume(self):
+        # 3D, the triaxial scene's platens (3 mm/s each, 50 steps of 1 us a
+        # chunk: 0.3 um closer). The stand-in's sides stay put while its
+        # height falls 1 um a chunk, so at the fourth chunk the 10 x 10 x
+        # 20 mm sample keeps its W^2 H only if each width grows by the
+        # factor sqrt(20 mm / (20 mm - 3 um - 0.3 um)), each side moving
+        # half that over the chunk, the y sides as the x sides.
+        model, fake = self.stand_in(3)
+        scene = os.path.join(SOURCE, "examples/fluid_cases/undrained_triaxial_packing.toml")
+        with self.assertRaises(undrained_shear.Interrupted):
+            undrained_shear.shear(fake, True, 0.0005, scene_file=scene)
+        self.assertEqual(model.drainage, 0.0)  # the twin's water does nothing
+        s = (0.02 / (0.02 - 3e-6 - 0.3e-6)) ** 0.5  # the chunk read at H = 20 mm - 3 um
+        speed = 0.01 * (s - 1.0) / (2.0 * 50 * 1e-6)
+        self.assertAlmostEqual(model.motions["x_max"][0], speed, delta=1e-12)
+        self.assertAlmostEqual(model.motions["x_min"][0], -speed, delta=1e-12)
+        self.assertEqual(model.motions["y_max"], [0.0, model.motions["x_max"][0], 0.0])
+        self.assertEqual(model.motions["y_min"], [0.0, -model.motions["x_max"][0], 0.0])
 
+    def test_a_strain_beyond_the_stage_is_refused(self):
+        # The biaxial scene's shear closes the platens at 10 mm/s for
+        # 0.11 s: 1.1 mm of the stand-in's 20 mm, 5.5 %.
+        _, fake = self.stand_in(2)
+        with self.assertRaisesRegex(ValueError, "reaches an axial strain of 0.055, less than 0.1"):
+            undrained_shear.shear(fake, False, 0.1)
+        r = subprocess.run([sys.executable, os.path.join(SOURCE, self.SCRIPT), "build/darcydem", tempfile.mkdtemp(),
+                            "--strain", "1.5"], capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("--strain 1.5: give an axial strain in (0, 1)", r.stderr)
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

@@ -76,3 +76,35 @@ TEST(UndrainedCell, TakesSkemptonsBAndDrainsToTheSkeleton) {
   EXPECT_LT(std::abs(probes.at("centre_pressure")[last]), 1e-4 * load);
   EXPECT_NEAR(drained_z / squeeze_under(load), 1.0, 1e-3);
 }
+
+TEST(UndrainedCell, OneSealedCellLeavesTheWatersStiffnessOutOfTheStep) {
+  // A grid of one cell never drained keeps a uniform pressure: every
+  // face's gradient is zero (no flow) or a flux's own, so no grain feels
+  // the water's stiffness and the critical step is the contacts' (the
+  // drag's relaxation time, rho_s (1 - n) / (n^2 mu / kappa), is 1e-3 s
+  // here, far above). The CU triaxial test of 500 spheres: K_f = 2.2 GPa,
+  // one cell, drained only through a [[fluid.source]].
+  const std::string path = "examples/fluid_cases/undrained_triaxial_packing.toml";
+  const auto sealed = darcydem::testing::load_scene<3>(path);
+  const double dry = sealed.simulation.critical_time_step();
+  EXPECT_TRUE(sealed.fluid->uniform_pressure);
+  EXPECT_NEAR(sealed.critical_time_step / dry, 1.0, 1e-12);  // 1/sqrt(1/dt^2): round-off only
+  EXPECT_NEAR(sealed.simulation.time_step, 0.2 * dry, 1e-12 * dry);
+  // Drained through a side in any stage, or split in two cells, its
+  // pressure varies and the water's undrained stiffness counts again:
+  // (K_f/n) A/h against the lightest sphere brings the step to 3.0e-7 s,
+  // 0.09 of the contacts'.
+  const auto drained = darcydem::testing::scene_from_text<3>(
+      darcydem::testing::temp_dir("one_cell_drained"), "scene.toml",
+      darcydem::testing::scene_variant(
+          path, {{"[stage.fluid.sources]\ndrainage = { pressure = 0.0 }",
+                  "[stage.fluid.boundary]\nz_max = { type = \"drained\", pressure = 0.0 }\n"
+                  "[stage.fluid.sources]\ndrainage = { pressure = 0.0 }"}}));
+  EXPECT_FALSE(drained.fluid->uniform_pressure);
+  EXPECT_LT(drained.critical_time_step, 0.2 * dry);
+  const auto split = darcydem::testing::scene_from_text<3>(
+      darcydem::testing::temp_dir("one_cell_split"), "scene.toml",
+      darcydem::testing::scene_variant(path, {{"cells = [1, 1, 1]", "cells = [1, 1, 2]"}}));
+  EXPECT_FALSE(split.fluid->uniform_pressure);
+  EXPECT_LT(split.critical_time_step, 0.2 * dry);
+}

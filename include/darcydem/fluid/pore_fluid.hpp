@@ -79,6 +79,14 @@ class PoreFluid final : public ParticleForceField<D> {
   /// last fluid step's pressure and flux, at the grain's current position
   /// and velocity. The same when steps_per_update is 1.
   bool hold_forces = false;
+  /// True when the pore pressure stays uniform for the whole run, so that
+  /// no grain feels a gradient of it: a grid of one cell whose sides and
+  /// patches are never drained (the scene reader sets it from every
+  /// stage's conditions: sealed_single_cell). The water's undrained
+  /// stiffness then acts on the walls that displace it, not on a grain,
+  /// and critical_time_step leaves it out: a lumped sample, as a CU test's
+  /// single cell.
+  bool uniform_pressure = false;
   std::array<FluidBoundary, 2 * D> sides{};  ///< x_min, x_max, y_min, ...
   /// Parts of sides with their own condition, each boundary face in at
   /// most one (the scene reader checks it; the first that holds a face
@@ -199,8 +207,20 @@ class PoreFluid final : public ParticleForceField<D> {
   }
 
   /// Critical step of the coupled system: the DEM step with the undrained
-  /// stiffness K_f/n of the pore fluid added, and the drag relaxation time.
+  /// stiffness K_f/n of the pore fluid added (none with uniform_pressure),
+  /// and the drag relaxation time.
   [[nodiscard]] double critical_time_step(const ParticleData<D>& particles, double dem_step) const;
+
+  /// Whether the grid is one cell with no side or patch drained now: its
+  /// pressure is uniform, every face's gradient zero or a flux's own.
+  [[nodiscard]] bool sealed_single_cell() const {
+    if (grid.size() != 1) return false;
+    for (int k = 0; k < 2 * D; ++k)
+      if (!grid.periodic[k / 2] && sides[k].type == FluidBoundaryType::drained) return false;
+    for (const auto& patch : patches)
+      if (patch.condition.type == FluidBoundaryType::drained) return false;
+    return true;
+  }
 
   // Fields, one value per cell.
   [[nodiscard]] const std::vector<double>& pressure() const { return pressure_; }       ///< Pa (excess)
