@@ -1835,6 +1835,16 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
           return std::any_of(st.fluid_sides.begin(), st.fluid_sides.end(), drains) ||
                  std::any_of(st.fluid_patches.begin(), st.fluid_patches.end(), drains);
         });
+    if (scene.fluid->uniform_pressure) {
+      scene.fluid->uniform_pressure = false;
+      const double stiff = scene.fluid->critical_time_step(sim.particles, sim.critical_time_step());
+      scene.fluid->uniform_pressure = true;
+      scene.notes.push_back(fmt::format(
+          "[fluid]: one cell whose sides no stage drains: its pressure stays uniform and its gradient pushes "
+          "no grain, so the critical step leaves the water's undrained stiffness out ({:.4g} s with it); the "
+          "walls that displace the water feel it",
+          stiff));
+    }
   }
   const double critical = scene.fluid
                               ? scene.fluid->critical_time_step(sim.particles, sim.critical_time_step())

@@ -176,6 +176,9 @@ sed -e '0,/^restitution = 0.5/s//restitution = 0.3/' -e 's/^local_damping = 0.7/
   && grep -q "^set: contact.1.restitution=0.3$" "$work/set.log" \
   && grep -q '"overrides": \["contact.1.restitution=0.3", "stage.settle.local_damping=0.5"\],' "$work/set/run.json" \
   && ok "run --set is the scene edited by hand" || bad "run --set (rc $rc)"
+"$exe" check "$src/examples/fluid_cases/undrained_triaxial_packing.toml" \
+  | grep -q "^  note: \[fluid\]: one cell whose sides no stage drains: .* (3.015e-07 s with it)" \
+  && ok "check notes a sealed cell's step without the water's stiffness" || bad "check: sealed cell's note"
 "$exe" check "$src/examples/fluid_cases/undrained_biaxial.toml" --set fluid.bulk_modulus=1e5 \
   | grep -q "^  pore fluid: 1 cells, K_f = 1e+05 Pa" && ok "check --set changes K_f" || bad "check --set"
 "$exe" check "$scene" --set stage.settle.duration=-1 > /dev/null 2>"$work/set.err"; rc=$?
