@@ -1165,6 +1165,15 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "time", [](const M& s) { return s.sim().time; }, "simulated time, s")
       .def_property_readonly(
           "time_step", [](const M& s) { return s.sim().time_step; }, "s")
+      .def_property_readonly(
+          "critical_time_step",
+          [](M& s) {
+            const double dry = s.sim().critical_time_step();
+            return s.fluid() != nullptr ? s.fluid()->critical_time_step(s.sim().particles, dry) : dry;
+          },
+          "s: the critical step of the particles as they are now (the contacts', with the pore water's "
+          "undrained stiffness and drag if any), of which \"auto\" took its safety_factor at load "
+          "(YADE's PWaveTimeStep, PFC's timestep); inf if no particle is free to move")
       .def_property_readonly("steps", [](const M& s) { return s.sim().steps; })
       .def_property_readonly("stages", &M::stage_names, "the scene's stage names, in order")
       .def_property_readonly("particle_count", [](const M& s) { return s.sim().particles.size(); })

@@ -394,6 +394,21 @@ class FluidBoundaries(unittest.TestCase):
         small.step(100)
         self.assertTrue(np.all(np.isfinite(small.positions)))
 
+
+class CriticalStep(unittest.TestCase):
+    """model.critical_time_step, the step "auto" takes its fraction of."""
+
+    def test_the_critical_step_is_what_auto_took_its_fraction_of(self):
+        # "auto" is 0.2 (the default safety_factor) of the critical step at
+        # load: with the pore water's stiffness in a bed of many cells, and
+        # without it in the CU triaxial test's one sealed cell, where it is
+        # the contacts' step (3.374e-6 s, as `darcydem check` gives it).
+        for example, sealed in (("hydrostatic_bed.toml", False), ("undrained_triaxial_packing.toml", True)):
+            model = darcydem.load(os.path.join(SOURCE, "examples", "fluid_cases", example))
+            with self.subTest(example=example):
+                self.assertAlmostEqual(model.time_step / model.critical_time_step, 0.2, delta=1e-12)
+                self.assertEqual(sealed, 3.37e-6 < model.critical_time_step < 3.38e-6)
+
 class HydrostaticBed(unittest.TestCase):
     """examples/fluid_cases/hydrostatic_bed.toml from Python (issue 3's
     verification 3), and the same scene run as the program runs it."""
