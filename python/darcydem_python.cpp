@@ -557,6 +557,33 @@ class Model {
     }
   }
 
+  /// The particles' critical step now, with the pore water's stiffness and
+  /// drag if any (what "auto" took its safety factor of at load).
+  [[nodiscard]] double critical_step() {
+    const double dry = sim().critical_time_step();
+    return fluid() != nullptr ? fluid()->critical_time_step(sim().particles, dry) : dry;
+  }
+
+  /// A new time step between steps, checked as the scene's own.
+  void set_time_step(double dt) {
+    if (!(std::isfinite(dt) && dt > 0.0))
+      throw py::value_error(fmt::format("time_step: give a step in seconds, > 0 (not {})", dt));
+    const double critical = critical_step();
+    if (dt > critical) {
+      throw py::value_error(fmt::format(
+          "time_step: {:.4g} s is above the critical step of the particles as they are now, {:.4g} s (the "
+          "contacts'{}); give at most that",
+          dt, critical, fluid() != nullptr ? ", with the pore water's stiffness and drag" : ""));
+    }
+    if (fluid() != nullptr && since_update_ != 0) {
+      throw py::value_error(fmt::format(
+          "time_step: the pore fluid steps every {} DEM steps and {} have gone since its last step, which "
+          "it takes at the step they were made with; step({}) to its next step first",
+          fluid()->steps_per_update, since_update_, fluid()->steps_per_update - since_update_));
+    }
+    sim().time_step = dt;
+  }
+
   /// The pore fluid's critical step with the water's stiffness against the
   /// grains counted, as if its pressure could vary.
   [[nodiscard]] double fluid_step_with_gradient() {
@@ -1163,14 +1190,12 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
       .def_property_readonly("file", [](const M& s) { return s.scene().file; })
       .def_property_readonly(
           "time", [](const M& s) { return s.sim().time; }, "simulated time, s")
+      .def_property(
+          "time_step", [](const M& s) { return s.sim().time_step; }, &M::set_time_step,
+          "s; set between steps (YADE's O.dt = ...): at most critical_time_step, and with a pore fluid that "
+          "steps every M > 1 DEM steps, right after one of its steps")
       .def_property_readonly(
-          "time_step", [](const M& s) { return s.sim().time_step; }, "s")
-      .def_property_readonly(
-          "critical_time_step",
-          [](M& s) {
-            const double dry = s.sim().critical_time_step();
-            return s.fluid() != nullptr ? s.fluid()->critical_time_step(s.sim().particles, dry) : dry;
-          },
+          "critical_time_step", &M::critical_step,
           "s: the critical step of the particles as they are now (the contacts', with the pore water's "
           "undrained stiffness and drag if any), of which \"auto\" took its safety_factor at load "
           "(YADE's PWaveTimeStep, PFC's timestep); inf if no particle is free to move")

@@ -396,7 +396,43 @@ class FluidBoundaries(unittest.TestCase):
 
 
 class CriticalStep(unittest.TestCase):
-    """model.critical_time_step, the step "auto" takes its fraction of."""
+    """model.critical_time_step, the step "auto" takes its fraction of, and
+    model.time_step set from Python."""
+
+    def test_a_sliding_sphere_at_half_the_step_keeps_its_closed_form(self):
+        # slip_to_roll.toml: a sphere launched sliding at v0 = 0.2 m/s on a
+        # plane with friction 0.3 slides until 2 v0 / (7 mu g) = 0.0194 s,
+        # its speed v0 - mu g t. At half the scene's step, for twice the
+        # steps, it reaches the same time and speed; bound 1e-4 of v0, the
+        # closed-form test's (the residual bounce of its settling, Contacts).
+        model = darcydem.load(os.path.join(SOURCE, "examples", "dem_cases", "slip_to_roll.toml"))
+        dt = model.time_step
+        model.time_step = 0.5 * dt
+        self.assertEqual(model.time_step, 0.5 * dt)
+        n = round(0.015 / dt)
+        model.step(2 * n)
+        self.assertAlmostEqual(model.time, n * dt, delta=1e-9 * n * dt)
+        self.assertAlmostEqual(model.velocities[0, 0], 0.2 - 0.3 * 9.81 * model.time, delta=1e-4 * 0.2)
+
+    def test_a_bad_step_is_refused(self):
+        model = darcydem.load(os.path.join(SOURCE, "examples", "dem_cases", "slip_to_roll.toml"))
+        for bad, says in ((0.0, "give a step in seconds, > 0 (not 0)"), (float("nan"), "(not nan)"),
+                          (2.0 * model.critical_time_step, "is above the critical step of the particles")):
+            with self.subTest(step=bad):
+                with self.assertRaisesRegex(ValueError, re.escape("time_step: " + says) if says.startswith("give")
+                                            else re.escape(says)):
+                    model.time_step = bad
+        # A pore fluid that steps every 5 DEM steps takes its interval at
+        # the step it was made with: a change between is refused.
+        bed = darcydem.load(os.path.join(SOURCE, "examples", "fluid_cases", "hydrostatic_bed.toml"),
+                            set={"fluid.steps_per_update": 5})
+        step = bed.time_step
+        bed.step(3)
+        with self.assertRaisesRegex(ValueError, re.escape("3 have gone since its last step") + ".*step\\(2\\)"):
+            bed.time_step = 0.5 * step
+        bed.step(2)
+        bed.time_step = 0.5 * step
+        self.assertEqual(bed.time_step, 0.5 * step)
 
     def test_the_critical_step_is_what_auto_took_its_fraction_of(self):
         # "auto" is 0.2 (the default safety_factor) of the critical step at
