@@ -20,10 +20,11 @@ If the coupling is right, the effective stresses (the grains' loads on
 the platens) follow the same path, and the pore pressure is the total cell
 pressure less the constant-volume test's lateral stress. Consolidated with
 the grains' friction at 0.5 (--compaction-friction 0.5), the packing is
-looser; the biaxial one (porosity 0.248) contracts as it is sheared and
-liquefies: the effective stresses fall to nothing at 0.6 % axial strain and
-the pore pressure takes the whole cell pressure (static liquefaction, as in
-loose sand's undrained tests), in both runs.
+looser; it contracts as it is sheared and liquefies: the effective
+stresses fall to nothing (the biaxial one, porosity 0.240, at 0.54 % axial
+strain; the triaxial one, 0.486, by 1.25 %) and the pore pressure takes
+the whole cell pressure (static liquefaction, as in loose sand's undrained
+tests), in both runs.
 
 Writes OUT/undrained.csv and OUT/constant_volume.csv (axial strain;
 sigma_1, sigma_3 the grains' stresses on the top platen and on the side
@@ -31,7 +32,7 @@ platens (3D: the mean of x_max's and y_max's), Pa; u, Pa; the volume's
 (2D: area's) relative change; the sample's width, depth (2D: 1 m) and
 height, m) and OUT/paths.png, and prints the paths side by side. Ctrl-C
 stops it, writing the path of the run under way so far (none while the
-packing consolidates). About 45 s (2D) or 60 s (3D) on one core.
+packing consolidates). About 45 s (2D) or 40 s (3D) on one core.
 """
 import argparse
 import math
