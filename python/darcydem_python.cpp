@@ -781,8 +781,7 @@ class Model {
     p.inv_mass[i] = 1.0 / m;
     p.inv_inertia[i] = 1.0 / (inertia_factor<D> * m * p.radius[i] * p.radius[i]);
     p.fixed[i] = 0;
-    const double critical =
-        fluid() != nullptr ? fluid()->critical_time_step(p, s.critical_time_step()) : s.critical_time_step();
+    const double critical = critical_step();
     if (s.time_step > critical) {
       p.inv_mass[i] = 0.0;
       p.inv_inertia[i] = 0.0;
@@ -895,9 +894,7 @@ class Model {
     const std::size_t before = s.particles.size();
     const double mass = ParticleData<D>::mass_of(s.materials[mat].density, radius);
     s.add_particle(x, radius, static_cast<std::uint16_t>(mat), v);
-    const double critical = fluid() != nullptr
-                                ? fluid()->critical_time_step(s.particles, s.critical_time_step())
-                                : s.critical_time_step();
+    const double critical = critical_step();
     if (s.time_step > critical) {
       std::vector<std::uint32_t> keep(before);
       for (std::size_t i = 0; i < before; ++i) keep[i] = static_cast<std::uint32_t>(i);
