@@ -1158,6 +1158,20 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["radius"] = source.radius;
               d["well_pressure"] = f.fluid->well_pressure(i);
               d["well_index"] = f.fluid->well_index(i);
+              if (source.screened()) {
+                d["screen"] = std::vector<double>{source.screen[0], source.screen[1]};
+                py::list cells;
+                for (const auto& [cell, index] : f.fluid->screen_well_indices(i)) {
+                  const auto at = f.fluid->grid.coords(cell);
+                  const double u = f.fluid->pressure()[cell];
+                  cells.append(py::dict(py::arg("cell") = std::vector<int>(at.begin(), at.end()),
+                                        py::arg("well_index") = index,
+                                        py::arg("inflow") = index * (f.fluid->well_pressure(i) - u)));
+                }
+                d["screen_cells"] = cells;
+              } else {
+                d["screen"] = py::none();
+              }
               out.append(d);
             }
             return out;
@@ -1165,7 +1179,10 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "the [[fluid.source]]s: name, position (m), the cell it feeds (indices), type ('inflow' or "
           "'pressure': what it imposes) and inflow, what it gave in the last fluid step, m^3/s (2D: per "
           "metre); radius, a well's, m (0: none), well_pressure, Pa, at its bore with a radius (its cell's "
-          "plus inflow / well_index), else its cell's, and well_index, m^3/(s Pa) (0 without a radius)")
+          "plus inflow / well_index), else its cell's, and well_index, m^3/(s Pa) (0 without a radius); "
+          "screen, a screened well's [bottom, top] along z, m (None for a point source), and screen_cells, "
+          "each cell it passes through from the bottom up: cell (indices), well_index and inflow, what that "
+          "cell took from the bore in the last fluid step, m^3/s (they add up to the well's)")
       .def_property_readonly(
           "balance",
           [](const F& f) {

@@ -72,12 +72,17 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles, const std::vecto
   }
   build_pattern();
   source_cells_.clear();
+  screens_.clear();
   for (const FluidSource<D>& source : sources) {
     for (int k = 0; k < D; ++k) {
       if (!(source.position[k] >= grid.face_at(k, 0) && source.position[k] <= grid.face_at(k, grid.cells[k])))
         throw std::logic_error("PoreFluid: the source \"" + source.name + "\" is outside the grid");
     }
     source_cells_.push_back(grid.cell_holding(source.position));
+    screens_.push_back(source.screened() ? source_cells(grid, source) : std::vector<SourceCell>{});
+    if (source.screened() && (D != 3 || source.radius <= 0.0 || screens_.back().empty()))
+      throw std::logic_error("PoreFluid: the screened well \"" + source.name +
+                             "\" needs a 3D grid, a radius and a screen in it");
   }
   source_inflow_.assign(sources.size(), 0.0);
   compute_solid(particles);
@@ -700,10 +705,27 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   // solve.
   // A well with a radius holds its pressure at its bore instead: joined to
   // its cell by its well index, as a drained side's face is to its cell.
+  // A screened well joins each of its cells to its bore so, each by its
+  // own index; held at a pressure, that pressure is known; given an
+  // inflow, it is found after the solve (superpose_given_screens).
   held_sources_.clear();
   std::vector<std::pair<std::size_t, double>> bore_held;  // (source, its well index)
+  std::vector<std::size_t> given_screens;
   for (std::size_t i = 0; i < sources.size(); ++i) {
     const std::size_t c = source_cells_[i];
+    if (sources[i].screened()) {
+      const bool held = sources[i].type == FluidSourceType::pressure;
+      const double bore = held ? sources[i].value.at(time) : 0.0;
+      for (const auto& [cell, index] : screen_well_indices(i)) {
+        diagonal[static_cast<Eigen::Index>(cell)] += dt * index;
+        rhs_[cell] += dt * index * bore;
+      }
+      if (held)
+        bore_held.emplace_back(i, 0.0);
+      else
+        given_screens.push_back(i);
+      continue;
+    }
     if (sources[i].type == FluidSourceType::inflow) {
       source_inflow_[i] = sources[i].value.at(time);
       rhs_[c] += dt * source_inflow_[i];
@@ -744,6 +766,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   last_times_.assembly = lap();
   last_solve_ = solver_.kind() == PressureSolverKind::cholesky ? solver_.solve(matrix_, rhs_, solution_)
                                                                : solver_.solve(operator_, rhs_, solution_);
+  if (!given_screens.empty()) superpose_given_screens(given_screens, dt, time);
   last_times_.solve = lap();
   for (std::size_t c = 0; c < n; ++c) pressure_[c] = solution_[static_cast<Eigen::Index>(c)];
   // A source that holds a pressure gives the water its cell's own balance
@@ -756,8 +779,16 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     source_inflow_[h.source] = lacking / dt;
   }
   for (const auto& [i, index] : bore_held) {
-    source_inflow_[i] = index * (sources[i].value.at(time) - pressure_[source_cells_[i]]);
+    const double bore = sources[i].value.at(time);
+    if (!sources[i].screened()) {
+      source_inflow_[i] = index * (bore - pressure_[source_cells_[i]]);
+      continue;
+    }
+    source_inflow_[i] = 0.0;
+    for (const auto& [cell, cell_index] : screen_well_indices(i))
+      source_inflow_[i] += cell_index * (bore - pressure_[cell]);
   }
+  for (std::size_t i : given_screens) source_inflow_[i] = sources[i].value.at(time);
 
   compute_face_fields(time);
   // Balance: summed over the cells, the interior fluxes cancel and
@@ -797,7 +828,70 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
 }
 
 template <int D>
+void PoreFluid<D>::superpose_given_screens(const std::vector<std::size_t>& wells, double dt, double time) {
+  // The system is linear in the bores' pressures p_m, which the solve took
+  // as zero: u = u0 + sum_m p_m g_m, g_m the response to well m's bore at
+  // unit pressure (the same matrix, right-hand side dt WI_c on m's cells).
+  // Each well gives its inflow Q_l = sum_c WI_lc (p_l - u_c), which with
+  // u so written is a small linear system for the p_m:
+  //   p_l sum_c WI_lc - sum_m p_m sum_c WI_lc g_m[c] = Q_l + sum_c WI_lc u0_c.
+  // Exact to the solver's tolerance; each such well costs one more solve
+  // with the factorisation (or preconditioner) already made.
+  const auto m = static_cast<Eigen::Index>(wells.size());
+  const auto n = static_cast<Eigen::Index>(grid.size());
+  std::vector<std::vector<std::pair<std::size_t, double>>> nodes;
+  std::vector<Eigen::VectorXd> response;
+  for (std::size_t w : wells) {
+    nodes.push_back(screen_well_indices(w));
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+    for (const auto& [cell, index] : nodes.back()) b[static_cast<Eigen::Index>(cell)] = dt * index;
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
+    const SolveStats stats = solver_.kind() == PressureSolverKind::cholesky
+                                 ? solver_.solve(matrix_, b, g, true)
+                                 : solver_.solve(operator_, b, g, true);
+    last_solve_.iterations += stats.iterations;
+    last_solve_.residual = std::max(last_solve_.residual, stats.residual);
+    response.push_back(std::move(g));
+  }
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m, m);
+  Eigen::VectorXd r(m);
+  for (Eigen::Index l = 0; l < m; ++l) {
+    r[l] = sources[wells[static_cast<std::size_t>(l)]].value.at(time);
+    for (const auto& [cell, index] : nodes[static_cast<std::size_t>(l)]) {
+      const auto c = static_cast<Eigen::Index>(cell);
+      a(l, l) += index;
+      r[l] += index * solution_[c];
+      for (Eigen::Index k = 0; k < m; ++k) a(l, k) -= index * response[static_cast<std::size_t>(k)][c];
+    }
+  }
+  const Eigen::VectorXd bore = a.partialPivLu().solve(r);
+  for (Eigen::Index k = 0; k < m; ++k) solution_ += bore[k] * response[static_cast<std::size_t>(k)];
+}
+
+template <int D>
+std::vector<std::pair<std::size_t, double>> PoreFluid<D>::screen_well_indices(std::size_t source) const {
+  std::vector<std::pair<std::size_t, double>> out;
+  if constexpr (D == 3) {
+    const FluidSource<D>& s = sources.at(source);
+    for (const SourceCell& sc : screens_.at(source)) {
+      const auto at = grid.coords(sc.cell);
+      const Vec<3> widths(grid.width(0, at[0]), grid.width(1, at[1]), grid.width(2, at[2]));
+      out.emplace_back(sc.cell,
+                       screen_well_index(widths, kappa_[sc.cell], fluid.viscosity, s.radius, sc.length));
+    }
+  }
+  return out;
+}
+
+template <int D>
 double PoreFluid<D>::equivalent_radius(std::size_t source) const {
+  if constexpr (D == 3) {
+    if (sources.at(source).screened()) {
+      const Vec<3> widths = cell_widths_at(grid, sources[source].position);
+      const Vec<3> shape = permeability_shape(permeability);
+      return darcydem::equivalent_radius<2>(Vec<2>(widths[0], widths[1]), Vec<2>(shape[0], shape[1]));
+    }
+  }
   return darcydem::equivalent_radius<D>(cell_widths_at(grid, sources.at(source).position),
                                         permeability_shape(permeability));
 }
@@ -806,12 +900,26 @@ template <int D>
 double PoreFluid<D>::well_index(std::size_t source) const {
   const double radius = sources.at(source).radius;
   if (radius <= 0.0) return 0.0;
+  if (sources[source].screened()) {
+    double sum = 0.0;
+    for (const auto& node : screen_well_indices(source)) sum += node.second;
+    return sum;
+  }
   return darcydem::well_index<D>(cell_widths_at(grid, sources.at(source).position),
                                  kappa_[source_cells_.at(source)], fluid.viscosity, radius);
 }
 
 template <int D>
 double PoreFluid<D>::well_pressure(std::size_t source) const {
+  if (sources.at(source).screened()) {
+    double weighted = source_inflow_.at(source);
+    double sum = 0.0;
+    for (const auto& [cell, index] : screen_well_indices(source)) {
+      weighted += index * pressure_[cell];
+      sum += index;
+    }
+    return weighted / sum;
+  }
   const double cell = pressure_[source_cells_.at(source)];
   const double index = well_index(source);
   return index > 0.0 ? cell + source_inflow_.at(source) / index : cell;

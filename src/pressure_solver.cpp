@@ -32,10 +32,11 @@ namespace {
 /// both then and when the start already meets the tolerance; the start
 /// is left unchanged only in the second case.
 template <class Cg, class Operator>
-int run_cg(Cg& cg, const Operator& a, double tolerance, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+int run_cg(Cg& cg, const Operator& a, double tolerance, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+           bool same_matrix) {
   cg.setTolerance(tolerance);
   cg.setMaxIterations(std::max<Eigen::Index>(1000, 10 * a.rows()));
-  cg.compute(a);
+  if (!same_matrix) cg.compute(a);
   const Eigen::VectorXd start = x;
   x = cg.solveWithGuess(b, start);
   if (cg.info() != Eigen::Success) {
@@ -58,14 +59,15 @@ double relative_residual(const Operator& a, const Eigen::VectorXd& b, const Eige
 
 }  // namespace
 
-SolveStats PressureSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+SolveStats PressureSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                 bool same_matrix) {
   SolveStats stats;
   if (kind_ == PressureSolverKind::cholesky) {
     if (!impl_->analysed) {
       impl_->ldlt.analyzePattern(a);
       impl_->analysed = true;
     }
-    impl_->ldlt.factorize(a);
+    if (!same_matrix) impl_->ldlt.factorize(a);
     if (impl_->ldlt.info() != Eigen::Success) {
       throw std::runtime_error(
           "pore pressure: the Cholesky factorisation failed (matrix not positive definite)");
@@ -73,7 +75,7 @@ SolveStats PressureSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eige
     x = impl_->ldlt.solve(b);
     stats.iterations = 1;
   } else {
-    stats.iterations = run_cg(impl_->cg, a, tolerance_, b, x);
+    stats.iterations = run_cg(impl_->cg, a, tolerance_, b, x, same_matrix);
   }
   stats.residual = relative_residual(a, b, x);
   return stats;
@@ -84,14 +86,15 @@ std::string PressureSolver::describe(Eigen::Index n) const {
   return fmt::format("cg ({} preconditioner)", to_string(preconditioner_for(n)));
 }
 
-SolveStats PressureSolver::solve(const GridOperator& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+SolveStats PressureSolver::solve(const GridOperator& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                 bool same_matrix) {
   if (kind_ != PressureSolverKind::cg) {
     throw std::logic_error("pore pressure: the grid's stencil is solved by conjugate gradients only");
   }
   SolveStats stats;
   stats.iterations = preconditioner_for(a.rows()) == CgPreconditioner::multigrid
-                         ? run_cg(impl_->grid_mg_cg, a, tolerance_, b, x)
-                         : run_cg(impl_->grid_cg, a, tolerance_, b, x);
+                         ? run_cg(impl_->grid_mg_cg, a, tolerance_, b, x, same_matrix)
+                         : run_cg(impl_->grid_cg, a, tolerance_, b, x, same_matrix);
   stats.residual = relative_residual(a, b, x);
   return stats;
 }

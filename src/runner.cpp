@@ -729,17 +729,30 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::
       at += fmt::format("{}{:.6g}", a == 0 ? "" : ", ", source.position[a]);
       index += fmt::format("{}{}", a == 0 ? "" : ", ", cell[a]);
     }
+    if (source.screened()) {
+      const auto cells = fluid.screen_well_indices(k);
+      const int first = fluid.grid.coords(cells.front().first)[D - 1];
+      const int last = fluid.grid.coords(cells.back().first)[D - 1];
+      at = fmt::format("{:.6g}, {:.6g}", source.position[0], source.position[1]);
+      index = fmt::format("{}, {}, {} to {}; screened from z = {:.6g} to {:.6g} m", cell[0], cell[1], first,
+                          last, source.screen[0], source.screen[1]);
+    }
     const bool steady = source.value.times.size() == 1;
     const std::string unit =
         source.type == FluidSourceType::inflow ? fmt::format("m^{}/s", D) : std::string("Pa held");
     out += fmt::format(
-        "source {} at ({}) m, into cell ({}): {}{}\n", source.name, at, index,
+        "source {} at ({}) m, into cell{} ({}): {}{}\n", source.name, at, source.screened() ? "s" : "", index,
         steady ? fmt::format("{:.6g} {}", source.value.at(0.0), unit)
                : fmt::format("{:.6g} to {:.6g} {} over {} points in time", source.value.values.front(),
                              source.value.values.back(), unit, source.value.values.size()),
         source.radius > 0.0
-            ? fmt::format("; a well of radius {:.6g} m, its cell's equivalent radius {:.6g} m", source.radius,
-                          fluid.equivalent_radius(k))
+            ? fmt::format("; a well of radius {:.6g} m, its cell's equivalent radius {:.6g} m{}",
+                          source.radius, fluid.equivalent_radius(k),
+                          source.screened()
+                              ? fmt::format(" across it, well index {:.6g} m^3/(s Pa) summed over "
+                                            "its cells",
+                                            fluid.well_index(k))
+                              : std::string())
             : std::string());
   }
   for (std::size_t k = 0; k < fluid.barriers.size(); ++k) {

@@ -352,7 +352,37 @@ FluidSource<D> read_source(const toml::table& table, const std::string& where, c
                        "(the fluid_inflow probe and the stages find a source by its name)",
                        source.name));
   }
-  const auto x = r.numbers("position", D);
+  const bool screened = r.has("screen");
+  if (screened && D == 2) {
+    r.fail("screen",
+           "is for 3D grids: in 2D a source is already a well through the whole thickness (give its "
+           "'position' and 'radius')");
+  }
+  if (screened && !r.has("radius")) {
+    r.fail("screen",
+           "needs the well's 'radius' (m): each cell of the screen is joined to the bore by a well "
+           "index, which needs it");
+  }
+  // A screened well's position is its axis, (x, y); its z the screen's.
+  const std::size_t given = screened ? D - 1 : D;
+  if (const toml::array* p = table["position"].as_array(); screened && p != nullptr && p->size() != given) {
+    r.fail("position", "with a 'screen' is the well's axis, [x, y]: the screen gives its extent along z");
+  }
+  auto x = r.numbers("position", given);
+  if (screened) {
+    const auto z = r.numbers("screen", 2);
+    const double lo = grid.face_at(D - 1, 0);
+    const double hi = grid.face_at(D - 1, grid.cells[D - 1]);
+    if (!(z[0] >= lo && z[1] <= hi && z[0] < z[1])) {
+      r.fail("screen",
+             fmt::format("must be [bottom, top] along z, bottom < top, in the fluid grid's [{}, {}] m; "
+                         "got [{}, {}] m",
+                         TableReader::format_number(lo), TableReader::format_number(hi),
+                         TableReader::format_number(z[0]), TableReader::format_number(z[1])));
+    }
+    source.screen = {z[0], z[1]};
+    x.push_back(0.5 * (z[0] + z[1]));
+  }
   for (int k = 0; k < D; ++k) {
     const double lo = grid.face_at(k, 0);
     const double hi = grid.face_at(k, grid.cells[k]);
@@ -364,7 +394,23 @@ FluidSource<D> read_source(const toml::table& table, const std::string& where, c
     source.position[k] = x[k];
   }
   read_source_condition<D>(r, source.type, source.value);
-  if (r.has("radius")) {
+  if (screened) {
+    // Each cell of the screen takes Peaceman's 2D index across the well:
+    // the cells' widths along x and y and the permeability's proportions
+    // there, alike along the screen's column.
+    const Vec<D> widths = cell_widths_at(grid, source.position);
+    const Vec<D> shape = permeability_shape(permeability);
+    source.radius = r.check("radius", r.number("radius"), is_positive, "> 0 m, the well's radius");
+    const double r_e = equivalent_radius<2>(Vec<2>(widths[0], widths[1]), Vec<2>(shape[0], shape[1]));
+    if (!(source.radius < r_e)) {
+      r.fail(
+          "radius",
+          fmt::format("must be less than the equivalent radius of the cells the screen passes through, {} m "
+                      "(Peaceman's across the well, 0.1985 h for square cells), got {} m: a well that wide "
+                      "is wider than the cells can tell; model it with coarser cells, or as a box wall",
+                      TableReader::format_number(r_e), TableReader::format_number(source.radius)));
+    }
+  } else if (r.has("radius")) {
     source.radius = r.check("radius", r.number("radius"), is_positive, "> 0 m, the well's radius");
     // The equivalent radius depends on its cell's widths and the
     // permeability's proportions only.
@@ -677,16 +723,21 @@ std::unique_ptr<PoreFluid<D>> read_fluid(const toml::table& table, const std::st
       const std::string where = fmt::format("[[fluid.source]] #{}", index);
       fluid->sources.push_back(read_source<D>(*t, where, file, fluid->grid, fluid->permeability, taken));
       taken.push_back(fluid->sources.back().name);
-      // Each in a cell of its own: two pressures held in one cell would fight.
-      const std::size_t cell = fluid->grid.cell_holding(fluid->sources.back().position);
+      // Each in cells of its own: two pressures held in one cell would fight.
+      const auto mine = source_cells(fluid->grid, fluid->sources.back());
       for (std::size_t j = 0; j + 1 < fluid->sources.size(); ++j) {
-        if (fluid->grid.cell_holding(fluid->sources[j].position) == cell) {
+        for (const SourceCell& other : source_cells(fluid->grid, fluid->sources[j])) {
+          const bool shared = std::any_of(mine.begin(), mine.end(),
+                                          [&](const SourceCell& c) { return c.cell == other.cell; });
+          if (!shared) continue;
           TableReader(*t, where, file)
-              .fail("position",
-                    fmt::format("lies in the cell of source \"{}\": each source needs a cell of its "
-                                "own (a source gives its water to, or holds its pressure in, its "
-                                "whole cell)",
-                                fluid->sources[j].name));
+              .fail(
+                  fluid->sources.back().screened() ? "screen" : "position",
+                  fmt::format("{} of source \"{}\": each source needs a cell of its "
+                              "own (a source gives its water to, or holds its pressure in, its "
+                              "whole cell; a screened well, to each cell it passes through)",
+                              fluid->sources.back().screened() ? "passes through a cell" : "lies in the cell",
+                              fluid->sources[j].name));
         }
       }
     }

@@ -55,6 +55,9 @@ sed 's/^drag = "darcy"/drag = "ergun"/' "$src/examples/fluid_cases/graded_sand_s
 "$exe" check "$src/examples/fluid_cases/pumping_well.toml" \
   | grep -q "^  source well at (0.205, 0.205) m, into cell (20, 20): -2e-06 m^2/s$" \
   && ok "check names a well, its cell and inflow" || bad "check: source ($("$exe" check "$src/examples/fluid_cases/pumping_well.toml" | grep source))"
+"$exe" check "$src/examples/fluid_cases/screened_well.toml" \
+  | grep -q "^  source well at (0.155, 0.155) m, into cells (15, 15, 0 to 3; screened from z = 0 to 0.04 m): -4e-06 m^3/s; a well of radius 0.001 m, its cell's equivalent radius 0.00198506 m across it, well index 3.66554e-08 m^3/(s Pa) summed over its cells$" \
+  && ok "check names a screened well's cells and its well index" || bad "check: screened well ($("$exe" check "$src/examples/fluid_cases/screened_well.toml" | grep source))"
 "$exe" check "$src/examples/dem_cases/vibrated_bed.toml" \
   | grep -q "^  stage shake: wall floor oscillates, amplitude (0, 0.001242) m at 20 Hz, phase -90 deg: peak acceleration 19.62 m/s^2, Gamma = A omega^2 / g = 2 along gravity (above 1" \
   && ok "check gives a shaken wall's Gamma" || bad "check: Gamma ($("$exe" check "$src/examples/dem_cases/vibrated_bed.toml" | grep shake))"

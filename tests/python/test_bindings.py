@@ -1360,6 +1360,53 @@ class PumpingWell(unittest.TestCase):
         self.assertAlmostEqual(model.fluid.sources[0]["inflow"], 5e-7, delta=1e-15)
 
 
+
+class ScreenedWell(unittest.TestCase):
+    """examples/fluid_cases/screened_well.toml: a well screened through some cells of a 3D aquifer."""
+
+    EXAMPLE = os.path.join(SOURCE, "examples", "fluid_cases", "screened_well.toml")
+
+    def test_a_screen_through_the_whole_aquifer_is_theiss_well_in_every_layer(self):
+        # Screened from floor to roof, between no-flow ones: the flow is
+        # horizontal and alike in the 8 layers, so each cell takes Q / 8
+        # (to the solver's tolerance, by symmetry), and 5 cm out the
+        # drawdown is Theis's for Q / H per metre (c = 0.01 m^2/s), within
+        # the lattice's correction at 5 cells and 2e-3 of the scale, as the
+        # 2D pumping test's.
+        model = darcydem.load(self.EXAMPLE, set={"fluid.source.well.screen": [0.0, 0.08]})
+        model.step(1000)  # 0.1 s of pumping
+        well = model.fluid.sources[0]
+        self.assertEqual(well["screen"], [0.0, 0.08])
+        self.assertEqual(well["position"], [0.155, 0.155, 0.04])
+        cells = well["screen_cells"]
+        self.assertEqual([c["cell"] for c in cells], [[15, 15, k] for k in range(8)])
+        q = -4e-6
+        self.assertEqual(well["inflow"], q)
+        for c in cells:
+            self.assertAlmostEqual(c["inflow"], q / 8, delta=1e-9 * -q)
+        per_metre = q / 0.08
+        scale = -per_metre * 1e-3 / (4.0 * math.pi * 1e-10)
+        expected = pumping_plot.theis(0.05, 0.1, -per_metre, 1e-3, 1e-10, 0.01)
+        for z in (0.005, 0.045, 0.075):
+            self.assertAlmostEqual(model.fluid.pressure_at([0.205, 0.155, z]), expected,
+                                   delta=scale * (1.0 / 150.0 + 2e-3))
+
+    def test_a_partial_screen_draws_most_at_its_end(self):
+        # Screened over the lower half: the cells' shares add up to the
+        # well's inflow, and the top cell of the screen, which the water
+        # also reaches from the unscreened aquifer above, draws more than
+        # the one below it (per metre of screen: the cells are alike).
+        model = darcydem.load(self.EXAMPLE)
+        model.step(500)
+        cells = model.fluid.sources[0]["screen_cells"]
+        self.assertEqual(len(cells), 4)
+        self.assertAlmostEqual(sum(c["inflow"] for c in cells), -4e-6, delta=1e-9 * 4e-6)
+        self.assertLess(cells[3]["inflow"], cells[2]["inflow"])
+        self.assertLess(cells[3]["inflow"], cells[1]["inflow"])
+        self.assertAlmostEqual(model.fluid.sources[0]["well_index"], sum(c["well_index"] for c in cells),
+                               delta=1e-12 * model.fluid.sources[0]["well_index"])
+        self.assertIsNone(darcydem.load(PumpingWell.EXAMPLE).fluid.sources[0]["screen"])
+
 class SaveAndLoad(unittest.TestCase):
     """model.save and darcydem.load(scene, checkpoint=...), YADE's O.save and O.load, on the sealed-piston
     column (pore fluid, servo, two stages)."""

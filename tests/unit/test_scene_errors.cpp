@@ -1007,7 +1007,47 @@ TEST(SceneErrors, FluidSourcesAreChecked) {
     expect(replace(cubic, "model = \"kozeny_carman\"",
                    "model = \"constant\"\nhydraulic_conductivity = [1e-3, 1e-3, 2e-3]"),
            "key 'radius': in 3D a well's radius needs its cell to be a cube");
+    // A screened well: its axis (x, y) and the screen's extent along z,
+    // through cells of any height (its index is Peaceman's across it, 2D:
+    // 0.1985 mm for these 1 x 1 mm cells); 0.5, 1, 1 and 0.5 mm of it in
+    // the four cells.
+    const std::string screened = replace(
+        replace(cubic, "position = [0.0, 0.0, 0.0015]", "position = [0.0, 0.0]\nscreen = [0.0005, 0.0035]"),
+        "cells = [1, 1, 4]", "cells = [1, 1, 4]");
+    ASSERT_EQ(load_error(screened), "");
+    {
+      const auto scene = built_scene<3>(screened);
+      const auto& f = *scene.fluid;
+      EXPECT_TRUE(f.sources[0].screened());
+      EXPECT_EQ(f.sources[0].position[2], 0.002);
+      EXPECT_NEAR(f.equivalent_radius(0), 0.19850590409582e-3, 1e-15);
+      EXPECT_EQ(source_cells(f.grid, f.sources[0]).size(), 4U);
+      EXPECT_NEAR(source_cells(f.grid, f.sources[0])[0].length, 0.0005, 1e-15);
+      EXPECT_NEAR(source_cells(f.grid, f.sources[0])[1].length, 0.001, 1e-15);
+    }
+    ASSERT_EQ(load_error(replace(replace(screened, "cells = [1, 1, 4]", "cells = [1, 1, 2]"),
+                                 "size = [0.001, 0.001, 0.001]", "size = [0.001, 0.001, 0.002]")),
+              "");
+    expect(replace(screened, "position = [0.0, 0.0]", "position = [0.0, 0.0, 0.002]"),
+           "key 'position': with a 'screen' is the well's axis, [x, y]: the screen gives its extent along z");
+    expect(replace(screened, "[0.0005, 0.0035]", "[0.0035, 0.0005]"),
+           "key 'screen': must be [bottom, top] along z, bottom < top, in the fluid grid's [0, 0.004] m; got "
+           "[0.0035, 0.0005] m");
+    expect(replace(screened, "[0.0005, 0.0035]", "[0.0005, 0.0045]"), "key 'screen': must be [bottom, top]");
+    expect(replace(screened, "radius = 1e-4", "radius = 3e-4"),
+           "key 'radius': must be less than the equivalent radius of the cells the screen passes through, "
+           "0.000198505904");
+    expect(replace(screened, "\nradius = 1e-4", ""), "key 'screen': needs the well's 'radius' (m)");
+    expect(replace(screened, "[[fluid.source]]",
+                   "[[fluid.source]]\nname = \"point\"\nposition = [0.0, 0.0, 0.0025]\ninflow = 0.0\n\n"
+                   "[[fluid.source]]"),
+           "[[fluid.source]] #2 key 'screen': passes through a cell of source \"point\": each source needs "
+           "a cell of its own");
   }
+  expect(
+      with_fluid(replace(well, "inflow = 1e-9", "inflow = 1e-9\nradius = 1e-4\nscreen = [0.0, 0.001]")),
+      "[[fluid.source]] #1 key 'screen': is for 3D grids: in 2D a source is already a well through the whole "
+      "thickness");
   // A stage changes a source's inflow by its name, and nothing else.
   const std::string stage = "gravity = [0.0, -9.81]\n";
   auto in_stage = [&](const std::string& change, const std::string& sources = "") {

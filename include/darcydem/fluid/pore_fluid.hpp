@@ -35,6 +35,7 @@
 #include "darcydem/fluid/fluid_grid.hpp"
 #include "darcydem/fluid/fluid_laws.hpp"
 #include "darcydem/fluid/pressure_solver.hpp"
+#include "darcydem/fluid/well_index.hpp"
 #include "darcydem/particles/particle_data.hpp"
 #include "darcydem/simulation/force_field.hpp"
 #include "darcydem/walls/wall.hpp"
@@ -273,14 +274,23 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] std::size_t source_cell(std::size_t source) const { return source_cells_.at(source); }
   /// Source i's well index now, m^3/(s Pa) (2D: per metre), from its
   /// radius and its cell's widths and permeability (fluid/well_index.hpp);
-  /// 0 for a source without a radius.
+  /// a screened well's, its cells' summed; 0 for a source without a radius.
   [[nodiscard]] double well_index(std::size_t source) const;
+  /// A screened well's cells, from the bottom up, each with its well index
+  /// now, m^3/(s Pa) (screen_well_index: Peaceman's across the well times
+  /// the screen's length in the cell); what cell c takes from the bore is
+  /// its index times (well_pressure - its pressure). Empty for a point
+  /// source.
+  [[nodiscard]] std::vector<std::pair<std::size_t, double>> screen_well_indices(std::size_t source) const;
   /// Source i's cell's equivalent radius, m (fluid/well_index.hpp): from
-  /// its widths and the permeability's proportions along the axes.
+  /// its widths and the permeability's proportions along the axes; a
+  /// screened well's, across it (Peaceman's 2D, from the widths and
+  /// permeabilities along x and y).
   [[nodiscard]] double equivalent_radius(std::size_t source) const;
   /// The pressure at source i, Pa: with a radius, at its bore, its cell's
   /// plus its last inflow over its well index (a held pressure's, that
-  /// pressure); without, its cell's.
+  /// pressure; a screened well's, (inflow + sum of WI_c u_c) / sum of WI_c
+  /// over its cells); without, its cell's.
   [[nodiscard]] double well_pressure(std::size_t source) const;
   /// The excess pressure on a side of the grid (`side` 0 .. 2D-1, as
   /// side_inflow) or on a patch (`side` = 2D + its index in `patches`),
@@ -656,6 +666,13 @@ class PoreFluid final : public ParticleForceField<D> {
   std::vector<double> patch_inflow_;       ///< m^3/s, per patch
   std::vector<double> source_inflow_;      ///< m^3/s, per source, in the last fluid step
   std::vector<std::size_t> source_cells_;  ///< the cell each source feeds
+  /// Per source, a screened well's cells (source_cells), empty for a
+  /// point source.
+  std::vector<std::vector<SourceCell>> screens_;
+  /// Solves for the pressures at the bores of the screened wells with a
+  /// given inflow, which the last solve left at zero, and adds what they
+  /// give to the solution (superposition: see update()).
+  void superpose_given_screens(const std::vector<std::size_t>& wells, double dt, double time);
   /// A source that holds a pressure, in this fluid step: its index, the
   /// pressure, its cell's diagonal and right-hand side, and the couplings
   /// to its neighbours (cell, conductance) taken out of the system.

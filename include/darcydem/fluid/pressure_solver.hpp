@@ -43,12 +43,15 @@ class PressureSolver {
   PressureSolver& operator=(PressureSolver&&) noexcept;
 
   /// Solves A x = b; x holds the initial guess on entry (used by CG).
-  /// Throws std::runtime_error if the factorisation or CG fails.
-  SolveStats solve(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// Throws std::runtime_error if the factorisation or CG fails. With
+  /// `same_matrix`, A is the last solve's, unchanged: its factorisation
+  /// (or CG's preconditioner) is used again, for another right-hand side.
+  SolveStats solve(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool same_matrix = false);
   /// The same by conjugate gradients on a grid's stencil (the kind must be
   /// cg), with the preconditioner chosen. Throws std::logic_error for a
   /// Cholesky solver.
-  SolveStats solve(const GridOperator& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  SolveStats solve(const GridOperator& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                   bool same_matrix = false);
 
   [[nodiscard]] PressureSolverKind kind() const { return kind_; }
   [[nodiscard]] double tolerance() const { return tolerance_; }

@@ -4,10 +4,14 @@
 // radius r_e from it, so the pressure at the well's own radius r_w differs
 // from the cell's by the continuous drop between r_w and r_e, and the
 // well index WI = Q / (p_w - p_cell) joins the two.
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
+#include <vector>
 
 #include "darcydem/core/vec.hpp"
+#include "darcydem/fluid/fluid_boundary.hpp"
 #include "darcydem/fluid/fluid_grid.hpp"
 #include "darcydem/fluid/fluid_laws.hpp"
 
@@ -73,6 +77,45 @@ template <int D>
   } else {
     return 4.0 * std::numbers::pi * kappa[0] / (mu * (1.0 / radius - 1.0 / r_e));
   }
+}
+
+/// A cell a source draws from: its index and, for a screened well, the
+/// length of the screen in it, m (0 for a point source's one cell).
+struct SourceCell {
+  std::size_t cell = 0;
+  double length = 0.0;
+};
+
+/// The cells source draws from: a point source's one cell, the one holding
+/// its position; a screened well's (3D), every cell of the column at its
+/// (x, y) that the screen passes through for a length (more than 1e-9 of
+/// the cell's height: a screen that ends on a face does not reach beyond
+/// it), from the bottom up.
+template <int D>
+[[nodiscard]] std::vector<SourceCell> source_cells(const FluidGrid<D>& grid, const FluidSource<D>& source) {
+  const std::size_t holding = grid.cell_holding(source.position);
+  if (!source.screened()) return {{holding, 0.0}};
+  constexpr int z = D - 1;
+  auto at = grid.coords(holding);
+  std::vector<SourceCell> cells;
+  for (int k = 0; k < grid.cells[z]; ++k) {
+    const double lo = grid.face_at(z, k);
+    const double hi = grid.face_at(z, k + 1);
+    const double length = std::min(hi, source.screen[1]) - std::max(lo, source.screen[0]);
+    if (length <= 1e-9 * (hi - lo)) continue;
+    at[z] = k;
+    cells.push_back({grid.index(at), length});
+  }
+  return cells;
+}
+
+/// The well index of one cell of a screened well (3D), m^3/(s Pa): the
+/// horizontal flow to a line well through the cell, Peaceman's 2D index
+/// with the cell's widths and permeabilities across the well, times the
+/// screen's length in it, 2 pi sqrt(kx ky) L / (mu ln(r_e / r_w)).
+[[nodiscard]] inline double screen_well_index(const Vec<3>& widths, const Vec<3>& kappa, double mu,
+                                              double radius, double length) {
+  return length * well_index<2>(Vec<2>(widths[0], widths[1]), Vec<2>(kappa[0], kappa[1]), mu, radius);
 }
 
 }  // namespace darcydem
