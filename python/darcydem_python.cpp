@@ -587,12 +587,7 @@ class Model {
   /// The pore fluid's critical step with the water's stiffness against the
   /// grains counted, as if its pressure could vary.
   [[nodiscard]] double fluid_step_with_gradient() {
-    PoreFluid<D>& f = *fluid();
-    const bool uniform = f.uniform_pressure;
-    f.uniform_pressure = false;
-    const double critical = f.critical_time_step(sim().particles, sim().critical_time_step());
-    f.uniform_pressure = uniform;
-    return critical;
+    return fluid()->critical_time_step(sim().particles, sim().critical_time_step(), true);
   }
 
   /// A servo's cycle = {'amplitude': N or Pa, 'frequency': Hz, 'phase':
@@ -1180,8 +1175,9 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "'pressure': what it imposes) and inflow, what it gave in the last fluid step, m^3/s (2D: per "
           "metre); radius, a well's, m (0: none), well_pressure, Pa, at its bore with a radius (its cell's "
           "plus inflow / well_index), else its cell's, and well_index, m^3/(s Pa) (0 without a radius); "
-          "screen, a screened well's [bottom, top] along z, m (None for a point source), and screen_cells, "
-          "each cell it passes through from the bottom up: cell (indices), well_index and inflow, what that "
+          "screen, a screened well's [from, to] along its screen_axis ('x', 'y' or 'z'), m (None for a point "
+          "source), and screen_cells, each cell it passes through in order along it: cell (indices), "
+          "well_index and inflow, what that "
           "cell took from the bore in the last fluid step, m^3/s (they add up to the well's)")
       .def_property_readonly(
           "balance",

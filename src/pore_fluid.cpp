@@ -876,8 +876,8 @@ std::vector<std::pair<std::size_t, double>> PoreFluid<D>::screen_well_indices(st
     for (const SourceCell& sc : screens_.at(source)) {
       const auto at = grid.coords(sc.cell);
       const Vec<3> widths(grid.width(0, at[0]), grid.width(1, at[1]), grid.width(2, at[2]));
-      out.emplace_back(sc.cell,
-                       screen_well_index(widths, kappa_[sc.cell], fluid.viscosity, s.radius, sc.length));
+      out.emplace_back(sc.cell, screen_well_index(s.screen_axis, widths, kappa_[sc.cell], fluid.viscosity,
+                                                  s.radius, sc.length));
     }
   }
   return out;
@@ -889,7 +889,8 @@ double PoreFluid<D>::equivalent_radius(std::size_t source) const {
     if (sources.at(source).screened()) {
       const Vec<3> widths = cell_widths_at(grid, sources[source].position);
       const Vec<3> shape = permeability_shape(permeability);
-      return darcydem::equivalent_radius<2>(Vec<2>(widths[0], widths[1]), Vec<2>(shape[0], shape[1]));
+      const int axis = sources[source].screen_axis;
+      return darcydem::equivalent_radius<2>(across(axis, widths), across(axis, shape));
     }
   }
   return darcydem::equivalent_radius<D>(cell_widths_at(grid, sources.at(source).position),
@@ -1062,7 +1063,8 @@ std::vector<Vec<D>> PoreFluid<D>::darcy_velocity() const {
 }
 
 template <int D>
-double PoreFluid<D>::critical_time_step(const ParticleData<D>& p, double dem_step) const {
+double PoreFluid<D>::critical_time_step(const ParticleData<D>& p, double dem_step,
+                                        bool water_stiffness) const {
   double m_min = std::numeric_limits<double>::infinity();
   double r_min = std::numeric_limits<double>::infinity();
   double rho_min = std::numeric_limits<double>::infinity();
@@ -1099,7 +1101,7 @@ double PoreFluid<D>::critical_time_step(const ParticleData<D>& p, double dem_ste
     }
     geometry = std::max(geometry, others / grid.min_width(k));
   }
-  const double k_fluid = uniform_pressure ? 0.0 : fluid.bulk_modulus / n_min * geometry;
+  const double k_fluid = water_stiffness ? fluid.bulk_modulus / n_min * geometry : 0.0;
   const double dt_stiff = 1.0 / std::sqrt(1.0 / (dem_step * dem_step) + k_fluid / m_min);
   // Drag relaxation time m / (beta V_p / (1-n)), for the explicit drag.
   const double beta = drag == DragLaw::darcy ? n_min * n_min * fluid.viscosity / kappa_min

@@ -731,11 +731,18 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::
     }
     if (source.screened()) {
       const auto cells = fluid.screen_well_indices(k);
-      const int first = fluid.grid.coords(cells.front().first)[D - 1];
-      const int last = fluid.grid.coords(cells.back().first)[D - 1];
-      at = fmt::format("{:.6g}, {:.6g}", source.position[0], source.position[1]);
-      index = fmt::format("{}, {}, {} to {}; screened from z = {:.6g} to {:.6g} m", cell[0], cell[1], first,
-                          last, source.screen[0], source.screen[1]);
+      const int along = source.screen_axis;
+      at.clear();
+      index.clear();
+      for (int a = 0; a < D; ++a) {
+        const char* comma = a == 0 ? "" : ", ";
+        if (a != along) at += fmt::format("{}{:.6g}", at.empty() ? "" : ", ", source.position[a]);
+        index += a != along ? fmt::format("{}{}", comma, cell[a])
+                            : fmt::format("{}{} to {}", comma, fluid.grid.coords(cells.front().first)[a],
+                                          fluid.grid.coords(cells.back().first)[a]);
+      }
+      index += fmt::format("; screened from {} = {:.6g} to {:.6g} m", "xyz"[along], source.screen[0],
+                           source.screen[1]);
     }
     const bool steady = source.value.times.size() == 1;
     const std::string unit =

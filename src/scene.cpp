@@ -1836,9 +1836,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                  std::any_of(st.fluid_patches.begin(), st.fluid_patches.end(), drains);
         });
     if (scene.fluid->uniform_pressure) {
-      scene.fluid->uniform_pressure = false;
-      const double stiff = scene.fluid->critical_time_step(sim.particles, sim.critical_time_step());
-      scene.fluid->uniform_pressure = true;
+      const double stiff = scene.fluid->critical_time_step(sim.particles, sim.critical_time_step(), true);
       scene.notes.push_back(fmt::format(
           "[fluid]: one cell whose sides no stage drains: its pressure stays uniform and its gradient pushes "
           "no grain, so the critical step leaves the water's undrained stiffness out ({:.4g} s with it); the "

@@ -363,25 +363,37 @@ FluidSource<D> read_source(const toml::table& table, const std::string& where, c
            "needs the well's 'radius' (m): each cell of the screen is joined to the bore by a well "
            "index, which needs it");
   }
-  // A screened well's position is its axis, (x, y); its z the screen's.
+  if (!screened && r.has("axis")) r.fail("axis", "is a screened well's: give it a 'screen' = [from, to] too");
+  // A screened well's position is across its axis; along it, the screen's.
+  if (screened) {
+    const std::string axis = r.optional_choice("axis", {"x", "y", "z"}).value_or("z");
+    source.screen_axis = axis == "x" ? 0 : axis == "y" ? 1 : 2;
+  }
+  const int along = source.screen_axis;
+  const std::string others = along == 0 ? "y, z" : along == 1 ? "x, z" : "x, y";
   const std::size_t given = screened ? D - 1 : D;
   if (const toml::array* p = table["position"].as_array(); screened && p != nullptr && p->size() != given) {
-    r.fail("position", "with a 'screen' is the well's axis, [x, y]: the screen gives its extent along z");
+    r.fail("position", fmt::format("with a 'screen' along {} is the well's line, [{}]: the screen gives its "
+                                   "extent along {}",
+                                   "xyz"[along], others, "xyz"[along]));
   }
-  auto x = r.numbers("position", given);
+  const auto given_x = r.numbers("position", given);
+  std::vector<double> x;
   if (screened) {
     const auto z = r.numbers("screen", 2);
-    const double lo = grid.face_at(D - 1, 0);
-    const double hi = grid.face_at(D - 1, grid.cells[D - 1]);
+    const double lo = grid.face_at(along, 0);
+    const double hi = grid.face_at(along, grid.cells[along]);
     if (!(z[0] >= lo && z[1] <= hi && z[0] < z[1])) {
       r.fail("screen",
-             fmt::format("must be [bottom, top] along z, bottom < top, in the fluid grid's [{}, {}] m; "
-                         "got [{}, {}] m",
-                         TableReader::format_number(lo), TableReader::format_number(hi),
-                         TableReader::format_number(z[0]), TableReader::format_number(z[1])));
+             fmt::format(
+                 "must be [from, to] along {}, from < to, in the fluid grid's [{}, {}] m; got [{}, {}] m",
+                 "xyz"[along], TableReader::format_number(lo), TableReader::format_number(hi),
+                 TableReader::format_number(z[0]), TableReader::format_number(z[1])));
     }
     source.screen = {z[0], z[1]};
-    x.push_back(0.5 * (z[0] + z[1]));
+    for (int k = 0, j = 0; k < D; ++k) x.push_back(k == along ? 0.5 * (z[0] + z[1]) : given_x[j++]);
+  } else {
+    x = given_x;
   }
   for (int k = 0; k < D; ++k) {
     const double lo = grid.face_at(k, 0);
@@ -394,23 +406,26 @@ FluidSource<D> read_source(const toml::table& table, const std::string& where, c
     source.position[k] = x[k];
   }
   read_source_condition<D>(r, source.type, source.value);
-  if (screened) {
-    // Each cell of the screen takes Peaceman's 2D index across the well:
-    // the cells' widths along x and y and the permeability's proportions
-    // there, alike along the screen's column.
-    const Vec<D> widths = cell_widths_at(grid, source.position);
-    const Vec<D> shape = permeability_shape(permeability);
-    source.radius = r.check("radius", r.number("radius"), is_positive, "> 0 m, the well's radius");
-    const double r_e = equivalent_radius<2>(Vec<2>(widths[0], widths[1]), Vec<2>(shape[0], shape[1]));
-    if (!(source.radius < r_e)) {
-      r.fail(
-          "radius",
-          fmt::format("must be less than the equivalent radius of the cells the screen passes through, {} m "
-                      "(Peaceman's across the well, 0.1985 h for square cells), got {} m: a well that wide "
-                      "is wider than the cells can tell; model it with coarser cells, or as a box wall",
-                      TableReader::format_number(r_e), TableReader::format_number(source.radius)));
+  if constexpr (D == 3) {
+    if (screened) {
+      // Each cell of the screen takes Peaceman's 2D index across the well:
+      // the cells' widths across its axis and the permeability's
+      // proportions there, alike along the screen's row of cells.
+      const Vec<D> widths = cell_widths_at(grid, source.position);
+      const Vec<D> shape = permeability_shape(permeability);
+      source.radius = r.check("radius", r.number("radius"), is_positive, "> 0 m, the well's radius");
+      const double r_e = equivalent_radius<2>(across(along, widths), across(along, shape));
+      if (!(source.radius < r_e)) {
+        r.fail("radius",
+               fmt::format(
+                   "must be less than the equivalent radius of the cells the screen passes through, {} "
+                   "m (Peaceman's across the well, 0.1985 h for square cells), got {} m: a well that "
+                   "wide is wider than the cells can tell; model it with coarser cells, or as a box wall",
+                   TableReader::format_number(r_e), TableReader::format_number(source.radius)));
+      }
     }
-  } else if (r.has("radius")) {
+  }
+  if (!screened && r.has("radius")) {
     source.radius = r.check("radius", r.number("radius"), is_positive, "> 0 m, the well's radius");
     // The equivalent radius depends on its cell's widths and the
     // permeability's proportions only.

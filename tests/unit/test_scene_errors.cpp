@@ -1029,11 +1029,30 @@ TEST(SceneErrors, FluidSourcesAreChecked) {
                                  "size = [0.001, 0.001, 0.001]", "size = [0.001, 0.001, 0.002]")),
               "");
     expect(replace(screened, "position = [0.0, 0.0]", "position = [0.0, 0.0, 0.002]"),
-           "key 'position': with a 'screen' is the well's axis, [x, y]: the screen gives its extent along z");
+           "key 'position': with a 'screen' along z is the well's line, [x, y]: the screen gives its extent "
+           "along z");
     expect(replace(screened, "[0.0005, 0.0035]", "[0.0035, 0.0005]"),
-           "key 'screen': must be [bottom, top] along z, bottom < top, in the fluid grid's [0, 0.004] m; got "
+           "key 'screen': must be [from, to] along z, from < to, in the fluid grid's [0, 0.004] m; got "
            "[0.0035, 0.0005] m");
-    expect(replace(screened, "[0.0005, 0.0035]", "[0.0005, 0.0045]"), "key 'screen': must be [bottom, top]");
+    expect(replace(screened, "[0.0005, 0.0035]", "[0.0005, 0.0045]"), "key 'screen': must be [from, to]");
+    // Along x (a horizontal drain): its line is [y, z], the screen along x.
+    {
+      const auto scene =
+          built_scene<3>(replace(replace(screened, "position = [0.0, 0.0]", "position = [0.0, 0.0015]"),
+                                 "screen = [0.0005, 0.0035]", "screen = [-0.0005, 0.0005]\naxis = \"x\""));
+      EXPECT_EQ(scene.fluid->sources[0].screen_axis, 0);
+      EXPECT_EQ(scene.fluid->sources[0].position[0], 0.0);
+      EXPECT_EQ(scene.fluid->sources[0].position[2], 0.0015);
+      EXPECT_EQ(source_cells(scene.fluid->grid, scene.fluid->sources[0]).size(), 1U);
+    }
+    expect(replace(screened, "screen = [0.0005, 0.0035]", "screen = [0.0005, 0.0035]\naxis = \"x\""),
+           "key 'screen': must be [from, to] along x, from < to, in the fluid grid's [-0.0005, 0.0005] m");
+    expect(replace(screened, "position = [0.0, 0.0]", "position = [0.0, 0.0, 0.001]\naxis = \"y\""),
+           "key 'position': with a 'screen' along y is the well's line, [x, z]");
+    expect(replace(screened, "screen = [0.0005, 0.0035]", "screen = [0.0005, 0.0035]\naxis = \"w\""),
+           "key 'axis'");
+    expect(replace(cubic, "radius = 1e-4", "radius = 1e-4\naxis = \"z\""),
+           "key 'axis': is a screened well's: give it a 'screen' = [from, to] too");
     expect(replace(screened, "radius = 1e-4", "radius = 3e-4"),
            "key 'radius': must be less than the equivalent radius of the cells the screen passes through, "
            "0.000198505904");

@@ -18,9 +18,8 @@ using namespace darcydem;
 
 namespace {
 
-// Cells h x h across, hz high; n x n of them, layers along z; no grains
-// (porosity 1), constant isotropic permeability; the four sides drained at
-// u = 0, top and bottom no-flow.
+// Cells h x h across, hz along the wells; n x n of them across; no grains
+// (porosity 1), constant isotropic permeability.
 constexpr double h = 0.01;       // m
 constexpr double hz = 0.02;      // m
 constexpr int n = 41;            // cells along x and y (odd: a middle cell)
@@ -33,28 +32,39 @@ constexpr double middle = 0.5 * n * h;
 struct Well {
   FluidSourceType type;
   double value;  // m^3/s or Pa
-  double x;      // m
+  double x;      // m: where it crosses the first axis across its own
   std::array<double, 2> screen;
 };
 
-PoreFluid<3> aquifer(int layers, const std::vector<Well>& wells, PressureSolverKind solver) {
+/// An aquifer of `layers` cells hz wide along `axis` (z: horizontal
+/// layers and vertical wells; x: a drain along x), n x n of h across it:
+/// its sides across the axis drained at u = 0, its two ends along the axis
+/// no-flow.
+PoreFluid<3> aquifer(int layers, const std::vector<Well>& wells, PressureSolverKind solver, int axis = 2) {
   PoreFluid<3> f(solver, 1e-13);
-  f.grid.spacing = Vec<3>(h, h, hz);
-  f.grid.cells = {n, n, layers};
+  f.grid.spacing = Vec<3>::Constant(h);
+  f.grid.spacing[axis] = hz;
+  f.grid.cells = {n, n, n};
+  f.grid.cells[axis] = layers;
   f.fluid = {1000.0, mu, bulk};
   f.permeability.model = PermeabilityModel::constant;
   f.permeability.intrinsic = Vec<3>::Constant(kappa);
-  for (int side = 0; side < 4; ++side)
-    f.sides[side] = {FluidBoundaryType::drained, TimeSeries::constant(0.0)};
+  for (int side = 0; side < 6; ++side) {
+    f.sides[side] = side / 2 == axis ? FluidBoundary{}
+                                     : FluidBoundary{FluidBoundaryType::drained, TimeSeries::constant(0.0)};
+  }
   int k = 0;
   for (const Well& w : wells) {
     FluidSource<3> s;
     s.name = "well" + std::to_string(k++);
-    s.position = Vec<3>(w.x, middle, 0.5 * (w.screen[0] + w.screen[1]));
+    s.position = Vec<3>::Constant(middle);
+    s.position[axis == 0 ? 1 : 0] = w.x;
+    s.position[axis] = 0.5 * (w.screen[0] + w.screen[1]);
     s.type = w.type;
     s.value = TimeSeries::constant(w.value);
     s.radius = r_w;
     s.screen = w.screen;
+    s.screen_axis = axis;
     f.sources.push_back(s);
   }
   ParticleData<3> none;
@@ -100,13 +110,17 @@ TEST(ScreenedWells, AScreenThroughTheWholeAquiferIsThePlanesWellInEveryLayer) {
   // too; each cell takes hz / H of the well's inflow. Bounds 1e-9 of the
   // scale: the solves are to 1e-13, the bore's pressure found by
   // superposition to the same. Both solvers.
+  // The same along x, a drain between no-flow ends: the plane across it
+  // is (y, z).
   const int layers = 4;
   const double height = layers * hz;
   const double q = -3e-7;  // m^3/s: pumped out
-  for (const auto solver : {PressureSolverKind::cg, PressureSolverKind::cholesky}) {
+  for (const auto& [solver, axis] :
+       {std::pair{PressureSolverKind::cg, 2}, std::pair{PressureSolverKind::cholesky, 2},
+        std::pair{PressureSolverKind::cg, 0}}) {
     for (const auto type : {FluidSourceType::inflow, FluidSourceType::pressure}) {
       const double value = type == FluidSourceType::inflow ? q : -2.0;  // m^3/s or Pa at the bore
-      PoreFluid<3> f = aquifer(layers, {{type, value, middle, {0.0, height}}}, solver);
+      PoreFluid<3> f = aquifer(layers, {{type, value, middle, {0.0, height}}}, solver, axis);
       PoreFluid<2> g = plane(type, type == FluidSourceType::inflow ? q / height : value, solver);
       ASSERT_EQ(f.screen_well_indices(0).size(), static_cast<std::size_t>(layers));
       EXPECT_NEAR(f.equivalent_radius(0), g.equivalent_radius(0), 1e-15);
@@ -123,9 +137,11 @@ TEST(ScreenedWells, AScreenThroughTheWholeAquiferIsThePlanesWellInEveryLayer) {
         double apart = 0.0;
         for (int k = 0; k < layers; ++k) {
           for (int j = 0; j < n; ++j) {
-            for (int i = 0; i < n; ++i)
-              apart = std::max(apart, std::abs(f.pressure()[f.grid.index({i, j, k})] -
-                                               g.pressure()[g.grid.index({i, j})]));
+            for (int i = 0; i < n; ++i) {
+              const std::array<int, 3> at = axis == 2 ? std::array{i, j, k} : std::array{k, i, j};
+              apart = std::max(apart,
+                               std::abs(f.pressure()[f.grid.index(at)] - g.pressure()[g.grid.index({i, j})]));
+            }
           }
         }
         EXPECT_LT(apart, 1e-9 * scale) << "t = " << time;
@@ -134,9 +150,10 @@ TEST(ScreenedWells, AScreenThroughTheWholeAquiferIsThePlanesWellInEveryLayer) {
         for (const double c : cell_inflows(f, 0))
           EXPECT_NEAR(c, f.source_inflow(0) * hz / height, 1e-9 * std::abs(q));
       }
-      std::printf("%s, %s: bore %.6f Pa (2D %.6f), inflow %.6e m^3/s (2D x H %.6e)\n",
-                  to_string(solver).c_str(), type == FluidSourceType::inflow ? "given inflow" : "held bore",
-                  f.well_pressure(0), g.well_pressure(0), f.source_inflow(0), g.source_inflow(0) * height);
+      std::printf("%s, along %c, %s: bore %.6f Pa (2D %.6f), inflow %.6e m^3/s (2D x H %.6e)\n",
+                  to_string(solver).c_str(), "xyz"[axis],
+                  type == FluidSourceType::inflow ? "given inflow" : "held bore", f.well_pressure(0),
+                  g.well_pressure(0), f.source_inflow(0), g.source_inflow(0) * height);
     }
   }
 }

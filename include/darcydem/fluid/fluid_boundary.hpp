@@ -46,14 +46,16 @@ struct FluidSource {
   /// which its well index joins to its cell's (fluid/well_index.hpp); a
   /// held pressure is the bore's.
   double radius = 0.0;
-  /// A well screened along the grid's last axis (3D: z, vertical), m:
-  /// from screen[0] to screen[1] at the (x, y) of `position`, whose z is
-  /// the screen's middle. It draws from (or gives to) every cell the
-  /// screen passes through, each joined to its bore, at one pressure, by
-  /// its own well index (MODFLOW's multi-node well); a given inflow is
-  /// shared among them as that pressure has it. Needs a radius. Empty
-  /// (screen[1] <= screen[0]): a point source.
+  /// A well screened along axis `screen_axis` (3D; z: a vertical well, x
+  /// or y: a horizontal drain), m: from screen[0] to screen[1] through
+  /// `position`, whose coordinate along that axis is the screen's middle.
+  /// It draws from (or gives to) every cell the screen passes through,
+  /// each joined to its bore, at one pressure, by its own well index
+  /// (MODFLOW's multi-node well); a given inflow is shared among them as
+  /// that pressure has it. Needs a radius. Empty (screen[1] <= screen[0]):
+  /// a point source.
   std::array<double, 2> screen{0.0, 0.0};
+  int screen_axis = D - 1;
   [[nodiscard]] bool screened() const { return screen[1] > screen[0]; }
   /// Only the condition changes in a run (stages); where it lies comes
   /// from the scene.

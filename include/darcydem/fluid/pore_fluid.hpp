@@ -210,7 +210,14 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Critical step of the coupled system: the DEM step with the undrained
   /// stiffness K_f/n of the pore fluid added (none with uniform_pressure),
   /// and the drag relaxation time.
-  [[nodiscard]] double critical_time_step(const ParticleData<D>& particles, double dem_step) const;
+  [[nodiscard]] double critical_time_step(const ParticleData<D>& particles, double dem_step) const {
+    return critical_time_step(particles, dem_step, !uniform_pressure);
+  }
+  /// The same with the water's stiffness counted or not, whatever
+  /// uniform_pressure says: what the step would be were the one sealed
+  /// cell drained.
+  [[nodiscard]] double critical_time_step(const ParticleData<D>& particles, double dem_step,
+                                          bool water_stiffness) const;
 
   /// Whether the grid is one cell with no side or patch drained now: its
   /// pressure is uniform, every face's gradient zero or a flux's own.

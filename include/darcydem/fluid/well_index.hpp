@@ -87,15 +87,15 @@ struct SourceCell {
 };
 
 /// The cells source draws from: a point source's one cell, the one holding
-/// its position; a screened well's (3D), every cell of the column at its
-/// (x, y) that the screen passes through for a length (more than 1e-9 of
-/// the cell's height: a screen that ends on a face does not reach beyond
-/// it), from the bottom up.
+/// its position; a screened well's (3D), every cell of the row along its
+/// axis through its position that the screen passes through for a length
+/// (more than 1e-9 of the cell's width: a screen that ends on a face does
+/// not reach beyond it), in order along the axis.
 template <int D>
 [[nodiscard]] std::vector<SourceCell> source_cells(const FluidGrid<D>& grid, const FluidSource<D>& source) {
   const std::size_t holding = grid.cell_holding(source.position);
   if (!source.screened()) return {{holding, 0.0}};
-  constexpr int z = D - 1;
+  const int z = source.screen_axis;
   auto at = grid.coords(holding);
   std::vector<SourceCell> cells;
   for (int k = 0; k < grid.cells[z]; ++k) {
@@ -109,13 +109,19 @@ template <int D>
   return cells;
 }
 
-/// The well index of one cell of a screened well (3D), m^3/(s Pa): the
-/// horizontal flow to a line well through the cell, Peaceman's 2D index
-/// with the cell's widths and permeabilities across the well, times the
-/// screen's length in it, 2 pi sqrt(kx ky) L / (mu ln(r_e / r_w)).
-[[nodiscard]] inline double screen_well_index(const Vec<3>& widths, const Vec<3>& kappa, double mu,
+/// The components of v across `axis` (3D), in order: (y, z), (x, z) or (x, y).
+[[nodiscard]] inline Vec<2> across(int axis, const Vec<3>& v) {
+  return axis == 0 ? Vec<2>(v[1], v[2]) : axis == 1 ? Vec<2>(v[0], v[2]) : Vec<2>(v[0], v[1]);
+}
+
+/// The well index of one cell of a screened well along `axis` (3D),
+/// m^3/(s Pa): the flow across the axis to a line well through the cell,
+/// Peaceman's 2D index with the cell's widths and permeabilities across
+/// it, times the screen's length in it: for a vertical well 2 pi sqrt(kx
+/// ky) L / (mu ln(r_e / r_w)).
+[[nodiscard]] inline double screen_well_index(int axis, const Vec<3>& widths, const Vec<3>& kappa, double mu,
                                               double radius, double length) {
-  return length * well_index<2>(Vec<2>(widths[0], widths[1]), Vec<2>(kappa[0], kappa[1]), mu, radius);
+  return length * well_index<2>(across(axis, widths), across(axis, kappa), mu, radius);
 }
 
 }  // namespace darcydem
