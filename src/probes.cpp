@@ -194,6 +194,12 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
         return fluid->well_pressure(i - fluid->patches.size());
       return fluid->side_pressure(probe.side);
     }
+    case ProbeQuantity::screen_inflow: {
+      if (fluid == nullptr) return 0.0;
+      const auto i = static_cast<std::size_t>(probe.side - 2 * D) - fluid->patches.size();
+      const auto [cell, index] = fluid->screen_well_indices(i).at(probe.screen_cell);
+      return index * (fluid->well_pressure(i) - fluid->pressure()[cell]);
+    }
     case ProbeQuantity::fluid_balance:
       return fluid != nullptr ? fluid->total_balance().imbalance() : 0.0;
     case ProbeQuantity::fluid_iterations:

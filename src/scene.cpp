@@ -1321,6 +1321,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "side_pressure",
                                                 "fluid_balance",
                                                 "fluid_iterations",
+                                                "screen_inflow_profile",
                                                 "particles_in_box",
                                                 "mean_particle_position",
                                                 "stress",
@@ -1363,7 +1364,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     if (r.has("inlet")) r.fail("inlet", fmt::format("does not apply to quantity \"{}\"", q));
     const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
                              q == "side_pressure" || q == "fluid_balance" || q == "fluid_iterations" ||
-                             q == "wall_fluid_force" || q == "particle_fluid_force" || q == "fluid_force";
+                             q == "screen_inflow_profile" || q == "wall_fluid_force" ||
+                             q == "particle_fluid_force" || q == "fluid_force";
     if (fluid_probe && !scene.fluid) {
       r.fail("quantity", fmt::format("\"{}\" needs a pore fluid: the scene has no [fluid] table", q));
     }
@@ -1381,11 +1383,19 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     const bool box_probe = q == "particles_in_box" || q == "mean_particle_position" || q == "stress" ||
                            q == "fabric" || q == "porosity" || q == "fluid_force";
     for (std::string k : {"position", "side", "from", "to", "points", "min", "max"}) {
-      const bool applies = (q == "pore_pressure" && k == "position") ||
-                           ((q == "fluid_inflow" || q == "side_pressure") && k == "side") ||
-                           (q == "pore_pressure_profile" && (k == "from" || k == "to" || k == "points")) ||
-                           (box_probe && (k == "min" || k == "max"));
+      const bool applies =
+          (q == "pore_pressure" && k == "position") ||
+          ((q == "fluid_inflow" || q == "side_pressure" || q == "screen_inflow_profile") && k == "side") ||
+          (q == "pore_pressure_profile" && (k == "from" || k == "to" || k == "points")) ||
+          (box_probe && (k == "min" || k == "max"));
       if (r.has(k) && !applies) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
+    }
+    // The pore pressure's and the flows' probes name no particle, wall or component.
+    if (q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" || q == "side_pressure" ||
+        q == "fluid_balance" || q == "fluid_iterations" || q == "screen_inflow_profile") {
+      for (auto k : {"particle", "component", "wall"}) {
+        if (r.has(k)) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
+      }
     }
     if (q == "pore_pressure_profile") {
       // A line of points: one column per point, named NAME_0 .. NAME_{n-1}.
@@ -1399,6 +1409,32 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         pt.quantity = ProbeQuantity::pore_pressure;
         const double f = static_cast<double>(k) / static_cast<double>(count - 1);
         for (int a = 0; a < D; ++a) pt.position.push_back(from[a] + f * (to[a] - from[a]));
+        scene.output.probes.push_back(pt);
+      }
+      return;
+    }
+    if (q == "screen_inflow_profile") {
+      // A screened well's cells: one column per cell along its screen,
+      // named NAME_0 .. NAME_{n-1}.
+      std::vector<std::string> wells;
+      for (const auto& source : scene.fluid->sources) {
+        if (source.screened()) wells.push_back(source.name);
+      }
+      if (wells.empty()) {
+        r.fail("quantity",
+               "\"screen_inflow_profile\" reads a screened well's cells: the scene has no "
+               "[[fluid.source]] with a 'screen'");
+      }
+      const std::string well = r.choice("side", wells);
+      std::size_t i = 0;
+      while (scene.fluid->sources[i].name != well) ++i;
+      const std::size_t cells = source_cells(scene.fluid->grid, scene.fluid->sources[i]).size();
+      for (std::size_t k = 0; k < cells; ++k) {
+        ProbeSpec pt;
+        pt.name = fmt::format("{}_{}", p.name, k);
+        pt.quantity = ProbeQuantity::screen_inflow;
+        pt.side = static_cast<int>(2 * D + scene.fluid->patches.size() + i);
+        pt.screen_cell = k;
         scene.output.probes.push_back(pt);
       }
       return;

@@ -58,6 +58,18 @@ sed 's/^drag = "darcy"/drag = "ergun"/' "$src/examples/fluid_cases/graded_sand_s
 "$exe" check "$src/examples/fluid_cases/screened_well.toml" \
   | grep -q "^  source well at (0.155, 0.155) m, into cells (15, 15, 0 to 3; screened from z = 0 to 0.04 m): -4e-06 m^3/s; a well of radius 0.001 m, its cell's equivalent radius 0.00198506 m across it, well index 3.66554e-08 m^3/(s Pa) summed over its cells$" \
   && ok "check names a screened well's cells and its well index" || bad "check: screened well ($("$exe" check "$src/examples/fluid_cases/screened_well.toml" | grep source))"
+# The screen's cells' inflows, a column each, add up to the well's at every
+# output time: while it pumps 4e-6 m^3/s, and shut off, when the bore only
+# passes water from cell to cell (bound 1e-9 of the pumping rate: the bore's
+# pressure is found to the solver's tolerance, 1e-10).
+cp "$src/examples/fluid_cases/screened_well.toml" "$work/screened.toml"
+printf '\n[[probe]]\nname = "q"\nquantity = "screen_inflow_profile"\nside = "well"\n' >> "$work/screened.toml"
+"$exe" run "$work/screened.toml" --out "$work/screened" > /dev/null 2>&1 \
+  && head -1 "$work/screened/probes.csv" | grep -q ",q_0,q_1,q_2,q_3$" \
+  && awk -F, 'NR > 1 { d = $7 + $8 + $9 + $10 - $2; if (d < 0) d = -d; if (d > 4e-15) bad = 1; if ($2 != 0) pumped = 1;
+                       if ($10 < $8) ends = 1 }
+              END { exit !(NR > 30 && !bad && pumped && ends) }' "$work/screened/probes.csv" \
+  && ok "a screened well's cells' inflows add up to its own" || bad "screen_inflow_profile ($(sed -n 10p "$work/screened/probes.csv"))"
 "$exe" check "$src/examples/dem_cases/vibrated_bed.toml" \
   | grep -q "^  stage shake: wall floor oscillates, amplitude (0, 0.001242) m at 20 Hz, phase -90 deg: peak acceleration 19.62 m/s^2, Gamma = A omega^2 / g = 2 along gravity (above 1" \
   && ok "check gives a shaken wall's Gamma" || bad "check: Gamma ($("$exe" check "$src/examples/dem_cases/vibrated_bed.toml" | grep shake))"

@@ -1035,6 +1035,33 @@ TEST(SceneErrors, FluidSourcesAreChecked) {
            "key 'screen': must be [from, to] along z, from < to, in the fluid grid's [0, 0.004] m; got "
            "[0.0035, 0.0005] m");
     expect(replace(screened, "[0.0005, 0.0035]", "[0.0005, 0.0045]"), "key 'screen': must be [from, to]");
+    // A probe of the screen's cells: a column per cell, in order along it.
+    const std::string probe =
+        "\n[[probe]]\nname = \"q\"\nquantity = \"screen_inflow_profile\"\nside = \"well\"\n";
+    {
+      const auto scene = built_scene<3>(screened + probe);
+      std::vector<std::string> names;
+      for (const auto& p : scene.output.probes) {
+        if (p.quantity != ProbeQuantity::screen_inflow) continue;
+        EXPECT_EQ(p.screen_cell, names.size());
+        names.push_back(p.name);
+      }
+      EXPECT_EQ(names, (std::vector<std::string>{"q_0", "q_1", "q_2", "q_3"}));
+    }
+    expect(screened + probe + "component = \"x\"\n",
+           "key 'component': does not apply to quantity \"screen_inflow_profile\"");
+    expect(cubic + probe,
+           "key 'quantity': \"screen_inflow_profile\" reads a screened well's cells: the scene has "
+           "no [[fluid.source]] with a 'screen'");
+    expect(screened + replace(probe, "side = \"well\"", "side = \"x_min\""),
+           "key 'side': \"x_min\" is not allowed; one of \"well\"");
+    // Nor do the other probes of the pore water take a component.
+    expect(screened + replace(probe, "screen_inflow_profile", "fluid_inflow") + "component = \"x\"\n",
+           "key 'component': does not apply to quantity \"fluid_inflow\"");
+    expect(screened +
+               "\n[[probe]]\nname = \"u\"\nquantity = \"pore_pressure_profile\"\nfrom = [0.0, 0.0, 0.0]\n"
+               "to = [0.0, 0.0, 0.004]\npoints = 3\nwall = \"floor\"\n",
+           "key 'wall': does not apply to quantity \"pore_pressure_profile\"");
     // Along x (a horizontal drain): its line is [y, z], the screen along x.
     {
       const auto scene =

@@ -46,6 +46,7 @@ enum class ProbeQuantity {
   side_pressure,           ///< excess pressure on one side (or patch) of the grid, Pa
   fluid_balance,           ///< inflow - stored - pore change since the start, m^3
   fluid_iterations,        ///< iterations of the last pressure solve
+  screen_inflow,           ///< what one cell of a screened well took from its bore, m^3/s
   particles_in_box,        ///< how many particle centres lie in a box
   mean_particle_position,  ///< one component of their mean centre, m (NaN with none)
   stress,             ///< a component of the contacts' mean stress in a box, Pa (Simulation::contact_stress)
@@ -73,6 +74,7 @@ struct ProbeSpec {
   std::int64_t inlet = -1;       ///< inserted_particles, inserted_mass: the inlet's index, -1: all
   std::vector<double> position;  ///< pore_pressure: the point, m
   int side = 0;                  ///< fluid_inflow, side_pressure: x_min, x_max, y_min, ...
+  std::size_t screen_cell = 0;   ///< screen_inflow: the cell's place along the screen, from 0
   /// particles_in_box, mean_particle_position, stress, porosity, fluid_force: the box, m
   std::vector<double> box_min, box_max;
   std::array<int, 2> tensor{0, 0};  ///< stress, fabric: the component (i, j); (-1, -1) the mean, trace / D
