@@ -1153,6 +1153,8 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["radius"] = source.radius;
               d["well_pressure"] = f.fluid->well_pressure(i);
               d["well_index"] = f.fluid->well_index(i);
+              d["drain"] = source.drain;
+              d["open"] = !source.drain || f.fluid->drain_open(i);
               if (source.screened()) {
                 d["screen"] = std::vector<double>{source.screen[0], source.screen[1]};
                 py::list cells;
@@ -1176,9 +1178,11 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "metre); radius, a well's, m (0: none), well_pressure, Pa, at its bore with a radius (its cell's "
           "plus inflow / well_index), else its cell's, and well_index, m^3/(s Pa) (0 without a radius); "
           "screen, a screened well's [from, to] along its screen_axis ('x', 'y' or 'z'), m (None for a point "
-          "source), and screen_cells, each cell it passes through in order along it: cell (indices), "
+          "source), screen_cells, each cell it passes through in order along it: cell (indices), "
           "well_index and inflow, what that "
-          "cell took from the bore in the last fluid step, m^3/s (they add up to the well's)")
+          "cell took from the bore in the last fluid step, m^3/s (they add up to the well's); drain, whether "
+          "it takes water out only, and open, whether it stood open in the last fluid step (True for any "
+          "other source)")
       .def_property_readonly(
           "balance",
           [](const F& f) {

@@ -85,6 +85,7 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles, const std::vecto
                              "\" needs a 3D grid, a radius and a screen in it");
   }
   source_inflow_.assign(sources.size(), 0.0);
+  drain_open_.assign(sources.size(), 0);
   compute_solid(particles);
   solid_old_ = solid_;
   compute_wall_solid(walls);
@@ -708,87 +709,143 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   // A screened well joins each of its cells to its bore so, each by its
   // own index; held at a pressure, that pressure is known; given an
   // inflow, it is found after the solve (superpose_given_screens).
-  held_sources_.clear();
-  std::vector<std::pair<std::size_t, double>> bore_held;  // (source, its well index)
-  std::vector<std::size_t> given_screens;
-  for (std::size_t i = 0; i < sources.size(); ++i) {
-    const std::size_t c = source_cells_[i];
-    if (sources[i].screened()) {
-      const bool held = sources[i].type == FluidSourceType::pressure;
-      const double bore = held ? sources[i].value.at(time) : 0.0;
-      for (const auto& [cell, index] : screen_well_indices(i)) {
-        diagonal[static_cast<Eigen::Index>(cell)] += dt * index;
-        rhs_[cell] += dt * index * bore;
+  // A drain (a source holding a pressure that takes water out only) is
+  // open or shut as the solution has it: each pass assembles the sources
+  // as the drains stand, solves, and opens those the water around stands
+  // above, shuts those that would give water; until none changes (an
+  // active set: one pass more for each drain that changes).
+  const bool any_drain = std::any_of(sources.begin(), sources.end(), [](const FluidSource<D>& s) {
+    return s.drain && s.type == FluidSourceType::pressure;
+  });
+  struct Assembled {
+    Eigen::VectorXd diagonal;
+    std::vector<Eigen::VectorXd> upper;
+    std::vector<GridOperator::Coupling> extra;
+    Eigen::VectorXd rhs;
+  };
+  std::optional<Assembled> before_sources;
+  if (any_drain) before_sources = Assembled{diagonal, operator_.upper, operator_.extra, rhs_};
+  std::vector<std::pair<std::size_t, double>> bore_held;      // (source, its well index)
+  std::vector<std::pair<std::size_t, double>> given_screens;  // (source, its inflow)
+  const std::size_t max_passes = 2 * sources.size() + 2;
+  last_times_.assembly = 0.0;
+  last_times_.solve = 0.0;
+  for (std::size_t pass = 1;; ++pass) {
+    held_sources_.clear();
+    bore_held.clear();
+    given_screens.clear();
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+      const std::size_t c = source_cells_[i];
+      const bool shut = sources[i].drain && sources[i].type == FluidSourceType::pressure && !drain_open_[i];
+      if (sources[i].screened()) {
+        // Shut, a screened drain's bore still joins its cells, giving none.
+        const bool held = sources[i].type == FluidSourceType::pressure && !shut;
+        const double bore = held ? sources[i].value.at(time) : 0.0;
+        for (const auto& [cell, index] : screen_well_indices(i)) {
+          diagonal[static_cast<Eigen::Index>(cell)] += dt * index;
+          rhs_[cell] += dt * index * bore;
+        }
+        if (held)
+          bore_held.emplace_back(i, 0.0);
+        else
+          given_screens.emplace_back(i, shut ? 0.0 : sources[i].value.at(time));
+        continue;
       }
-      if (held)
-        bore_held.emplace_back(i, 0.0);
-      else
-        given_screens.push_back(i);
-      continue;
+      if (shut) {
+        source_inflow_[i] = 0.0;
+      } else if (sources[i].type == FluidSourceType::inflow) {
+        source_inflow_[i] = sources[i].value.at(time);
+        rhs_[c] += dt * source_inflow_[i];
+      } else if (sources[i].radius > 0.0) {
+        const double index = well_index(i);
+        diagonal[static_cast<Eigen::Index>(c)] += dt * index;
+        rhs_[c] += dt * index * sources[i].value.at(time);
+        bore_held.emplace_back(i, index);
+      } else {
+        hold_pressure(i, sources[i].value.at(time));
+      }
     }
-    if (sources[i].type == FluidSourceType::inflow) {
-      source_inflow_[i] = sources[i].value.at(time);
-      rhs_[c] += dt * source_inflow_[i];
-    } else if (sources[i].radius > 0.0) {
-      const double index = well_index(i);
-      diagonal[static_cast<Eigen::Index>(c)] += dt * index;
-      rhs_[c] += dt * index * sources[i].value.at(time);
-      bore_held.emplace_back(i, index);
-    } else {
-      hold_pressure(i, sources[i].value.at(time));
-    }
-  }
 
-  // Initial guess (CG): the pressure extrapolated linearly from the last
-  // two fluid steps, which follows a smoothly changing flow.
-  const bool extrapolate = updates_ > 0 && pressure_older_.size() == n;
-  for (std::size_t c = 0; c < n; ++c) {
-    solution_[static_cast<Eigen::Index>(c)] =
-        extrapolate ? 2.0 * pressure_[c] - pressure_older_[c] : pressure_[c];
-  }
-  if (solver_.kind() == PressureSolverKind::cholesky) {
-    // The same entries into the stored matrix.
-    double* values = matrix_.valuePtr();
-    for (std::size_t c = 0; c < n; ++c) values[diag_pos_[c]] = diagonal[static_cast<Eigen::Index>(c)];
-    for (const Face& f : faces_) {
-      const double t = operator_.upper[static_cast<std::size_t>(f.axis)][f.a];
-      values[f.pos_ab] = -t;
-      values[f.pos_ba] = -t;
+    // Initial guess (CG): the pressure extrapolated linearly from the last
+    // two fluid steps, which follows a smoothly changing flow.
+    const bool extrapolate = updates_ > 0 && pressure_older_.size() == n;
+    for (std::size_t c = 0; c < n; ++c) {
+      solution_[static_cast<Eigen::Index>(c)] =
+          extrapolate ? 2.0 * pressure_old_[c] - pressure_older_[c] : pressure_old_[c];
     }
-    for (std::size_t w = 0; w < wrap_faces_.size(); ++w) {
-      const WrapFace& f = wrap_faces_[w];
-      const double g = operator_.extra[w].g;
-      // With two cells along the axis the entry also holds the stencil face.
-      values[f.pos_lh] = (f.shared ? values[f.pos_lh] : 0.0) - g;
-      values[f.pos_hl] = (f.shared ? values[f.pos_hl] : 0.0) - g;
+    if (solver_.kind() == PressureSolverKind::cholesky) {
+      // The same entries into the stored matrix.
+      double* values = matrix_.valuePtr();
+      for (std::size_t c = 0; c < n; ++c) values[diag_pos_[c]] = diagonal[static_cast<Eigen::Index>(c)];
+      for (const Face& f : faces_) {
+        const double t = operator_.upper[static_cast<std::size_t>(f.axis)][f.a];
+        values[f.pos_ab] = -t;
+        values[f.pos_ba] = -t;
+      }
+      for (std::size_t w = 0; w < wrap_faces_.size(); ++w) {
+        const WrapFace& f = wrap_faces_[w];
+        const double g = operator_.extra[w].g;
+        // With two cells along the axis the entry also holds the stencil face.
+        values[f.pos_lh] = (f.shared ? values[f.pos_lh] : 0.0) - g;
+        values[f.pos_hl] = (f.shared ? values[f.pos_hl] : 0.0) - g;
+      }
     }
-  }
-  last_times_.assembly = lap();
-  last_solve_ = solver_.kind() == PressureSolverKind::cholesky ? solver_.solve(matrix_, rhs_, solution_)
-                                                               : solver_.solve(operator_, rhs_, solution_);
-  if (!given_screens.empty()) superpose_given_screens(given_screens, dt, time);
-  last_times_.solve = lap();
-  for (std::size_t c = 0; c < n; ++c) pressure_[c] = solution_[static_cast<Eigen::Index>(c)];
-  // A source that holds a pressure gives the water its cell's own balance
-  // lacks, with the cell at that pressure: its diagonal times it, less what
-  // its neighbours draw, less its right-hand side.
-  for (const HeldSource& h : held_sources_) {
-    double lacking = h.diagonal * h.pressure - h.rhs;
-    for (const auto& [neighbour, conductance] : h.couplings)
-      lacking -= conductance * solution_[static_cast<Eigen::Index>(neighbour)];
-    source_inflow_[h.source] = lacking / dt;
-  }
-  for (const auto& [i, index] : bore_held) {
-    const double bore = sources[i].value.at(time);
-    if (!sources[i].screened()) {
-      source_inflow_[i] = index * (bore - pressure_[source_cells_[i]]);
-      continue;
+    last_times_.assembly += lap();
+    const SolveStats stats = solver_.kind() == PressureSolverKind::cholesky
+                                 ? solver_.solve(matrix_, rhs_, solution_)
+                                 : solver_.solve(operator_, rhs_, solution_);
+    if (pass == 1) {
+      last_solve_ = stats;
+    } else {
+      last_solve_.iterations += stats.iterations;
+      last_solve_.residual = std::max(last_solve_.residual, stats.residual);
     }
-    source_inflow_[i] = 0.0;
-    for (const auto& [cell, cell_index] : screen_well_indices(i))
-      source_inflow_[i] += cell_index * (bore - pressure_[cell]);
+    if (!given_screens.empty()) superpose_given_screens(given_screens, dt);
+    last_times_.solve += lap();
+    for (std::size_t c = 0; c < n; ++c) pressure_[c] = solution_[static_cast<Eigen::Index>(c)];
+    // A source that holds a pressure gives the water its cell's own balance
+    // lacks, with the cell at that pressure: its diagonal times it, less what
+    // its neighbours draw, less its right-hand side.
+    for (const HeldSource& h : held_sources_) {
+      double lacking = h.diagonal * h.pressure - h.rhs;
+      for (const auto& [neighbour, conductance] : h.couplings)
+        lacking -= conductance * solution_[static_cast<Eigen::Index>(neighbour)];
+      source_inflow_[h.source] = lacking / dt;
+    }
+    for (const auto& [i, index] : bore_held) {
+      const double bore = sources[i].value.at(time);
+      if (!sources[i].screened()) {
+        source_inflow_[i] = index * (bore - pressure_[source_cells_[i]]);
+        continue;
+      }
+      source_inflow_[i] = 0.0;
+      for (const auto& [cell, cell_index] : screen_well_indices(i))
+        source_inflow_[i] += cell_index * (bore - pressure_[cell]);
+    }
+    for (const auto& [i, q] : given_screens) source_inflow_[i] = q;
+    if (!any_drain) break;
+    bool changed = false;
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+      if (!sources[i].drain || sources[i].type != FluidSourceType::pressure) continue;
+      // Open, it shuts if it gives water; shut, it opens if the water
+      // around it (at its bore, or in its cell) stands above its pressure.
+      const bool open =
+          drain_open_[i] != 0 ? source_inflow_[i] <= 0.0 : well_pressure(i) > sources[i].value.at(time);
+      changed = changed || open != (drain_open_[i] != 0);
+      drain_open_[i] = open ? 1 : 0;
+    }
+    if (!changed) break;
+    if (pass == max_passes) {
+      throw std::runtime_error(fmt::format(
+          "pore pressure: the drains (sources with drain = true) did not settle open or shut in {} passes at "
+          "t = {:.6g} s; give them cells further apart, or a smaller step",
+          max_passes, time));
+    }
+    diagonal = before_sources->diagonal;
+    operator_.upper = before_sources->upper;
+    operator_.extra = before_sources->extra;
+    rhs_ = before_sources->rhs;
   }
-  for (std::size_t i : given_screens) source_inflow_[i] = sources[i].value.at(time);
 
   compute_face_fields(time);
   // Balance: summed over the cells, the interior fluxes cancel and
@@ -828,7 +885,8 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
 }
 
 template <int D>
-void PoreFluid<D>::superpose_given_screens(const std::vector<std::size_t>& wells, double dt, double time) {
+void PoreFluid<D>::superpose_given_screens(const std::vector<std::pair<std::size_t, double>>& wells,
+                                           double dt) {
   // The system is linear in the bores' pressures p_m, which the solve took
   // as zero: u = u0 + sum_m p_m g_m, g_m the response to well m's bore at
   // unit pressure (the same matrix, right-hand side dt WI_c on m's cells).
@@ -841,7 +899,7 @@ void PoreFluid<D>::superpose_given_screens(const std::vector<std::size_t>& wells
   const auto n = static_cast<Eigen::Index>(grid.size());
   std::vector<std::vector<std::pair<std::size_t, double>>> nodes;
   std::vector<Eigen::VectorXd> response;
-  for (std::size_t w : wells) {
+  for (const auto& [w, q] : wells) {
     nodes.push_back(screen_well_indices(w));
     Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
     for (const auto& [cell, index] : nodes.back()) b[static_cast<Eigen::Index>(cell)] = dt * index;
@@ -856,7 +914,7 @@ void PoreFluid<D>::superpose_given_screens(const std::vector<std::size_t>& wells
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m, m);
   Eigen::VectorXd r(m);
   for (Eigen::Index l = 0; l < m; ++l) {
-    r[l] = sources[wells[static_cast<std::size_t>(l)]].value.at(time);
+    r[l] = wells[static_cast<std::size_t>(l)].second;
     for (const auto& [cell, index] : nodes[static_cast<std::size_t>(l)]) {
       const auto c = static_cast<Eigen::Index>(cell);
       a(l, l) += index;

@@ -748,7 +748,8 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::
     const std::string unit =
         source.type == FluidSourceType::inflow ? fmt::format("m^{}/s", D) : std::string("Pa held");
     out += fmt::format(
-        "source {} at ({}) m, into cell{} ({}): {}{}\n", source.name, at, source.screened() ? "s" : "", index,
+        "source {} at ({}) m, into cell{} ({}): {}{}{}\n", source.name, at, source.screened() ? "s" : "",
+        index,
         steady ? fmt::format("{:.6g} {}", source.value.at(0.0), unit)
                : fmt::format("{:.6g} to {:.6g} {} over {} points in time", source.value.values.front(),
                              source.value.values.back(), unit, source.value.values.size()),
@@ -760,7 +761,9 @@ std::string describe_patches_and_barriers(const PoreFluid<D>& fluid, const std::
                                             "its cells",
                                             fluid.well_index(k))
                               : std::string())
-            : std::string());
+            : std::string(),
+        source.drain ? "; a drain: it takes water out only, while the water around it stands above that"
+                     : "");
   }
   for (std::size_t k = 0; k < fluid.barriers.size(); ++k) {
     const auto& b = fluid.barriers[k];

@@ -406,6 +406,12 @@ FluidSource<D> read_source(const toml::table& table, const std::string& where, c
     source.position[k] = x[k];
   }
   read_source_condition<D>(r, source.type, source.value);
+  source.drain = r.boolean_or("drain", false);
+  if (source.drain && source.type != FluidSourceType::pressure) {
+    r.fail("drain",
+           "a drain holds a 'pressure' and takes water out only while the water around it stands "
+           "above it: give it 'pressure' (Pa), not 'inflow'");
+  }
   if constexpr (D == 3) {
     if (screened) {
       // Each cell of the screen takes Peaceman's 2D index across the well:

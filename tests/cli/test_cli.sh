@@ -70,6 +70,11 @@ printf '\n[[probe]]\nname = "q"\nquantity = "screen_inflow_profile"\nside = "wel
                        if ($10 < $8) ends = 1 }
               END { exit !(NR > 30 && !bad && pumped && ends) }' "$work/screened/probes.csv" \
   && ok "a screened well's cells' inflows add up to its own" || bad "screen_inflow_profile ($(sed -n 10p "$work/screened/probes.csv"))"
+# A drain: the pumping test's well held at -5 Pa, taking water out only.
+sed 's|^inflow = -2e-6 .*|pressure = -5.0\ndrain = true|' "$src/examples/fluid_cases/pumping_well.toml" > "$work/drain.toml"
+"$exe" check "$work/drain.toml" \
+  | grep -q "^  source well at (0.205, 0.205) m, into cell (20, 20): -5 Pa held; a drain: it takes water out only, while the water around it stands above that$" \
+  && ok "check says a source is a drain" || bad "check: drain ($("$exe" check "$work/drain.toml" 2>&1 | grep source))"
 "$exe" check "$src/examples/dem_cases/vibrated_bed.toml" \
   | grep -q "^  stage shake: wall floor oscillates, amplitude (0, 0.001242) m at 20 Hz, phase -90 deg: peak acceleration 19.62 m/s^2, Gamma = A omega^2 / g = 2 along gravity (above 1" \
   && ok "check gives a shaken wall's Gamma" || bad "check: Gamma ($("$exe" check "$src/examples/dem_cases/vibrated_bed.toml" | grep shake))"

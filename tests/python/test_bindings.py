@@ -1288,6 +1288,8 @@ class PumpingWell(unittest.TestCase):
         self.assertEqual([s["name"] for s in sources], ["well"])
         self.assertEqual(sources[0]["cell"], [20, 20])
         self.assertEqual(sources[0]["position"], [0.205, 0.205])
+        self.assertFalse(sources[0]["drain"])  # a plain source, always "open"
+        self.assertTrue(sources[0]["open"])
         for model in (by_stage, by_python):
             model.step(1000)  # 0.1 s of pumping
         self.assertEqual(by_python.fluid.sources[0]["inflow"], -2e-6)

@@ -974,6 +974,18 @@ TEST(SceneErrors, FluidSourcesAreChecked) {
       with_fluid(well + replace(replace(well, "\"well\"", "\"other\""), "[0.0, 0.001]", "[0.0, 0.0015]")),
       "[[fluid.source]] #2 key 'position': lies in the cell of source \"well\": each source needs a cell of "
       "its own");
+  // A drain holds a pressure, taking water out only.
+  {
+    const auto scene =
+        built_scene<2>(with_fluid(replace(well, "inflow = 1e-9", "pressure = 5.0\ndrain = true")));
+    EXPECT_TRUE(scene.fluid->sources[0].drain);
+    EXPECT_FALSE(built_scene<2>(with_fluid(well)).fluid->sources[0].drain);
+  }
+  expect(
+      with_fluid(replace(well, "inflow = 1e-9", "inflow = 1e-9\ndrain = true")),
+      "[[fluid.source]] #1 key 'drain': a drain holds a 'pressure' and takes water out only while the water "
+      "around it stands above it: give it 'pressure' (Pa), not 'inflow'");
+  expect(with_fluid(replace(well, "inflow = 1e-9", "pressure = 5.0\ndrain = 1")), "key 'drain'");
   expect(with_fluid(replace(well, "inflow = 1e-9", "inflow = { times = [0.0, 1.0], values = [1e-9] }")),
          "key 'values': must have as many entries as 'times'");
   // A well's radius: below its cell's equivalent radius, Peaceman's for

@@ -56,6 +56,11 @@ struct FluidSource {
   /// a point source.
   std::array<double, 2> screen{0.0, 0.0};
   int screen_axis = D - 1;
+  /// A drain (a relief well, a toe drain; MODFLOW's drain): while it holds
+  /// a pressure it only takes water out, open while the water around it
+  /// (at its bore, or in its cell) stands above that pressure, shut (giving
+  /// nothing; a screened well's bore still joining its cells) otherwise.
+  bool drain = false;
   [[nodiscard]] bool screened() const { return screen[1] > screen[0]; }
   /// Only the condition changes in a run (stages); where it lies comes
   /// from the scene.

@@ -197,7 +197,7 @@ class PoreFluid final : public ParticleForceField<D> {
     checkpoint_each(ar, patches, "boundary patches");
     ar(patch_inflow_);
     checkpoint_each(ar, sources, "sources");
-    ar(source_inflow_);
+    ar(source_inflow_, drain_open_);
     bool held = held_.force != nullptr;
     if constexpr (!Archive::loading) {
       if (held && held_.force != held_output)
@@ -277,6 +277,8 @@ class PoreFluid final : public ParticleForceField<D> {
   [[nodiscard]] double patch_inflow(std::size_t patch) const { return patch_inflow_.at(patch); }
   /// What source i gave in the last fluid step, m^3/s (2D: per metre).
   [[nodiscard]] double source_inflow(std::size_t source) const { return source_inflow_.at(source); }
+  /// Whether source i, a drain, stood open in the last fluid step.
+  [[nodiscard]] bool drain_open(std::size_t source) const { return drain_open_.at(source) != 0; }
   /// The cell that source i feeds.
   [[nodiscard]] std::size_t source_cell(std::size_t source) const { return source_cells_.at(source); }
   /// Source i's well index now, m^3/(s Pa) (2D: per metre), from its
@@ -677,9 +679,13 @@ class PoreFluid final : public ParticleForceField<D> {
   /// point source.
   std::vector<std::vector<SourceCell>> screens_;
   /// Solves for the pressures at the bores of the screened wells with a
-  /// given inflow, which the last solve left at zero, and adds what they
-  /// give to the solution (superposition: see update()).
-  void superpose_given_screens(const std::vector<std::size_t>& wells, double dt, double time);
+  /// given inflow, (source, m^3/s) each, which the last solve left at
+  /// zero, and adds what they give to the solution (superposition: see
+  /// update()).
+  void superpose_given_screens(const std::vector<std::pair<std::size_t, double>>& wells, double dt);
+  /// Per source, whether a drain (FluidSource::drain) stands open: as the
+  /// last fluid step left it (shut at the start).
+  std::vector<int> drain_open_;
   /// A source that holds a pressure, in this fluid step: its index, the
   /// pressure, its cell's diagonal and right-hand side, and the couplings
   /// to its neighbours (cell, conductance) taken out of the system.
