@@ -3,6 +3,7 @@
 // K_f, in 2D and in 3D, and the hydrostatic bed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -707,6 +708,50 @@ TEST(FluidScenes, SheetPileHeave) {
   EXPECT_GT(rise(heaving, 0.1), 0.2 * d);
   EXPECT_GT(rise_late(heaving), 0.05 * d);
   EXPECT_GE(probe_at(heaving, "downstream_grains", 1.1, dt), 254.0 + 4.0);
+}
+
+TEST(FluidScenes, AReliefDrainAtThePilesToeStopsTheHeave) {
+  // The heaving sheet pile above (p_up = 1.5 x 2 W'), with a relief drain:
+  // a [[fluid.source]] on the floor just downstream of the pile (x = 21
+  // mm, y = 1 mm) holding u = 0 with drain = true, as a relief well at a
+  // dam's toe. The water that passes under the pile now goes mostly down
+  // into it, and the bed downstream is held on its floor instead of being
+  // lifted: no column of it can heave where its floor's excess pressure is
+  // below its submerged weight W' (the criterion above). Expected: the bed
+  // at rest by the rest case's own criteria (its mean height moving by
+  // less than 5 % of a diameter from 0.6 to 1.1 s, no grain passing under
+  // the pile), the floor below the pile below W' (measured 60.9 Pa against
+  // 155.1), and the drain never giving water.
+  const double r = 0.49e-3;
+  const double w_sub = (2650.0 - 1000.0) * 9.81 * 254.0 * std::numbers::pi * r * r / 0.02;
+  const std::string text =
+      darcydem::testing::file_contents(std::string(DARCYDEM_SOURCE_DIR) +
+                                       "/examples/fluid_cases/sheet_pile_heave.toml") +
+      "\n[[fluid.source]]\nname = \"relief\"\nposition = [0.021, 0.001]\npressure = 0.0\n"
+      "drain = true\n\n[[probe]]\nname = \"relief_flow\"\nquantity = \"fluid_inflow\"\n"
+      "side = \"relief\"\n";
+  const std::string dir = temp_dir("sheet_pile_relief");
+  auto scene = darcydem::testing::scene_from_text<2>(dir, "scene.toml", text);
+  RunOptions options;
+  options.out_dir = dir + "/out";
+  run_scene(scene, options);
+  const auto probes = read_probes(options.out_dir + "/probes.csv");
+  const double dt = scene.simulation.time_step;
+  const double d = 2.0 * r;
+  const double rise =
+      probe_at(probes, "downstream_mean_y", 1.1, dt) - probe_at(probes, "downstream_mean_y", 0.6, dt);
+  const double floor = probe_at(probes, "floor_pressure_below_pile", 1.1, dt);
+  const auto& relief = probes.at("relief_flow");
+  std::printf(
+      "relief drain: the downstream bed moves %.4f mm from 0.6 to 1.1 s, %g grains under the pile; the "
+      "floor below the pile at %.3f Pa (W' = %.3f Pa); the drain takes %.4e m^2/s of %.4e\n",
+      1e3 * rise, probe_at(probes, "downstream_grains", 1.1, dt) - 254.0, floor, w_sub,
+      -probe_at(probes, "relief_flow", 1.1, dt), probe_at(probes, "discharge", 1.1, dt));
+  EXPECT_LT(std::abs(rise), 0.05 * d);
+  EXPECT_EQ(probe_at(probes, "downstream_grains", 1.1, dt), 254.0);
+  EXPECT_LT(floor, w_sub);
+  EXPECT_LE(*std::max_element(relief.begin(), relief.end()), 0.0);
+  EXPECT_LT(probe_at(probes, "relief_flow", 1.1, dt), 0.0);  // open: it takes water
 }
 
 TEST(FluidScenes, TerzaghiConsolidation) {
