@@ -532,6 +532,30 @@ TEST(Checkpoint, ResumedPumpingWellKeepsTheHeadItHolds) {
       "held_well", 2, 1500, 1);
 }
 
+TEST(Checkpoint, ResumedScreenedWellWritesTheSameFiles) {
+  // examples/fluid_cases/screened_well.toml, 0.03 s of pumping and of
+  // recovery, stopped while it pumps (the runner looks every 256 steps):
+  // its bore's pressure is found by superposition at every step.
+  expect_resumed_variant_writes_the_same_files<3>(
+      "examples/fluid_cases/screened_well.toml",
+      {{"name = \"pump\"\nduration = 0.1", "name = \"pump\"\nduration = 0.03"},
+       {"name = \"recover\"\nduration = 0.1", "name = \"recover\"\nduration = 0.03"}},
+      "screened_well", 2, 256, 0);
+}
+
+TEST(Checkpoint, ResumedDrainKeepsItsState) {
+  // The pumping test's well made a drain held at -5 Pa, stopped while it
+  // stands open, then held at 20 Pa, where it shuts. (A resumed drain
+  // that had lost its state would only take one more pass to find it
+  // again: the files would be the same; the checkpoint keeps it all the
+  // same, so the passes are as in the run that never stopped.)
+  expect_resumed_variant_writes_the_same_files<2>(
+      "examples/fluid_cases/pumping_well.toml",
+      {{"inflow = -2e-6   # m^2/s per metre: pumped out", "pressure = -5.0\ndrain = true"},
+       {"well = { inflow = 0.0 }", "well = { pressure = 20.0 }"}},
+      "drain_well", 2, 700, 0);
+}
+
 TEST(Checkpoint, ResumedCantileverKeepsItsBondsScatteredStrengths) {
   // The same cantilever with strengths scattered from bond to bond
   // (strength_weibull_modulus), stopped in stage "sag": each bond's factor

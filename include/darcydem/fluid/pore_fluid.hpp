@@ -697,6 +697,21 @@ class PoreFluid final : public ParticleForceField<D> {
     std::vector<std::pair<std::size_t, double>> couplings;
   };
   std::vector<HeldSource> held_sources_;
+  /// A pass over the sources in a fluid step (pore_fluid_sources.cpp):
+  /// the wells held at their bores (source, its well index; 0 for a
+  /// screened one) and the screened wells given an inflow (source, m^3/s).
+  struct SourcePass {
+    std::vector<std::pair<std::size_t, double>> bore_held;
+    std::vector<std::pair<std::size_t, double>> given_screens;
+  };
+  /// Puts the sources, as the drains stand, into the system's diagonal and
+  /// right-hand side (and takes held cells out of it, hold_pressure).
+  SourcePass assemble_sources(double dt, double time);
+  /// After the solve: what each source gave (source_inflow_).
+  void take_source_inflows(const SourcePass& placed, double dt, double time);
+  /// Opens the drains the water stands above and shuts those that gave
+  /// water; whether any changed.
+  bool settle_drains(double time);
   std::vector<std::size_t> patch_faces_;  ///< boundary faces per patch
   std::vector<double> patch_area_;        ///< their area per patch, m^2
   /// An interior face a barrier closes: the cell below it along `axis`
