@@ -1158,12 +1158,13 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               if (source.screened()) {
                 d["screen"] = std::vector<double>{source.screen[0], source.screen[1]};
                 py::list cells;
-                for (const auto& [cell, index] : f.fluid->screen_well_indices(i)) {
-                  const auto at = f.fluid->grid.coords(cell);
-                  const double u = f.fluid->pressure()[cell];
+                const auto nodes = f.fluid->screen_well_indices(i);
+                const auto inflows = f.fluid->screen_inflows(i);
+                for (std::size_t k = 0; k < nodes.size(); ++k) {
+                  const auto at = f.fluid->grid.coords(nodes[k].first);
                   cells.append(py::dict(py::arg("cell") = std::vector<int>(at.begin(), at.end()),
-                                        py::arg("well_index") = index,
-                                        py::arg("inflow") = index * (f.fluid->well_pressure(i) - u)));
+                                        py::arg("well_index") = nodes[k].second,
+                                        py::arg("inflow") = inflows[k]));
                 }
                 d["screen_cells"] = cells;
               } else {

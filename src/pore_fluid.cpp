@@ -705,9 +705,8 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   // hold, into their cells' rows. With drains (sources that take water
   // out only) the sources' part is assembled, solved and taken out again
   // until the drains stand open or shut as the solution has them.
-  const bool any_drain = std::any_of(sources.begin(), sources.end(), [](const FluidSource<D>& s) {
-    return s.drain && s.type == FluidSourceType::pressure;
-  });
+  const bool any_drain =
+      std::any_of(sources.begin(), sources.end(), [](const FluidSource<D>& s) { return s.drains(); });
   struct Assembled {
     Eigen::VectorXd diagonal;
     std::vector<Eigen::VectorXd> upper;

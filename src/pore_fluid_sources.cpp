@@ -30,7 +30,7 @@ typename PoreFluid<D>::SourcePass PoreFluid<D>::assemble_sources(double dt, doub
   held_sources_.clear();
   for (std::size_t i = 0; i < sources.size(); ++i) {
     const std::size_t c = source_cells_[i];
-    const bool shut = sources[i].drain && sources[i].type == FluidSourceType::pressure && drain_open_[i] == 0;
+    const bool shut = sources[i].drains() && drain_open_[i] == 0;
     if (sources[i].screened()) {
       const bool held = sources[i].type == FluidSourceType::pressure && !shut;
       const double bore = held ? sources[i].value.at(time) : 0.0;
@@ -89,7 +89,7 @@ template <int D>
 bool PoreFluid<D>::settle_drains(double time) {
   bool changed = false;
   for (std::size_t i = 0; i < sources.size(); ++i) {
-    if (!sources[i].drain || sources[i].type != FluidSourceType::pressure) continue;
+    if (!sources[i].drains()) continue;
     // Open, it shuts if it gives water; shut, it opens if the water around
     // it (at its bore, or in its cell) stands above its pressure.
     const bool open =
@@ -154,6 +154,15 @@ std::vector<std::pair<std::size_t, double>> PoreFluid<D>::screen_well_indices(st
                                                   s.radius, sc.length));
     }
   }
+  return out;
+}
+
+template <int D>
+std::vector<double> PoreFluid<D>::screen_inflows(std::size_t source) const {
+  const double bore = well_pressure(source);
+  std::vector<double> out;
+  for (const auto& [cell, index] : screen_well_indices(source))
+    out.push_back(index * (bore - pressure_[cell]));
   return out;
 }
 
@@ -242,6 +251,7 @@ void PoreFluid<D>::hold_pressure(std::size_t source, double pressure) {
   template void PoreFluid<D>::superpose_given_screens(const std::vector<std::pair<std::size_t, double>>&,    \
                                                       double);                                               \
   template std::vector<std::pair<std::size_t, double>> PoreFluid<D>::screen_well_indices(std::size_t) const; \
+  template std::vector<double> PoreFluid<D>::screen_inflows(std::size_t) const;                              \
   template double PoreFluid<D>::equivalent_radius(std::size_t) const;                                        \
   template double PoreFluid<D>::well_index(std::size_t) const;                                               \
   template double PoreFluid<D>::well_pressure(std::size_t) const;                                            \

@@ -197,8 +197,7 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
     case ProbeQuantity::screen_inflow: {
       if (fluid == nullptr) return 0.0;
       const auto i = static_cast<std::size_t>(probe.side - 2 * D) - fluid->patches.size();
-      const auto [cell, index] = fluid->screen_well_indices(i).at(probe.screen_cell);
-      return index * (fluid->well_pressure(i) - fluid->pressure()[cell]);
+      return fluid->screen_inflows(i).at(probe.screen_cell);
     }
     case ProbeQuantity::fluid_balance:
       return fluid != nullptr ? fluid->total_balance().imbalance() : 0.0;

@@ -61,6 +61,9 @@ struct FluidSource {
   /// (at its bore, or in its cell) stands above that pressure, shut (giving
   /// nothing; a screened well's bore still joining its cells) otherwise.
   bool drain = false;
+  /// Whether it acts as a drain now: a drain holding a pressure (a stage
+  /// that gives it an inflow makes it a plain source).
+  [[nodiscard]] bool drains() const { return drain && type == FluidSourceType::pressure; }
   [[nodiscard]] bool screened() const { return screen[1] > screen[0]; }
   /// Only the condition changes in a run (stages); where it lies comes
   /// from the scene.

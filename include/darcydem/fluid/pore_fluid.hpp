@@ -291,6 +291,10 @@ class PoreFluid final : public ParticleForceField<D> {
   /// its index times (well_pressure - its pressure). Empty for a point
   /// source.
   [[nodiscard]] std::vector<std::pair<std::size_t, double>> screen_well_indices(std::size_t source) const;
+  /// What each cell of a screened well took from its bore in the last
+  /// fluid step, m^3/s, in the order of screen_well_indices: its index
+  /// times (well_pressure - its pressure). They add up to source_inflow.
+  [[nodiscard]] std::vector<double> screen_inflows(std::size_t source) const;
   /// Source i's cell's equivalent radius, m (fluid/well_index.hpp): from
   /// its widths and the permeability's proportions along the axes; a
   /// screened well's, across it (Peaceman's 2D, from the widths and
