@@ -651,7 +651,7 @@ class Model {
             fmt::format("set_wall_servo: wall '{}' has no loaded area: {}", name, a.why_not));
     }
     Vec<D> axis = w.servo_axis;
-    if (w.is_box()) {
+    if (w.is_solid_body()) {
       if (direction) {
         axis = as_vec<D>(*direction, "direction");
         if (!axis.allFinite() || axis.norm() == 0.0)
@@ -1316,7 +1316,7 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["point"] = as_tuple<D>(w.point);
               d["force"] = as_tuple<D>(w.force);
               d["water_force"] = as_tuple<D>(w.water_force);
-              d["shape"] = w.is_cylinder() ? "cylinder" : (w.is_box() ? "box" : "plane");
+              d["shape"] = w.is_cylinder() ? "cylinder" : w.is_box() ? "box" : w.is_mesh() ? "mesh" : "plane";
               d["velocity"] = as_tuple<D>(w.translation_velocity());
               if (D == 3 && !w.is_cylinder()) {
                 d["angular_velocity"] = as_tuple<D>(Vec<D>(w.spin * w.axis));
@@ -1325,7 +1325,11 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
                 d["angular_velocity"] = w.spin;
                 if (!w.is_cylinder()) d["rotation_centre"] = as_tuple<D>(w.pivot);
               }
-              if (w.is_box()) {
+              if (w.is_mesh()) {
+                d["facets"] = w.mesh->triangle.size();
+                d["area"] = w.mesh->area();
+              }
+              if (w.is_solid_body()) {
                 py::list axes;
                 for (int k = 0; k < D; ++k) axes.append(as_tuple<D>(Vec<D>(w.axes.col(k))));
                 d["axes"] = axes;

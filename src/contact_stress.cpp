@@ -10,6 +10,7 @@
 
 #include "darcydem/contact/contact_kernel.hpp"
 #include "darcydem/simulation/simulation.hpp"
+#include "darcydem/walls/mesh_touches.hpp"
 
 namespace darcydem {
 
@@ -91,15 +92,16 @@ void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) con
   });
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!selected(i)) continue;
-    for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
-      // Wall contacts keep their force; the contact point is on the wall.
-      const Vec<D>& f = W.force_on_particle[k];
-      if (f.squaredNorm() == 0.0) continue;
-      const auto touch = walls[W.wall[k]].touch(p.position[i]);
-      visit(ContactRecord<D>{i, i, static_cast<int>(W.wall[k]), -touch.gap * touch.normal, -touch.normal,
-                             p.radius[i] - touch.gap, touch.gap, 0.0, f},
-            true, false);
-    }
+    // Wall contacts keep their force; the contact point is on the wall (a
+    // mesh's: on the facet the force came from).
+    for_each_wall_touch<D>(
+        walls, W, i, p.position[i], p.radius[i], [&](std::uint32_t k, const auto& touch, bool) {
+          const Vec<D>& f = W.force_on_particle[k];
+          if (f.squaredNorm() == 0.0) return;
+          visit(ContactRecord<D>{i, i, static_cast<int>(W.wall[k]), -touch.gap * touch.normal, -touch.normal,
+                                 p.radius[i] - touch.gap, touch.gap, 0.0, f},
+                true, false);
+        });
   }
 }
 

@@ -22,6 +22,7 @@
 #include "darcydem/scene/scene_sizes.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/walls/loaded_area.hpp"
+#include "darcydem/walls/triangle_mesh.hpp"
 
 namespace darcydem {
 namespace {
@@ -230,6 +231,91 @@ void read_cylinder(TableReader& r, const toml::table& table, Wall<D>& w) {
   cr.finish();
 }
 
+/// A mesh wall (`mesh = { file = "x.stl", scale = ... }` or `mesh = {
+/// vertices = [[x, y, z], ...], triangles = [[i, j, k], ...] }`), 3D: its
+/// facets in its own frame about the centre of their bounding box, which
+/// is the wall's point and its default rotation centre.
+template <int D>
+void read_mesh(TableReader& r, const toml::table& table, const std::filesystem::path& base, Wall<D>& w) {
+  for (auto k : {"point", "normal", "box", "cylinder"}) {
+    if (r.has(k))
+      r.fail(k, fmt::format("a mesh wall is placed by 'mesh' alone; remove '{}' (a plane has 'point' and "
+                            "'normal', a box 'box', a cylinder 'cylinder', a mesh 'mesh = {{ file = "
+                            "\"...stl\" }}')",
+                            k));
+  }
+  if (D != 3) {
+    r.fail("mesh",
+           "a mesh wall is a surface of triangles, in 3D; in 2D a segment is a box wall of zero thickness "
+           "(box = { min = [...], max = [...] } with min = max along one axis, turned by 'rotation')");
+  }
+  TableReader mr(table, r.where() + " mesh", r.file());
+  TriangleMesh mesh;
+  if (mr.has("file") == mr.has("vertices")) {
+    mr.fail_table(
+        "give 'file' (an STL file, ASCII or binary, relative to the scene) or 'vertices' = [[x, y, z], ...] "
+        "with 'triangles' = [[i, j, k], ...] (vertex numbers from 0), one of the two");
+  }
+  if (mr.has("file")) {
+    const double scale = mr.check("scale", mr.number_or("scale", 1.0), is_positive,
+                                  "> 0: the file's unit in m (e.g. 0.001 for a file in mm)");
+    const std::string rel = mr.string("file");
+    try {
+      mesh = read_stl((base / rel).string(), scale);
+    } catch (const std::runtime_error& e) {
+      mr.fail("file", e.what());
+    }
+  } else {
+    if (mr.has("scale")) mr.fail("scale", "scales an STL file; give 'vertices' in m");
+    auto rows = [&](std::string_view key, const char* what) {
+      const toml::array* a = mr.optional_array(key);
+      if (a == nullptr || a->empty())
+        mr.fail(key, fmt::format("must be a non-empty array of {} (arrays of 3 numbers each)", what));
+      std::vector<std::array<double, 3>> out;
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        const toml::array* row = (*a)[i].as_array();
+        std::array<double, 3> v{};
+        bool ok = row != nullptr && row->size() == 3;
+        for (std::size_t c = 0; ok && c < 3; ++c) {
+          const auto x = (*row)[c].value<double>();
+          ok = x.has_value() && std::isfinite(*x);
+          if (ok) v[c] = *x;
+        }
+        if (!ok)
+          mr.fail(key, fmt::format("entry {} (from 0) must be an array of 3 finite numbers ({})", i, what));
+        out.push_back(v);
+      }
+      return out;
+    };
+    for (const auto& v : rows("vertices", "vertices, m")) mesh.vertex.emplace_back(v[0], v[1], v[2]);
+    for (const auto& t : rows("triangles", "vertex numbers, from 0")) {
+      std::array<std::uint32_t, 3> tri{};
+      for (int c = 0; c < 3; ++c) {
+        if (!(t[c] >= 0.0 && t[c] < static_cast<double>(mesh.vertex.size()) && t[c] == std::floor(t[c])))
+          mr.fail("triangles", fmt::format("vertex number {} is not one of 0 .. {} (the vertices, from 0)",
+                                           TableReader::format_number(t[c]), mesh.vertex.size() - 1));
+        tri[c] = static_cast<std::uint32_t>(t[c]);
+      }
+      mesh.triangle.push_back(tri);
+    }
+  }
+  mr.finish();
+  // Its own frame: about the centre of its bounding box.
+  Vec<3> lo = Vec<3>::Constant(std::numeric_limits<double>::infinity());
+  Vec<3> hi = -lo;
+  for (const auto& v : mesh.vertex) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const Vec<3> centre = 0.5 * (lo + hi);
+  for (auto& v : mesh.vertex) v -= centre;
+  if (const std::string why = mesh.finish(); !why.empty())
+    mr.fail(mr.has("file") ? "file" : "triangles", fmt::format("the mesh cannot be used: {}", why));
+  w.shape = WallShape::mesh;
+  for (int k = 0; k < D; ++k) w.point[k] = centre[k];
+  w.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
+}
+
 /// A wall's `oscillation` (none if not given): a harmonic translation on top
 /// of its motion, refused with a servo (which sets the wall's place from its
 /// load).
@@ -326,7 +412,7 @@ template <int D>
 void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec<D>& velocity,
                       WallMotion& motion, ServoControl& servo, Vec<D>& servo_axis, double& spin,
                       Vec<D>& spin_axis, double& radius_rate, WallOscillation<D>& oscillation) {
-  const bool box = shape == WallShape::box;
+  const bool box = shape == WallShape::box || shape == WallShape::mesh;
   r.allow({"velocity", "servo", "fixed", "angular_velocity", "radial_velocity", "oscillation"});
   oscillation = read_oscillation<D>(r);
   // A cylinder's rate of change of radius, whatever its translation; a
@@ -391,20 +477,22 @@ void read_wall_motion(TableReader& r, WallShape shape, bool displaces_fluid, Vec
           "plane wall's load over the cross-section the other walls bound: a triaxial or biaxial test)");
     }
     const bool by_stress = sr.has("target_stress");
-    if (by_stress && shape == WallShape::box) {
-      sr.fail("target_stress",
-              "is for a plane wall (its cross-section of the sample) or a cylinder (its lateral surface), "
-              "whose loaded area the other walls bound; give a box wall a 'target_force'");
+    if (by_stress && box) {
+      sr.fail(
+          "target_stress",
+          fmt::format("is for a plane wall (its cross-section of the sample) or a cylinder (its lateral "
+                      "surface), whose loaded area the other walls bound; give a {} wall a 'target_force'",
+                      shape == WallShape::mesh ? "mesh" : "box"));
     }
     read_servo_target(sr, by_stress, shape, servo);
     servo.gain = sr.check("gain", sr.number("gain"), is_positive, "> 0 m/(s N)");
     servo.max_speed = sr.check("max_speed", sr.number("max_speed"), is_positive, "> 0 m/s");
     if (box) {
       if (!sr.has("direction")) {
-        sr.fail_table(
-            "a box wall's servo needs 'direction' = [" + std::to_string(D) +
-            " numbers]: the way the box moves to load the grains more, e.g. [0, -1] for a lid pushing down "
-            "in 2D");
+        sr.fail_table(std::string(shape == WallShape::mesh ? "a mesh" : "a box") +
+                      " wall's servo needs 'direction' = [" + std::to_string(D) + " numbers]: the way the " +
+                      (shape == WallShape::mesh ? "mesh" : "box") +
+                      " moves to load the grains more, e.g. [0, -1] for a lid pushing down in 2D");
       }
       servo_axis = read_direction<D>(sr, "direction", std::nullopt);
     } else if (sr.has("direction")) {
@@ -515,16 +603,23 @@ void check_wall_in_period(TableReader& r, const Wall<D>& w, const PeriodicCell<D
                                    "particles leave through the periodic boundaries instead",
                                    "xyz"[k], k));
     }
-    if (w.is_box()) {
-      const double extent = w.axes.row(k).cwiseAbs().dot(w.half);
+    if (w.is_solid_body()) {
+      double extent = w.axes.row(k).cwiseAbs().dot(w.half);
+      if constexpr (D == 3) {
+        if (w.is_mesh()) {
+          extent = 0.0;
+          for (const auto& v : w.mesh->vertex) extent = std::max(extent, std::abs(w.axes.row(k).dot(v)));
+        }
+      }
       const double lo = cell.lower[k];
       const double hi = lo + cell.length[k];
       if (w.point[k] - extent < lo || w.point[k] + extent > hi) {
-        r.fail("box",
-               fmt::format("a box wall must lie within the periodic range [{}, {}] along {} (walls are "
-                           "not repeated across periodic boundaries); it spans [{:.6g}, {:.6g}]",
-                           TableReader::format_number(lo), TableReader::format_number(hi), "xyz"[k],
-                           w.point[k] - extent, w.point[k] + extent));
+        r.fail(
+            w.is_mesh() ? "mesh" : "box",
+            fmt::format("a {} wall must lie within the periodic range [{}, {}] along {} (walls are "
+                        "not repeated across periodic boundaries); it spans [{:.6g}, {:.6g}]",
+                        w.is_mesh() ? "mesh" : "box", TableReader::format_number(lo),
+                        TableReader::format_number(hi), "xyz"[k], w.point[k] - extent, w.point[k] + extent));
       }
     }
   }
@@ -906,12 +1001,14 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       br.finish();
     } else if (const toml::table* ct = r.optional_table("cylinder")) {
       read_cylinder<D>(r, *ct, w);
+    } else if (const toml::table* mt = r.optional_table("mesh")) {
+      read_mesh<D>(r, *mt, base, w);
     } else {
       if (!r.has("point") && !r.has("normal")) {
         r.fail_table(
             "a wall needs 'point' and 'normal' (an infinite plane), 'box = { min = [...], max = "
-            "[...] }' (a box or plate) or 'cylinder = { centre = [...], radius = ... }' (a cylinder; 2D: a "
-            "circle)");
+            "[...] }' (a box or plate), 'cylinder = { centre = [...], radius = ... }' (a cylinder; 2D: a "
+            "circle) or 'mesh = { file = \"...stl\" }' (3D: a surface of triangles)");
       }
       w.point = to_vec<D>(r.numbers("point", D));
       w.normal = read_direction<D>(r, "normal", std::nullopt);
@@ -942,6 +1039,12 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
           "wall permeable");
     }
     const bool displaces_fluid = r.boolean_or("displaces_fluid", false) || sealed;
+    if (w.is_mesh() && (impermeable || displaces_fluid)) {
+      r.fail(impermeable ? "impermeable" : "displaces_fluid",
+             "a mesh wall lets the pore water through (the fluid's grid is Cartesian and cannot follow its "
+             "facets); leave this out, and bound the water with the grid's sides, barriers or impermeable "
+             "box walls");
+    }
     if (w.is_cylinder() && (impermeable || displaces_fluid)) {
       r.fail(impermeable ? "impermeable" : "displaces_fluid",
              "a cylinder wall lets the pore water through (the fluid's grid is Cartesian and cannot follow "

@@ -18,6 +18,7 @@
 #include "darcydem/core/parallel.hpp"
 #include "darcydem/simulation/kick.hpp"
 #include "darcydem/walls/loaded_area.hpp"
+#include "darcydem/walls/mesh_touches.hpp"
 
 namespace darcydem {
 
@@ -421,33 +422,33 @@ double Simulation<D>::compute_forces_with(Finish finish) {
     const double ri = p.radius[i];
     const double inv_mi = p.inv_mass[i];
     const auto mat_i = p.material[i];
-    for (std::uint32_t k = W.offset[i]; k < W.offset[i + 1]; ++k) {
-      const Wall<D>& w = walls[W.wall[k]];
-      const auto touch = w.touch(xi);
-      const double overlap = ri - touch.gap;
-      if (overlap <= 0.0 || inv_mi == 0.0) {
-        W.tangential[k].setZero();
-        if constexpr (Rolling) W.rolling[k].setZero();
-        W.force_on_particle[k].setZero();
-        W.torque_on_particle[k].setZero();
-        continue;
-      }
-      const Vec<D> nrm = -touch.normal;
-      const double arm_i = ri - overlap;
-      // Against the wall's surface where they touch (a spinning drum's moves).
-      const Vec<D> v_rel =
-          vi + cross(AngVec<D>(wi * arm_i), nrm) - w.surface_velocity(Vec<D>(xi + arm_i * nrm));
-      const AngVec<D> w_rel = w.spin == 0.0 ? wi : AngVec<D>(wi - w.angular_velocity());
-      const auto c = evaluate_contact<D, Law>(contact_table(mat_i, w.material), nrm, overlap, arm_i, 0.0,
-                                              v_rel, w_rel, std::sqrt(1.0 / inv_mi), ri, dt, W.tangential[k],
-                                              Rolling ? &W.rolling[k] : nullptr);
-      f += c.force_on_i;
-      t += c.torque_i;
-      if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
-      touching += 1.0;
-      W.force_on_particle[k] = c.force_on_i;
-      W.torque_on_particle[k] = c.torque_i;
-    }
+    for_each_wall_touch<D>(
+        walls, W, static_cast<std::size_t>(i), xi, ri, [&](std::uint32_t k, const auto& touch, bool counts) {
+          const Wall<D>& w = walls[W.wall[k]];
+          const double overlap = ri - touch.gap;
+          if (overlap <= 0.0 || inv_mi == 0.0 || !counts) {
+            W.tangential[k].setZero();
+            if constexpr (Rolling) W.rolling[k].setZero();
+            W.force_on_particle[k].setZero();
+            W.torque_on_particle[k].setZero();
+            return;
+          }
+          const Vec<D> nrm = -touch.normal;
+          const double arm_i = ri - overlap;
+          // Against the wall's surface where they touch (a spinning drum's moves).
+          const Vec<D> v_rel =
+              vi + cross(AngVec<D>(wi * arm_i), nrm) - w.surface_velocity(Vec<D>(xi + arm_i * nrm));
+          const AngVec<D> w_rel = w.spin == 0.0 ? wi : AngVec<D>(wi - w.angular_velocity());
+          const auto c = evaluate_contact<D, Law>(contact_table(mat_i, w.material), nrm, overlap, arm_i, 0.0,
+                                                  v_rel, w_rel, std::sqrt(1.0 / inv_mi), ri, dt,
+                                                  W.tangential[k], Rolling ? &W.rolling[k] : nullptr);
+          f += c.force_on_i;
+          t += c.torque_i;
+          if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
+          touching += 1.0;
+          W.force_on_particle[k] = c.force_on_i;
+          W.torque_on_particle[k] = c.torque_i;
+        });
   };
 
   // A block's forces are summed in place, starting from zero.
@@ -927,9 +928,10 @@ std::size_t Simulation<D>::contact_count() const {
   for_each_touching(particles, list_, periodic,
                     [&](std::size_t, std::uint32_t, std::uint32_t, double, bool) { ++count; });
   for (std::size_t i = 0; i < particles.size(); ++i) {
-    for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
-      if (walls[wall_list_.wall[k]].gap(particles.position[i]) < particles.radius[i]) ++count;
-    }
+    for_each_wall_touch<D>(walls, wall_list_, i, particles.position[i], particles.radius[i],
+                           [&](std::uint32_t, const auto& touch, bool counts) {
+                             if (counts && touch.gap < particles.radius[i]) ++count;
+                           });
   }
   return count;
 }
@@ -950,9 +952,10 @@ double Simulation<D>::max_overlap() const {
   for_each_touching(particles, list_, periodic,
                     [&](std::size_t, std::uint32_t, std::uint32_t, double o, bool) { m = std::max(m, o); });
   for (std::size_t i = 0; i < particles.size(); ++i) {
-    for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
-      m = std::max(m, particles.radius[i] - walls[wall_list_.wall[k]].gap(particles.position[i]));
-    }
+    for_each_wall_touch<D>(walls, wall_list_, i, particles.position[i], particles.radius[i],
+                           [&](std::uint32_t, const auto& touch, bool counts) {
+                             if (counts) m = std::max(m, particles.radius[i] - touch.gap);
+                           });
   }
   return m;
 }
@@ -1021,17 +1024,20 @@ double Simulation<D>::elastic_energy() const {
                     pp.bond_twisting_stiffness(r_eff) * rot.twist * rot.twist);
       }
     }
-    for (std::uint32_t k = wall_list_.offset[i]; k < wall_list_.offset[i + 1]; ++k) {
-      const auto& w = walls[wall_list_.wall[k]];
-      const double overlap = p.radius[i] - w.gap(p.position[i]);
-      if (overlap <= 0.0) continue;
-      const auto& pp = contact_table(p.material[i], w.material);
-      e += normal_energy(pp, overlap, p.radius[i]);
-      if (pp.law == NormalLaw::linear) {
-        e += 0.5 * pp.tangential_ratio * pp.normal_stiffness * wall_list_.tangential[k].squaredNorm();
-        if (!wall_list_.rolling.empty()) e += rolling_energy(pp, p.radius[i], wall_list_.rolling[k]);
-      }
-    }
+    for_each_wall_touch<D>(walls, wall_list_, i, p.position[i], p.radius[i],
+                           [&](std::uint32_t k, const auto& touch, bool counts) {
+                             const auto& w = walls[wall_list_.wall[k]];
+                             const double overlap = p.radius[i] - touch.gap;
+                             if (overlap <= 0.0 || !counts) return;
+                             const auto& pp = contact_table(p.material[i], w.material);
+                             e += normal_energy(pp, overlap, p.radius[i]);
+                             if (pp.law == NormalLaw::linear) {
+                               e += 0.5 * pp.tangential_ratio * pp.normal_stiffness *
+                                    wall_list_.tangential[k].squaredNorm();
+                               if (!wall_list_.rolling.empty())
+                                 e += rolling_energy(pp, p.radius[i], wall_list_.rolling[k]);
+                             }
+                           });
   }
   return e;
 }

@@ -87,6 +87,7 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
   std::vector<Vec<3>> points;
   std::vector<int> offsets;
   std::vector<int> types;
+  std::vector<std::size_t> cell_wall;  // the wall each cell draws (a mesh: one cell a facet)
   auto lift = [](const Vec<D>& x) {
     Vec<3> y = Vec<3>::Zero();
     for (int k = 0; k < D; ++k) y[k] = x[k];
@@ -94,7 +95,20 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
   };
   const Vec<D> middle = 0.5 * (lo + hi);
   const double half_size = 0.55 * (hi - lo).norm();
-  for (const auto& w : walls) {
+  for (std::size_t wi = 0; wi < walls.size(); ++wi) {
+    const auto& w = walls[wi];
+    if constexpr (D == 3) {
+      if (w.is_mesh()) {
+        // Its facets, one triangle each, where the wall stands now.
+        for (const auto& t : w.mesh->triangle) {
+          for (auto v : t) points.push_back(Vec<3>(w.point + w.axes * w.mesh->vertex[v]));
+          types.push_back(5);  // VTK_TRIANGLE
+          offsets.push_back(static_cast<int>(points.size()));
+          cell_wall.push_back(wi);
+        }
+        continue;
+      }
+    }
     if (w.is_box()) {
       // Corners counter-clockwise about the box's third axis (in 2D, the
       // plane's normal), then (3D) the same on the far side, in its own axes.
@@ -156,6 +170,7 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
       }
     }
     offsets.push_back(static_cast<int>(points.size()));
+    cell_wall.push_back(wi);
   }
   try {
     auto out = fmt::output_file(path);
@@ -163,16 +178,17 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
         "byte_order=\"LittleEndian\">\n");
     out.print("  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", points.size(),
-              walls.size());
+              cell_wall.size());
     out.print("      <Points>\n");
     write_vector_array<3>(out, "position", points.size(), [&](std::size_t i) { return points[i]; });
     out.print("      </Points>\n      <CellData Scalars=\"wall_id\">\n");
     out.print("        <DataArray type=\"Int32\" Name=\"wall_id\" format=\"ascii\">\n");
-    for (std::size_t i = 0; i < walls.size(); ++i) out.print("{}\n", i);
+    for (std::size_t w : cell_wall) out.print("{}\n", w);
     out.print("        </DataArray>\n");
-    write_vector_array<D>(out, "force", walls.size(), [&](std::size_t i) { return walls[i].force; });
-    write_vector_array<D>(out, "velocity", walls.size(),
-                          [&](std::size_t i) { return walls[i].translation_velocity(); });
+    write_vector_array<D>(out, "force", cell_wall.size(),
+                          [&](std::size_t c) { return walls[cell_wall[c]].force; });
+    write_vector_array<D>(out, "velocity", cell_wall.size(),
+                          [&](std::size_t c) { return walls[cell_wall[c]].translation_velocity(); });
     out.print("      </CellData>\n      <Cells>\n");
     out.print("        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n");
     for (std::size_t i = 0; i < points.size(); ++i) out.print("{}\n", i);

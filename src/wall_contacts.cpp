@@ -14,33 +14,51 @@ void WallContactList<D>::build(const std::vector<Vec<D>>& position, const std::v
   const std::size_t n = position.size();
   std::vector<std::uint32_t> next_offset(n + 1, 0);
   std::vector<std::uint16_t> next_wall;
+  std::vector<std::uint32_t> next_facet;
   std::vector<Vec<D>> next_tangential;
   std::vector<AngVec<D>> next_rolling;
   const bool have_old = old_list_fits(offset.size(), n, old_index);
   const bool old_rolling = keep_rolling && rolling.size() == wall.size();
+  std::vector<std::uint32_t> near;
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t w = 0; w < walls.size(); ++w) {
-      if (walls[w].gap(position[i]) < radius[i] + skin) {
-        next_wall.push_back(static_cast<std::uint16_t>(w));
-        Vec<D> t = Vec<D>::Zero();
-        AngVec<D> r = AngVec<D>::Zero();
-        const std::size_t o = old_index != nullptr ? (*old_index)[i] : i;
-        if (have_old && o != no_old_index) {
-          for (std::uint32_t k = offset[o]; k < offset[o + 1]; ++k) {
-            if (wall[k] == w) {
-              t = tangential[k];
-              if (old_rolling) r = rolling[k];
-            }
+    const std::size_t o = old_index != nullptr ? (*old_index)[i] : i;
+    // A candidate, with the history it had at the last build.
+    auto add = [&](std::size_t w, std::uint32_t f) {
+      next_wall.push_back(static_cast<std::uint16_t>(w));
+      next_facet.push_back(f);
+      Vec<D> t = Vec<D>::Zero();
+      AngVec<D> r = AngVec<D>::Zero();
+      if (have_old && o != no_old_index) {
+        for (std::uint32_t k = offset[o]; k < offset[o + 1]; ++k) {
+          if (wall[k] == w && facet[k] == f) {
+            t = tangential[k];
+            if (old_rolling) r = rolling[k];
           }
         }
-        next_tangential.push_back(t);
-        if (keep_rolling) next_rolling.push_back(r);
       }
+      next_tangential.push_back(t);
+      if (keep_rolling) next_rolling.push_back(r);
+    };
+    const double reach = radius[i] + skin;
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      const Wall<D>& wall_w = walls[w];
+      if constexpr (D == 3) {
+        if (wall_w.is_mesh()) {
+          // Each facet within reach, in the mesh's own frame.
+          wall_w.mesh->facets_near(wall_w.axes.transpose() * (position[i] - wall_w.point), reach, near);
+          for (auto f : near) {
+            if (wall_w.facet_touch(position[i], f).gap < reach) add(w, f);
+          }
+          continue;
+        }
+      }
+      if (wall_w.gap(position[i]) < reach) add(w, 0);
     }
     next_offset[i + 1] = static_cast<std::uint32_t>(next_wall.size());
   }
   offset = std::move(next_offset);
   wall = std::move(next_wall);
+  facet = std::move(next_facet);
   tangential = std::move(next_tangential);
   rolling = std::move(next_rolling);
   force_on_particle.assign(wall.size(), Vec<D>::Zero());

@@ -244,9 +244,11 @@ TEST(SceneErrors, BoxWallsAreChecked) {
   EXPECT_NE(msg.find("key 'direction': a plane wall's servo moves it along its normal"), std::string::npos)
       << msg;
   msg = load_error(replace(good, "box = { min = [0.002, 0.0], max = [0.002, 0.002] }", ""));
-  EXPECT_NE(msg.find("a wall needs 'point' and 'normal' (an infinite plane), 'box = { min = [...], max = "
-                     "[...] }' (a box or plate) or 'cylinder"),
-            std::string::npos)
+  EXPECT_NE(
+      msg.find("a wall needs 'point' and 'normal' (an infinite plane), 'box = { min = [...], max = "
+               "[...] }' (a box or plate), 'cylinder = { centre = [...], radius = ... }' (a cylinder; 2D: a "
+               "circle) or 'mesh = { file = \"...stl\" }' (3D: a surface of triangles)"),
+      std::string::npos)
       << msg;
   msg = load_error(replace(good, "min = [0.002, 0.0]", "min = [0.002, 0.0], size = 1"));
   EXPECT_NE(msg.find("unknown key 'size'"), std::string::npos) << msg;
@@ -387,6 +389,88 @@ TEST(SceneErrors, StageFrictionIsChecked) {
                "allow for the grains its tangential spring turns"),
       std::string::npos)
       << msg;
+}
+
+// A mesh wall: a square of two facets beside the column (3D), inline or
+// from an STL file next to the scene.
+TEST(SceneErrors, MeshWallsAreChecked) {
+  const std::string square =
+      "\n[[wall]]\nname = \"side\"\nmesh = { vertices = [[0.002, -0.002, 0.0], [0.002, 0.002, 0.0], "
+      "[0.002, 0.002, 0.004], [0.002, -0.002, 0.004]], triangles = [[0, 1, 2], [0, 2, 3]] }\nmaterial = "
+      "\"sand\"\n";
+  const std::string good = in_3d(replace(kGood, "[[particles]]", square + "\n[[particles]]"));
+  ASSERT_EQ(load_error(good), "");
+  {
+    const auto scene = built_scene<3>(good);
+    const auto& w = scene.simulation.walls.back();
+    ASSERT_TRUE(w.is_mesh());
+    EXPECT_EQ(w.mesh->triangle.size(), 2u);
+    // Its frame is the centre of its bounding box.
+    EXPECT_LT((w.point - Vec<3>(0.002, 0.0, 0.002)).norm(), 1e-15);
+    EXPECT_NEAR(w.mesh->area(), 0.004 * 0.004, 1e-18);
+  }
+  auto msg = load_error(replace(good, "[0, 2, 3]", "[0, 2, 4]"));
+  EXPECT_NE(msg.find("[[wall]] #2 mesh key 'triangles': vertex number 4 is not one of 0 .. 3"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(".toml:"), std::string::npos) << msg;  // file:line:column
+  msg = load_error(replace(good, "[0, 2, 3]", "[0, 2, 0]"));
+  EXPECT_NE(msg.find("the mesh cannot be used: facet 1 has no area"), std::string::npos) << msg;
+  msg = load_error(replace(good, "[0.002, -0.002, 0.0], ", "[0.002, -0.002], "));
+  EXPECT_NE(msg.find("mesh key 'vertices': entry 0 (from 0) must be an array of 3 finite numbers"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "mesh = { vertices", "mesh = { file = \"side.stl\", vertices"));
+  EXPECT_NE(msg.find("give 'file' (an STL file, ASCII or binary, relative to the scene) or 'vertices'"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "mesh = {", "point = [0.0, 0.0, 0.0]\nmesh = {"));
+  EXPECT_NE(msg.find("key 'point': a mesh wall is placed by 'mesh' alone"), std::string::npos) << msg;
+  msg = load_error(replace(good, "material = \"sand\"\n\n[[particles]]",
+                           "material = \"sand\"\nimpermeable = true\n\n[[particles]]"));
+  EXPECT_NE(msg.find("key 'impermeable': a mesh wall lets the pore water through"), std::string::npos) << msg;
+  msg = load_error(replace(good, "material = \"sand\"\n\n[[particles]]",
+                           "material = \"sand\"\nservo = { target_force = 1.0, gain = 1.0, max_speed = 1.0 "
+                           "}\n\n[[particles]]"));
+  EXPECT_NE(msg.find("a mesh wall's servo needs 'direction' = [3 numbers]"), std::string::npos) << msg;
+  msg = load_error(replace(good, "material = \"sand\"\n\n[[particles]]",
+                           "material = \"sand\"\nservo = { target_stress = 1.0, gain = 1.0, max_speed = 1.0, "
+                           "direction = [-1.0, 0.0, 0.0] }\n\n[[particles]]"));
+  EXPECT_NE(msg.find("give a mesh wall a 'target_force'"), std::string::npos) << msg;
+  // 2D: a segment is a box plate.
+  msg = load_error(replace(kGood, "[[particles]]",
+                           "[[wall]]\nname = \"side\"\nmesh = { file = \"side.stl\" }\nmaterial = "
+                           "\"sand\"\n\n[[particles]]"));
+  EXPECT_NE(msg.find("key 'mesh': a mesh wall is a surface of triangles, in 3D"), std::string::npos) << msg;
+  // From a file: relative to the scene; a missing or bad one is named.
+  const std::string from_file = replace(good,
+                                        "mesh = { vertices = [[0.002, -0.002, 0.0], [0.002, 0.002, 0.0], "
+                                        "[0.002, 0.002, 0.004], [0.002, -0.002, "
+                                        "0.004]], triangles = [[0, 1, 2], [0, 2, 3]] }",
+                                        "mesh = { file = \"darcydem_side_test.stl\", scale = 0.001 }");
+  msg = load_error(from_file);
+  EXPECT_NE(msg.find("mesh key 'file': "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("darcydem_side_test.stl: cannot open the STL file"), std::string::npos) << msg;
+  const auto stl = std::filesystem::temp_directory_path() / "darcydem_side_test.stl";
+  std::ofstream(stl)
+      << "solid side\n facet normal -1 0 0\n  outer loop\n   vertex 2 -2 0\n   vertex 2 2 0\n"
+         "   vertex 2 2 4\n  endloop\n endfacet\n facet normal -1 0 0\n  outer loop\n   vertex 2 "
+         "-2 0\n   vertex 2 2 4\n   vertex 2 -2 4\n  endloop\n endfacet\nendsolid side\n";
+  ASSERT_EQ(load_error(from_file), "");
+  {
+    const auto scene = built_scene<3>(from_file);
+    const auto& w = scene.simulation.walls.back();
+    EXPECT_EQ(w.mesh->vertex.size(), 4u);  // the corners the facets share, once
+    EXPECT_NEAR(w.mesh->area(), 0.004 * 0.004, 1e-18);
+  }
+  msg = load_error(replace(from_file, "scale = 0.001", "scale = -1.0"));
+  EXPECT_NE(msg.find("mesh key 'scale': must be > 0: the file's unit in m"), std::string::npos) << msg;
+  std::ofstream(stl) << "solid side\n facet normal -1 0 0\n  outer loop\n   vertex 2 -2 0\n   vertec 2 2 0\n";
+  msg = load_error(from_file);
+  EXPECT_NE(msg.find("darcydem_side_test.stl:5: 'vertec' is not a word of an ASCII STL file"),
+            std::string::npos)
+      << msg;
+  std::filesystem::remove(stl);
 }
 
 TEST(SceneErrors, CylinderWallsAreChecked) {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -60,6 +61,46 @@ TEST(WallsVtu, PlateAndFloorIn3D) {
   EXPECT_EQ(testing::vtk_array(text, "offsets"), (std::vector<double>{8, 12}));
   EXPECT_EQ(testing::vtk_array(text, "types"), (std::vector<double>{12, 9}));  // hexahedron, quad
   EXPECT_EQ(testing::vtk_array(text, "force"), (std::vector<double>{0, 0, -2.5, 0, 0, 0}));
+}
+
+// A mesh wall: one triangle a facet, where the wall stands now (its
+// facets in its own frame, turned by its axes and moved to its point), each
+// cell with the wall's number and force; after it the next wall's cell.
+TEST(WallsVtu, MeshFacetsAreTriangles) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->vertex = {{-1.0, -1.0, 0.0}, {1.0, -1.0, 0.0}, {1.0, 1.0, 0.0}, {-1.0, 1.0, 0.0}};
+  mesh->triangle = {{0, 1, 2}, {0, 2, 3}};
+  ASSERT_EQ(mesh->finish(), "");
+  Wall<3> lid;
+  lid.shape = WallShape::mesh;
+  lid.mesh = mesh;
+  lid.point = Vec<3>(0.0, 0.0, 2.0);
+  // A quarter turn about z: (x, y) -> (-y, x).
+  lid.axes = Eigen::AngleAxisd(std::numbers::pi / 2.0, Vec<3>::UnitZ()).toRotationMatrix();
+  lid.force = Vec<3>(0.0, 0.0, 3.0);
+  Wall<3> floor;
+  floor.point = Vec<3>(0.0, 0.0, 0.0);
+  floor.normal = Vec<3>(0.0, 0.0, 1.0);
+  const std::string path = temp_file("walls_mesh_");
+  write_walls_vtu<3>(path, {lid, floor}, Vec<3>(-1, -1, 0), Vec<3>(1, 1, 2));
+  const std::string text = read_all(path);
+  std::filesystem::remove(path);
+  EXPECT_NE(text.find("NumberOfPoints=\"10\" NumberOfCells=\"3\""), std::string::npos);
+  const auto p = testing::vtk_array(text, "position");
+  ASSERT_EQ(p.size(), 30U);
+  // Facet 0: corners 0, 1, 2 turned: (1, -1), (1, 1), (-1, 1) at z = 2.
+  const double facet0[3][3] = {{1, -1, 2}, {1, 1, 2}, {-1, 1, 2}};
+  for (int c = 0; c < 3; ++c) {
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(p[3 * c + k], facet0[c][k], 1e-15) << c;
+  }
+  EXPECT_EQ(testing::vtk_array(text, "offsets"), (std::vector<double>{3, 6, 10}));
+  EXPECT_EQ(testing::vtk_array(text, "types"), (std::vector<double>{5, 5, 9}));
+  EXPECT_EQ(testing::vtk_array(text, "wall_id"), (std::vector<double>{0, 0, 1}));
+  const auto f = testing::vtk_array(text, "force");
+  ASSERT_EQ(f.size(), 9U);
+  EXPECT_EQ(f[2], 3.0);
+  EXPECT_EQ(f[5], 3.0);
+  EXPECT_EQ(f[8], 0.0);
 }
 
 TEST(WallsVtu, SegmentAndSlopeIn2D) {

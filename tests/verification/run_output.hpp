@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -43,6 +44,17 @@ inline std::map<std::string, std::vector<double>> read_probes(const std::string&
     }
   }
   return columns;
+}
+
+/// When a rising series (a probe's column against `time`) first reached
+/// `value`, linear between the rows; NaN if it never did.
+inline double time_reaching(const std::vector<double>& time, const std::vector<double>& series,
+                            double value) {
+  for (std::size_t k = 1; k < series.size(); ++k) {
+    if (series[k] >= value)
+      return time[k - 1] + (time[k] - time[k - 1]) * (value - series[k - 1]) / (series[k] - series[k - 1]);
+  }
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace darcydem::testing

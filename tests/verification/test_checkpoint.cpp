@@ -334,6 +334,26 @@ TEST(Checkpoint, ResumedSealedPistonWritesTheSameFiles) {
   expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 169000, 1);
 }
 
+TEST(Checkpoint, ResumedHopperOfFacetsWritesTheSameFiles) {
+  // examples/dem_cases/conical_hopper.toml with 150 spheres, 0.1 s of
+  // filling (they land on the cone's facets and the gate) and 0.05 s of
+  // discharge (71 800 steps), stopped at step 50 000, the gate sliding
+  // open: the grains' contacts with the mesh's facets, each with its
+  // springs, must come back with the facet they are on.
+  const fs::path dir = fresh_dir("mesh_hopper");
+  fs::create_directories(dir);
+  const std::string text = darcydem::testing::scene_variant(
+      "examples/dem_cases/conical_hopper.toml",
+      {{"file = \"conical_hopper.stl\"",
+        "file = \"" + std::string(DARCYDEM_SOURCE_DIR) + "/examples/dem_cases/conical_hopper.stl\""},
+       {"count = 550", "count = 150"},
+       {"name = \"fill\"\nduration = 0.4", "name = \"fill\"\nduration = 0.1"},
+       {"name = \"discharge\"\nduration = 0.8", "name = \"discharge\"\nduration = 0.05"}});
+  const std::string scene = (dir / "hopper.toml").string();
+  std::ofstream(scene) << text;
+  expect_resumed_run_writes_the_same_files<3>(scene, dir, 2, 50000, 1);
+}
+
 TEST(Checkpoint, ResumedSiloWritesTheSameFilesAfterGrainsLeftTheDomain) {
   // examples/dem_cases/silo_discharge.toml with 300 discs, 0.2 s of filling
   // and 0.3 s of discharge (19 306 steps), stopped at step 15 000 (0.39 s),

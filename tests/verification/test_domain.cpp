@@ -238,13 +238,7 @@ TEST(Domain, SiloDischargesAtASteadyRate) {
   const auto& out = probes.at("discharged");
   // When the discharged mass first reached a share of the whole (linear
   // between the rows, 10 ms apart).
-  auto time_at = [&](double share) {
-    const double m = share * total;
-    for (std::size_t k = 1; k < out.size(); ++k) {
-      if (out[k] >= m) return t[k - 1] + (t[k] - t[k - 1]) * (m - out[k - 1]) / (out[k] - out[k - 1]);
-    }
-    return std::numeric_limits<double>::quiet_NaN();
-  };
+  auto time_at = [&](double share) { return darcydem::testing::time_reaching(t, out, share * total); };
   const double t10 = time_at(0.1);
   const double t30 = time_at(0.3);
   const double t50 = time_at(0.5);

@@ -197,6 +197,8 @@ class Simulation {
   /// them (record_contact_forces), else recomputed as contact_stress does.
   [[nodiscard]] std::vector<ContactRecord<D>> contact_forces() const;
   [[nodiscard]] const VerletList<D>& pair_list() const { return list_; }
+  /// The particle-wall candidates with their histories and last forces.
+  [[nodiscard]] const WallContactList<D>& wall_contacts() const { return wall_list_; }
   [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
   /// Bytes held by the particle, list and wall-contact arrays (capacity).
   [[nodiscard]] std::size_t memory_bytes() const;

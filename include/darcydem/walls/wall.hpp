@@ -10,7 +10,9 @@
 // axis; 2D: a circle, a drum) is touched from the side the scene says:
 // from inside (a drum, a triaxial or permeameter cell, an oedometer ring),
 // where a particle that has got outside is pushed back in, or from outside
-// (a pile, a pipe in a bed). A wall is fixed, moves at a
+// (a pile, a pipe in a bed). A mesh wall (3D) is a triangulated surface,
+// touched from either side of each facet (walls/mesh_touches.hpp): a
+// hopper, a footing, any shape an STL file gives. A wall is fixed, moves at a
 // prescribed velocity, or is servo-controlled so that the load on it
 // approaches a target force: a plane along its normal, a box along its
 // servo_axis, a cylinder by changing its radius (a triaxial cell's
@@ -26,6 +28,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -34,11 +38,12 @@
 
 #include "darcydem/core/time_series.hpp"
 #include "darcydem/core/vec.hpp"
+#include "darcydem/walls/triangle_mesh.hpp"
 
 namespace darcydem {
 
 enum class WallMotion { fixed, velocity, servo };
-enum class WallShape { plane, box, cylinder };
+enum class WallShape { plane, box, cylinder, mesh };
 
 /// The harmonic part of a servo's target (stress- or force-controlled
 /// cyclic loading: the cyclic triaxial, simple shear or oedometer tests of
@@ -145,7 +150,10 @@ struct Wall {
   /// strain-controlled cell).
   double radius_rate = 0.0;
   double radius_at_build = 0.0;
-  /// A box's own axes, as the columns of a rotation (from the scene).
+  /// A mesh wall's surface, in its own frame (3D; null for other walls):
+  /// from the scene, shared by the copies of the wall.
+  std::shared_ptr<const TriangleMesh> mesh;
+  /// A box's or mesh's own axes, as the columns of a rotation (from the scene).
   Eigen::Matrix<double, D, D> axes = Eigen::Matrix<double, D, D>::Identity();
   std::uint16_t material = 0;
   WallMotion motion = WallMotion::fixed;
@@ -262,10 +270,15 @@ struct Wall {
   [[nodiscard]] bool is_box() const { return shape == WallShape::box; }
   [[nodiscard]] bool is_plane() const { return shape == WallShape::plane; }
   [[nodiscard]] bool is_cylinder() const { return shape == WallShape::cylinder; }
+  [[nodiscard]] bool is_mesh() const { return shape == WallShape::mesh; }
+  /// Whether it moves as a rigid body along `servo_axis` under a servo and
+  /// turns its own axes: a box or a mesh.
+  [[nodiscard]] bool is_solid_body() const { return is_box() || is_mesh(); }
 
   [[nodiscard]] Touch touch(const Vec<D>& x) const {
     if (shape == WallShape::plane) return {(x - point).dot(normal), normal};
     if (shape == WallShape::cylinder) return cylinder_touch(x);
+    if (shape == WallShape::mesh) return mesh_touch(x);
     // In the box's own axes.
     const Vec<D> d = axes.transpose() * (x - point);
     const Vec<D> outside = d - d.cwiseMax(-half).cwiseMin(half);
@@ -301,6 +314,29 @@ struct Wall {
     }
     return from_inside ? Touch{radius - rho, -out} : Touch{rho - radius, out};
   }
+  /// A mesh's touch: from its nearest facet (at most one touch per wall;
+  /// the contacts take each facet's, facet_touch, and mesh_touches.hpp).
+  [[nodiscard]] Touch mesh_touch(const Vec<D>& x) const {
+    if constexpr (D == 3) {
+      return facet_touch(x, mesh->nearest(axes.transpose() * (x - point)).facet);
+    } else {
+      return {std::numeric_limits<double>::infinity(), Vec<D>::Zero()};
+    }
+  }
+  /// A mesh's touch on its facet f: from the facet's nearest point to x,
+  /// towards x (on the facet itself, along its normal).
+  [[nodiscard]] Touch facet_touch(const Vec<D>& x, std::uint32_t f) const {
+    if constexpr (D == 3) {
+      const Vec<D> local = axes.transpose() * (x - point);
+      const Vec<D> out = local - mesh->closest_point(f, local);
+      const double g = out.norm();
+      return g > 0.0 ? Touch{g, axes * (out / g)} : Touch{0.0, axes * mesh->facet_normal[f]};
+    } else {
+      (void)x;
+      (void)f;
+      return {std::numeric_limits<double>::infinity(), Vec<D>::Zero()};
+    }
+  }
   /// The gap alone (touch(x).gap).
   [[nodiscard]] double gap(const Vec<D>& x) const { return touch(x).gap; }
   /// How far the wall has come towards particles since the last contact
@@ -313,7 +349,9 @@ struct Wall {
     Vec<D> shift = point - point_at_build;
     if (turned_since_build > 0.0 && shape != WallShape::cylinder) {
       const double drift = (pivot - pivot_at_build).norm();
-      const double arm = shape == WallShape::box ? (point - pivot).norm() + half.norm() : reach + drift;
+      const double arm = shape == WallShape::box    ? (point - pivot).norm() + half.norm()
+                         : shape == WallShape::mesh ? (point - pivot).norm() + mesh->bounding_radius
+                                                    : reach + drift;
       return drift + turned_since_build * arm;
     }
     if (shape == WallShape::plane) return std::abs(shift.dot(normal));
@@ -342,7 +380,7 @@ struct Wall {
     }
     point = pivot + r * (point - pivot);
     if (shape == WallShape::plane) normal = (r * normal).normalized();
-    if (shape == WallShape::box) {
+    if (shape == WallShape::box || shape == WallShape::mesh) {
       axes = r * axes;
       axes.col(0).normalize();
       if constexpr (D == 2) {
@@ -403,6 +441,7 @@ template <int D>
 struct WallContactList {
   std::vector<std::uint32_t> offset;          ///< N+1
   std::vector<std::uint16_t> wall;            ///< wall index of each candidate
+  std::vector<std::uint32_t> facet;           ///< a mesh wall's facet (0 for other walls)
   std::vector<Vec<D>> tangential;             ///< tangential history
   std::vector<AngVec<D>> rolling;             ///< rolling history (empty when unused)
   std::vector<Vec<D>> force_on_particle;      ///< this step's force, N
@@ -410,7 +449,7 @@ struct WallContactList {
 
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(offset, wall, tangential, rolling, force_on_particle, torque_on_particle);
+    ar(offset, wall, facet, tangential, rolling, force_on_particle, torque_on_particle);
   }
 
   /// old_index[i] (if given) is the index particle i had at the last build.
@@ -419,8 +458,9 @@ struct WallContactList {
              const std::vector<std::uint32_t>* old_index = nullptr);
   [[nodiscard]] std::size_t memory_bytes() const {
     return offset.capacity() * sizeof(std::uint32_t) + wall.capacity() * sizeof(std::uint16_t) +
-           tangential.capacity() * sizeof(Vec<D>) + rolling.capacity() * sizeof(AngVec<D>) +
-           force_on_particle.capacity() * sizeof(Vec<D>) + torque_on_particle.capacity() * sizeof(AngVec<D>);
+           facet.capacity() * sizeof(std::uint32_t) + tangential.capacity() * sizeof(Vec<D>) +
+           rolling.capacity() * sizeof(AngVec<D>) + force_on_particle.capacity() * sizeof(Vec<D>) +
+           torque_on_particle.capacity() * sizeof(AngVec<D>);
   }
 };
 
