@@ -235,8 +235,11 @@ void read_cylinder(TableReader& r, const toml::table& table, Wall<D>& w) {
 /// vertices = [[x, y, z], ...], triangles = [[i, j, k], ...] }`), 3D: its
 /// facets in its own frame about the centre of their bounding box, which
 /// is the wall's point and its default rotation centre.
+/// Returns a note for the run log and `darcydem check`: what was read and
+/// where it stands (a wrong `scale` shows there).
 template <int D>
-void read_mesh(TableReader& r, const toml::table& table, const std::filesystem::path& base, Wall<D>& w) {
+std::string read_mesh(TableReader& r, const toml::table& table, const std::filesystem::path& base,
+                      Wall<D>& w) {
   for (auto k : {"point", "normal", "box", "cylinder"}) {
     if (r.has(k))
       r.fail(k, fmt::format("a mesh wall is placed by 'mesh' alone; remove '{}' (a plane has 'point' and "
@@ -299,6 +302,14 @@ void read_mesh(TableReader& r, const toml::table& table, const std::filesystem::
       mesh.triangle.push_back(tri);
     }
   }
+  // Moved as a whole (m), after the scale.
+  if (mr.has("translate")) {
+    const Vec<3> shift = to_vec<3>(mr.numbers("translate", 3));
+    if (!shift.allFinite()) mr.fail("translate", "must be 3 finite numbers, m");
+    for (auto& v : mesh.vertex) v += shift;
+  }
+  // Turned about the centre of its bounding box (its axes; as a box's).
+  if (mr.has("rotation")) w.axes = read_box_rotation<D>(mr);
   mr.finish();
   // Its own frame: about the centre of its bounding box.
   Vec<3> lo = Vec<3>::Constant(std::numeric_limits<double>::infinity());
@@ -313,7 +324,25 @@ void read_mesh(TableReader& r, const toml::table& table, const std::filesystem::
     mr.fail(mr.has("file") ? "file" : "triangles", fmt::format("the mesh cannot be used: {}", why));
   w.shape = WallShape::mesh;
   for (int k = 0; k < D; ++k) w.point[k] = centre[k];
+  // Where it stands, turned.
+  Vec<3> world_lo = Vec<3>::Constant(std::numeric_limits<double>::infinity());
+  Vec<3> world_hi = -world_lo;
+  for (const auto& v : mesh.vertex) {
+    Vec<3> x = centre;
+    for (int k = 0; k < D; ++k)
+      for (int j = 0; j < D; ++j) x[k] += w.axes(k, j) * v[j];
+    world_lo = world_lo.cwiseMin(x);
+    world_hi = world_hi.cwiseMax(x);
+  }
+  const std::string note = fmt::format(
+      "{}: wall \"{}\" is a mesh of {} facets ({} vertices{}), area {:.6g} m^2, from ({:.6g}, {:.6g}, "
+      "{:.6g}) "
+      "to ({:.6g}, {:.6g}, {:.6g}) m",
+      r.where(), w.name, mesh.triangle.size(), mesh.vertex.size(),
+      mr.has("file") ? ", from " + mr.string("file") : std::string(), mesh.area(), world_lo[0], world_lo[1],
+      world_lo[2], world_hi[0], world_hi[1], world_hi[2]);
   w.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
+  return note;
 }
 
 /// A wall's `oscillation` (none if not given): a harmonic translation on top
@@ -1002,7 +1031,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     } else if (const toml::table* ct = r.optional_table("cylinder")) {
       read_cylinder<D>(r, *ct, w);
     } else if (const toml::table* mt = r.optional_table("mesh")) {
-      read_mesh<D>(r, *mt, base, w);
+      scene.notes.push_back(read_mesh<D>(r, *mt, base, w));
     } else {
       if (!r.has("point") && !r.has("normal")) {
         r.fail_table(

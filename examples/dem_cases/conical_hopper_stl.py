@@ -20,7 +20,7 @@ rings = [(ORIFICE, 0.0), (RADIUS, cone_top), (RADIUS, TOP)]
 
 def corner(ring, k):
     r, z = rings[ring]
-    a = 2.0 * math.pi * k / SIDES
+    a = 2.0 * math.pi * (k % SIDES) / SIDES  # the seam closes on the first corner
     return (r * math.cos(a), r * math.sin(a), z)
 
 

@@ -42,6 +42,9 @@ scene="$src/examples/column_settling/column.toml"
   && ok "check accepts a scene with a box wall" || bad "check: box wall"
 "$exe" check "$src/examples/dem_cases/rotating_drum.toml" | grep -q "OK (3D, 450 particles, 1 wall, 2 stages" \
   && ok "check counts one wall in the singular" || bad "check: one wall"
+"$exe" check "$src/examples/dem_cases/conical_hopper.toml" \
+  | grep -q '^  note: \[\[wall\]\] #1: wall "hopper" is a mesh of 192 facets (144 vertices, from conical_hopper.stl), area 0.00' \
+  && ok "check says what a mesh wall's file made" || bad "check: mesh wall ($("$exe" check "$src/examples/dem_cases/conical_hopper.toml" 2>&1 | grep mesh))"
 "$exe" check "$scene" | grep -q "^  grains: all d = 1 mm$" \
   && ok "check gives the grains' sizes" || bad "check: grains ($("$exe" check "$scene" | sed -n 2p))"
 "$exe" check "$src/examples/fluid_cases/graded_sand_seepage.toml" \

@@ -768,6 +768,39 @@ class Silo(unittest.TestCase):
         np.testing.assert_array_equal(model.radii, final[:, 2])
 
 
+class MeshWall(unittest.TestCase):
+    """examples/dem_cases/conical_hopper.toml: its hopper is a mesh wall of
+    192 facets read from an STL file in mm; model.walls describes it, with
+    the area of the faceted surface worked out from its geometry."""
+
+    def test_the_hopper_is_a_mesh_of_its_facets(self):
+        scene = os.path.join(SOURCE, "examples", "dem_cases", "conical_hopper.toml")
+        model = darcydem.load(scene)
+        hopper = next(w for w in model.walls if w["name"] == "hopper")
+        self.assertEqual(hopper["shape"], "mesh")
+        self.assertEqual(hopper["facets"], 192)
+        # 48 sides: a cylinder of radius 15 mm from the cone's top to 45 mm,
+        # on a cone from radius 6 mm at z = 0 narrowing at 30 degrees. Each
+        # side of the cylinder a rectangle, of the cone an isosceles
+        # trapezoid between chords 2 r sin(pi / 48).
+        sides = 48
+        chord = lambda r: 2.0 * r * math.sin(math.pi / sides)
+        cone_top = 9.0 / math.tan(math.radians(30.0))
+        cylinder = sides * chord(15.0) * (45.0 - cone_top)
+        slant = math.hypot(9.0 * math.cos(math.pi / sides), cone_top)
+        cone = sides * 0.5 * (chord(6.0) + chord(15.0)) * slant
+        # The file keeps 9 digits: 1e-8 of the area.
+        self.assertAlmostEqual(hopper["area"], (cylinder + cone) * 1e-6, delta=1e-8 * (cylinder + cone) * 1e-6)
+        # Its point is the middle of its bounding box (the file's z from 0
+        # to 45 mm, x and y +-15 mm).
+        np.testing.assert_allclose(hopper["point"], [0.0, 0.0, 0.0225], atol=1e-12)
+        self.assertEqual(len(hopper["axes"]), 3)
+        # The grains rained in land on it: after 0.1 s some press on the cone.
+        model.step(round(0.1 / model.time_step))
+        hopper = next(w for w in model.walls if w["name"] == "hopper")
+        self.assertLess(hopper["force"][2], 0.0)
+
+
 class Pluviation(unittest.TestCase):
     """examples/dem_cases/pluviation.toml, its rain stage alone: the inlet
     adds grains while Python steps, as it does in the program's run."""

@@ -409,6 +409,24 @@ TEST(SceneErrors, MeshWallsAreChecked) {
     EXPECT_LT((w.point - Vec<3>(0.002, 0.0, 0.002)).norm(), 1e-15);
     EXPECT_NEAR(w.mesh->area(), 0.004 * 0.004, 1e-18);
   }
+  {
+    // Moved by 1 mm along x and turned a quarter turn about z round the
+    // centre of its box: the square now stands across y, at y = 0, centred
+    // on x = 3 mm.
+    const std::string moved = replace(
+        good, "[0, 2, 3]] }",
+        "[0, 2, 3]], translate = [0.001, 0.0, 0.0], rotation = { axis = [0.0, 0.0, 1.0], angle = 90.0 } }");
+    ASSERT_EQ(load_error(moved), "");
+    const auto scene = built_scene<3>(moved);
+    const auto& w = scene.simulation.walls.back();
+    EXPECT_LT((w.point - Vec<3>(0.003, 0.0, 0.002)).norm(), 1e-15);
+    const auto touch = w.touch(Vec<3>(0.0045, 0.0005, 0.001));
+    EXPECT_NEAR(touch.gap, 0.0005, 1e-15);
+    EXPECT_LT((touch.normal - Vec<3>(0.0, 1.0, 0.0)).norm(), 1e-12);
+    EXPECT_NE(load_error(replace(moved, "translate = [0.001, 0.0, 0.0]", "translate = [0.001, 0.0]"))
+                  .find("mesh key 'translate'"),
+              std::string::npos);
+  }
   auto msg = load_error(replace(good, "[0, 2, 3]", "[0, 2, 4]"));
   EXPECT_NE(msg.find("[[wall]] #2 mesh key 'triangles': vertex number 4 is not one of 0 .. 3"),
             std::string::npos)
