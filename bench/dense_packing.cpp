@@ -8,8 +8,9 @@
 // Counters: particle_steps_per_second, bytes_per_particle (arrays held by
 // the simulation), peak_rss_bytes. Also the time to write and read a
 // checkpoint of the stack (BM_Checkpoint), the stack cemented by
-// contact bonds (BM_BondedPacking), and with the energy budget tracked
-// (BM_EnergyTracking). Write JSON with
+// contact bonds (BM_BondedPacking), with the energy budget tracked
+// (BM_EnergyTracking), and in a box of triangle meshes instead of planes
+// (BM_MeshBox). Write JSON with
 //   bench_dense_packing --benchmark_out=bench/results/dense_packing.json
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -21,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 
 #include "darcydem/output/checkpoint_archive.hpp"
 #include "packing.hpp"
@@ -166,6 +168,66 @@ void BM_EnergyTracking(benchmark::State& state) {
   for (auto _ : state) sim.advance(kStepsPerIteration);
   report(state, sim, threads, builds0);
 }
+
+/// A mesh wall: the rectangle origin + s u + t v (s, t in [0, 1]) in n_u x
+/// n_v squares, each cut in two; its frame at the origin of the world.
+darcydem::Wall<3> rectangle_mesh(const Vec<3>& origin, const Vec<3>& u, const Vec<3>& v, int n_u, int n_v) {
+  auto mesh = std::make_shared<darcydem::TriangleMesh>();
+  for (int j = 0; j <= n_v; ++j)
+    for (int i = 0; i <= n_u; ++i)
+      mesh->vertex.push_back(origin + (double(i) / n_u) * u + (double(j) / n_v) * v);
+  auto id = [n_u](int i, int j) { return static_cast<std::uint32_t>(j * (n_u + 1) + i); };
+  for (int j = 0; j < n_v; ++j)
+    for (int i = 0; i < n_u; ++i) {
+      mesh->triangle.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      mesh->triangle.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  if (const std::string why = mesh->finish(); !why.empty()) throw std::logic_error(why);
+  darcydem::Wall<3> w;
+  w.shape = darcydem::WallShape::mesh;
+  w.mesh = std::move(mesh);
+  return w;
+}
+
+// The FCC stack in its box of five planes (range(2) = 0), or of five flat
+// meshes on the same planes (1) in squares of 2 mm (two grain diameters;
+// 2 x 65^2 facets on the floor), back to back: what a mesh wall's contacts
+// cost against a plane's. The grains against the walls (about 10 % of them)
+// each touch a few facets' candidates, and the nearest-first rule sorts them.
+void BM_MeshBox(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(1));
+  omp_set_num_threads(threads);
+  auto sim = make_packing(state.range(0));
+  if (state.range(2) == 1) {
+    double side = 0.0;
+    double top = 0.0;
+    for (const auto& w : sim.walls)
+      if (w.normal[0] < 0.0) side = w.point[0];
+    for (const auto& x : sim.particles.position) top = std::max(top, x[2]);
+    top += 2e-3;
+    const int n = static_cast<int>(std::ceil(side / 2e-3));
+    const int h = static_cast<int>(std::ceil(top / 2e-3));
+    sim.walls.clear();
+    sim.walls.push_back(rectangle_mesh(Vec<3>(0, 0, 0), Vec<3>(side, 0, 0), Vec<3>(0, side, 0), n, n));
+    sim.walls.push_back(rectangle_mesh(Vec<3>(0, 0, 0), Vec<3>(0, side, 0), Vec<3>(0, 0, top), n, h));
+    sim.walls.push_back(rectangle_mesh(Vec<3>(side, 0, 0), Vec<3>(0, side, 0), Vec<3>(0, 0, top), n, h));
+    sim.walls.push_back(rectangle_mesh(Vec<3>(0, 0, 0), Vec<3>(side, 0, 0), Vec<3>(0, 0, top), n, h));
+    sim.walls.push_back(rectangle_mesh(Vec<3>(0, side, 0), Vec<3>(side, 0, 0), Vec<3>(0, 0, top), n, h));
+    sim.prepare();
+    std::size_t facets = 0;
+    for (const auto& w : sim.walls) facets += w.mesh->triangle.size();
+    state.counters["facets"] = static_cast<double>(facets);
+  }
+  const auto builds0 = sim.list_builds();
+  for (auto _ : state) sim.advance(kStepsPerIteration);
+  report(state, sim, threads, builds0);
+}
+
+BENCHMARK(BM_MeshBox)
+    ->ArgsProduct({{100'000}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
 
 BENCHMARK(BM_EnergyTracking)
     ->ArgsProduct({{100'000}, {1, 2}, {0, 1}})
