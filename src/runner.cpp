@@ -351,7 +351,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         hi = Vec<D>::Zero();
       }
       const std::string wname = fmt::format("walls_{:05d}.vtu", pos.snapshot_index);
-      write_walls_vtu<D>((out / wname).string(), sim.walls, lo, hi);
+      const auto facet_forces = sim.facet_forces();
+      write_walls_vtu<D>((out / wname).string(), sim.walls, lo, hi, &facet_forces);
       wall_series.add(sim.time, wname);
     }
     if (scene.output.contacts) {

@@ -947,6 +947,20 @@ double Simulation<D>::mean_coordination() const {
 }
 
 template <int D>
+std::vector<std::vector<Vec<D>>> Simulation<D>::facet_forces() const {
+  std::vector<std::vector<Vec<D>>> out(walls.size());
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    if (walls[w].is_mesh()) out[w].assign(walls[w].mesh->triangle.size(), Vec<D>::Zero());
+  }
+  const auto& W = wall_list_;
+  for (std::size_t k = 0; k < W.wall.size(); ++k) {
+    auto& facets = out[W.wall[k]];
+    if (!facets.empty()) facets[W.facet[k]] -= W.force_on_particle[k];
+  }
+  return out;
+}
+
+template <int D>
 double Simulation<D>::max_overlap() const {
   double m = 0.0;
   for_each_touching(particles, list_, periodic,

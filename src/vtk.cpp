@@ -82,12 +82,14 @@ void write_particles_vtu(const std::string& path, const ParticleData<D>& p,
 
 template <int D>
 void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls, const Vec<D>& lo,
-                     const Vec<D>& hi) {
+                     const Vec<D>& hi, const std::vector<std::vector<Vec<D>>>* facet_forces) {
   // Each wall's corners (as 3D points) and VTK cell type.
   std::vector<Vec<3>> points;
   std::vector<int> offsets;
   std::vector<int> types;
   std::vector<std::size_t> cell_wall;  // the wall each cell draws (a mesh: one cell a facet)
+  std::vector<Vec<D>> cell_force;      // the force on it, N
+  std::vector<double> cell_stress;     // a facet's normal stress, Pa (0 for other walls)
   auto lift = [](const Vec<D>& x) {
     Vec<3> y = Vec<3>::Zero();
     for (int k = 0; k < D; ++k) y[k] = x[k];
@@ -100,11 +102,19 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
     if constexpr (D == 3) {
       if (w.is_mesh()) {
         // Its facets, one triangle each, where the wall stands now.
-        for (const auto& t : w.mesh->triangle) {
+        const bool shared = facet_forces != nullptr && (*facet_forces)[wi].size() == w.mesh->triangle.size();
+        for (std::size_t f = 0; f < w.mesh->triangle.size(); ++f) {
+          const auto& t = w.mesh->triangle[f];
           for (auto v : t) points.push_back(Vec<3>(w.point + w.axes * w.mesh->vertex[v]));
           types.push_back(5);  // VTK_TRIANGLE
           offsets.push_back(static_cast<int>(points.size()));
           cell_wall.push_back(wi);
+          cell_force.push_back(shared ? (*facet_forces)[wi][f] : w.force);
+          const Vec<3>& a = w.mesh->vertex[t[0]];
+          const double area =
+              0.5 * cross(Vec<3>(w.mesh->vertex[t[1]] - a), Vec<3>(w.mesh->vertex[t[2]] - a)).norm();
+          cell_stress.push_back(
+              shared ? std::abs(cell_force.back().dot(w.axes * w.mesh->facet_normal[f])) / area : 0.0);
         }
         continue;
       }
@@ -171,6 +181,8 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
     }
     offsets.push_back(static_cast<int>(points.size()));
     cell_wall.push_back(wi);
+    cell_force.push_back(w.force);
+    cell_stress.push_back(0.0);
   }
   try {
     auto out = fmt::output_file(path);
@@ -185,8 +197,10 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
     out.print("        <DataArray type=\"Int32\" Name=\"wall_id\" format=\"ascii\">\n");
     for (std::size_t w : cell_wall) out.print("{}\n", w);
     out.print("        </DataArray>\n");
-    write_vector_array<D>(out, "force", cell_wall.size(),
-                          [&](std::size_t c) { return walls[cell_wall[c]].force; });
+    write_vector_array<D>(out, "force", cell_wall.size(), [&](std::size_t c) { return cell_force[c]; });
+    out.print("        <DataArray type=\"Float64\" Name=\"normal_stress\" format=\"ascii\">\n");
+    for (double x : cell_stress) out.print("{:.17g}\n", x);
+    out.print("        </DataArray>\n");
     write_vector_array<D>(out, "velocity", cell_wall.size(),
                           [&](std::size_t c) { return walls[cell_wall[c]].translation_velocity(); });
     out.print("      </CellData>\n      <Cells>\n");
@@ -348,9 +362,9 @@ template void write_contacts_vtu<2>(const std::string&, const ParticleData<2>&,
 template void write_contacts_vtu<3>(const std::string&, const ParticleData<3>&,
                                     const std::vector<ContactRecord<3>>&);
 template void write_walls_vtu<2>(const std::string&, const std::vector<Wall<2>>&, const Vec<2>&,
-                                 const Vec<2>&);
+                                 const Vec<2>&, const std::vector<std::vector<Vec<2>>>*);
 template void write_walls_vtu<3>(const std::string&, const std::vector<Wall<3>>&, const Vec<3>&,
-                                 const Vec<3>&);
+                                 const Vec<3>&, const std::vector<std::vector<Vec<3>>>*);
 template void write_fluid_vti<2>(const std::string&, const PoreFluid<2>&,
                                  const std::vector<Eigen::Matrix<double, 2, 2>>*);
 template void write_fluid_vti<3>(const std::string&, const PoreFluid<3>&,

@@ -83,6 +83,16 @@ TEST(WallsVtu, MeshFacetsAreTriangles) {
   floor.normal = Vec<3>(0.0, 0.0, 1.0);
   const std::string path = temp_file("walls_mesh_");
   write_walls_vtu<3>(path, {lid, floor}, Vec<3>(-1, -1, 0), Vec<3>(1, 1, 2));
+  // With the force on each facet: facet 1 (area 2 m^2) takes (0.5, 0, 2.5) N.
+  const std::vector<std::vector<Vec<3>>> shares = {{Vec<3>(-0.5, 0.0, 0.5), Vec<3>(0.5, 0.0, 2.5)}, {}};
+  const std::string shared_path = temp_file("walls_mesh_shared_");
+  write_walls_vtu<3>(shared_path, {lid, floor}, Vec<3>(-1, -1, 0), Vec<3>(1, 1, 2), &shares);
+  const std::string shared = read_all(shared_path);
+  std::filesystem::remove(shared_path);
+  EXPECT_EQ(testing::vtk_array(shared, "force"), (std::vector<double>{-0.5, 0, 0.5, 0.5, 0, 2.5, 0, 0, 0}));
+  // The normal part over the area: 0.5 / 2 and 2.5 / 2 Pa (the facets lie in
+  // z = 2; turning them about z keeps their normal); 0 on the plane.
+  EXPECT_EQ(testing::vtk_array(shared, "normal_stress"), (std::vector<double>{0.25, 1.25, 0.0}));
   const std::string text = read_all(path);
   std::filesystem::remove(path);
   EXPECT_NE(text.find("NumberOfPoints=\"10\" NumberOfCells=\"3\""), std::string::npos);

@@ -122,6 +122,18 @@ TEST(MeshWall, ASphereRestsOnAFlatMeshAsOnAPlane) {
     // The weight on the floor, to the oscillation's amplitude (none at rest:
     // round-off).
     EXPECT_NEAR(-on_mesh.walls[0].force[2], m * 9.81, 1e-9 * m * 9.81) << "at " << spot[0] << ", " << spot[1];
+    // All of it on the one facet the contact is on, which lies under the
+    // sphere's centre (the centre's projection in it or on its edge).
+    const auto shares = on_mesh.facet_forces()[0];
+    int loaded = 0;
+    for (std::size_t f = 0; f < shares.size(); ++f) {
+      if (shares[f] == Vec<3>::Zero()) continue;
+      ++loaded;
+      EXPECT_EQ(shares[f], on_mesh.walls[0].force);
+      const Vec<3> under(on_mesh.particles.position[0][0], on_mesh.particles.position[0][1], 0.0);
+      EXPECT_LT((on_mesh.walls[0].mesh->closest_point(f, under) - under).norm(), 1e-15);
+    }
+    EXPECT_EQ(loaded, 1);
   }
 }
 

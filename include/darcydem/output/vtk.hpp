@@ -36,10 +36,13 @@ void write_contacts_vtu(const std::string& path, const ParticleData<D>& particle
 /// velocity as cell data. A box is a hexahedron in 3D and a quad in 2D
 /// (flat for a plate or a segment); an infinite plane is drawn as a square
 /// in 3D or a line in 2D, centred on the point of the plane nearest the
-/// centre of [lo, hi] and as wide as 1.1 times that box's diagonal.
+/// centre of [lo, hi] and as wide as 1.1 times that box's diagonal. A mesh
+/// is a triangle a facet; with `facet_forces` (Simulation::facet_forces)
+/// each facet's cell has the force on that facet, and `normal_stress` (Pa)
+/// its normal part over the facet's area (0 on the cells of other walls).
 template <int D>
 void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls, const Vec<D>& lo,
-                     const Vec<D>& hi);
+                     const Vec<D>& hi, const std::vector<std::vector<Vec<D>>>* facet_forces = nullptr);
 
 /// The pore fluid's cell fields as VTK ImageData (.vti), or RectilinearGrid
 /// (.vtr, the faces' coordinates) when an axis is graded: excess pressure,

@@ -197,6 +197,10 @@ class Simulation {
   /// them (record_contact_forces), else recomputed as contact_stress does.
   [[nodiscard]] std::vector<ContactRecord<D>> contact_forces() const;
   [[nodiscard]] const VerletList<D>& pair_list() const { return list_; }
+  /// For each wall, the force the particles put on each of its facets at the
+  /// last force evaluation (N; empty for a wall that is not a mesh): the
+  /// wall's force shared out by the facet each contact was on.
+  [[nodiscard]] std::vector<std::vector<Vec<D>>> facet_forces() const;
   /// The particle-wall candidates with their histories and last forces.
   [[nodiscard]] const WallContactList<D>& wall_contacts() const { return wall_list_; }
   [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
