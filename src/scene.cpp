@@ -254,6 +254,7 @@ std::string read_mesh(TableReader& r, const toml::table& table, const std::files
   }
   TableReader mr(table, r.where() + " mesh", r.file());
   TriangleMesh mesh;
+  std::size_t slivers = 0;
   if (mr.has("file") == mr.has("vertices")) {
     mr.fail_table(
         "give 'file' (an STL file, ASCII or binary, relative to the scene) or 'vertices' = [[x, y, z], ...] "
@@ -268,6 +269,8 @@ std::string read_mesh(TableReader& r, const toml::table& table, const std::files
     } catch (const std::runtime_error& e) {
       mr.fail("file", e.what());
     }
+    // CAD tessellations leave slivers of no area: they take no load.
+    slivers = mesh.drop_slivers();
   } else {
     if (mr.has("scale")) mr.fail("scale", "scales an STL file; give 'vertices' in m");
     auto rows = [&](std::string_view key, const char* what) {
@@ -336,11 +339,11 @@ std::string read_mesh(TableReader& r, const toml::table& table, const std::files
   }
   const std::string note = fmt::format(
       "{}: wall \"{}\" is a mesh of {} facets ({} vertices{}), area {:.6g} m^2, from ({:.6g}, {:.6g}, "
-      "{:.6g}) "
-      "to ({:.6g}, {:.6g}, {:.6g}) m",
+      "{:.6g}) to ({:.6g}, {:.6g}, {:.6g}) m{}",
       r.where(), w.name, mesh.triangle.size(), mesh.vertex.size(),
       mr.has("file") ? ", from " + mr.string("file") : std::string(), mesh.area(), world_lo[0], world_lo[1],
-      world_lo[2], world_hi[0], world_hi[1], world_hi[2]);
+      world_lo[2], world_hi[0], world_hi[1], world_hi[2],
+      slivers > 0 ? fmt::format("; {} facets of no area in the file left out", slivers) : std::string());
   w.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
   return note;
 }

@@ -13,6 +13,25 @@
 
 namespace darcydem {
 
+namespace {
+/// Whether a facet has no area worth the name: its normal below round-off
+/// of its longest edge squared.
+bool is_sliver(const Vec<3>& a, const Vec<3>& b, const Vec<3>& c) {
+  const Vec<3> n = cross(Vec<3>(b - a), Vec<3>(c - a));
+  const double scale = std::max({(b - a).squaredNorm(), (c - a).squaredNorm(), (c - b).squaredNorm()});
+  return !(n.norm() > 1e-12 * scale);
+}
+}  // namespace
+
+std::size_t TriangleMesh::drop_slivers() {
+  const std::size_t before = triangle.size();
+  std::erase_if(triangle, [&](const std::array<std::uint32_t, 3>& t) {
+    return t[0] < vertex.size() && t[1] < vertex.size() && t[2] < vertex.size() &&
+           is_sliver(vertex[t[0]], vertex[t[1]], vertex[t[2]]);
+  });
+  return before - triangle.size();
+}
+
 std::string TriangleMesh::finish() {
   if (triangle.empty()) return "it has no facets";
   if (vertex.size() >= std::numeric_limits<std::uint32_t>::max()) return "it has too many vertices";
@@ -32,12 +51,9 @@ std::string TriangleMesh::finish() {
     const Vec<3>& a = vertex[triangle[f][0]];
     const Vec<3>& b = vertex[triangle[f][1]];
     const Vec<3>& c = vertex[triangle[f][2]];
-    const Vec<3> n = cross(Vec<3>(b - a), Vec<3>(c - a));
-    const double scale = std::max({(b - a).squaredNorm(), (c - a).squaredNorm(), (c - b).squaredNorm()});
     // A sliver thinner than round-off has no normal worth the name.
-    if (!(n.norm() > 1e-12 * scale))
-      return fmt::format("facet {} has no area (its corners are in a line)", f);
-    facet_normal[f] = n.normalized();
+    if (is_sliver(a, b, c)) return fmt::format("facet {} has no area (its corners are in a line)", f);
+    facet_normal[f] = cross(Vec<3>(b - a), Vec<3>(c - a)).normalized();
     const Vec<3> flo = a.cwiseMin(b).cwiseMin(c);
     const Vec<3> fhi = a.cwiseMax(b).cwiseMax(c);
     lo = lo.cwiseMin(flo);

@@ -481,6 +481,21 @@ TEST(SceneErrors, MeshWallsAreChecked) {
     EXPECT_EQ(w.mesh->vertex.size(), 4u);  // the corners the facets share, once
     EXPECT_NEAR(w.mesh->area(), 0.004 * 0.004, 1e-18);
   }
+  // A sliver (corners in a line), as CAD tessellations leave: left out,
+  // and the note says so.
+  std::ofstream(stl)
+      << "solid side\n facet normal -1 0 0\n  outer loop\n   vertex 2 -2 0\n   vertex 2 2 0\n"
+         "   vertex 2 2 4\n  endloop\n endfacet\n facet normal 0 0 0\n  outer loop\n   vertex 2 "
+         "-2 0\n   vertex 2 0 0\n   vertex 2 2 0\n  endloop\n endfacet\nendsolid side\n";
+  ASSERT_EQ(load_error(from_file), "");
+  {
+    const auto scene = built_scene<3>(from_file);
+    EXPECT_EQ(scene.simulation.walls.back().mesh->triangle.size(), 1u);
+    bool noted = false;
+    for (const auto& n : scene.notes)
+      noted = noted || n.find("; 1 facets of no area in the file left out") != std::string::npos;
+    EXPECT_TRUE(noted);
+  }
   msg = load_error(replace(from_file, "scale = 0.001", "scale = -1.0"));
   EXPECT_NE(msg.find("mesh key 'scale': must be > 0: the file's unit in m"), std::string::npos) << msg;
   std::ofstream(stl) << "solid side\n facet normal -1 0 0\n  outer loop\n   vertex 2 -2 0\n   vertec 2 2 0\n";

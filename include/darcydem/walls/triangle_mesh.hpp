@@ -25,6 +25,11 @@ struct TriangleMesh {
   /// vertex index out of range, a facet of zero area, a vertex not finite).
   [[nodiscard]] std::string finish();
 
+  /// Removes the facets of no area (corners in a line, to round-off: the
+  /// slivers a CAD program's tessellation leaves in STL files); returns how
+  /// many. Call before finish().
+  std::size_t drop_slivers();
+
   /// The point of facet f nearest to x (both in the wall's own frame).
   [[nodiscard]] Vec<3> closest_point(std::size_t f, const Vec<3>& x) const;
 
