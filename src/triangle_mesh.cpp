@@ -169,10 +169,14 @@ TriangleMesh::Nearest TriangleMesh::nearest(const Vec<3>& x) const {
   return best;
 }
 
+double TriangleMesh::facet_area(std::size_t f) const {
+  const auto& t = triangle[f];
+  return 0.5 * cross(Vec<3>(vertex[t[1]] - vertex[t[0]]), Vec<3>(vertex[t[2]] - vertex[t[0]])).norm();
+}
+
 double TriangleMesh::area() const {
   double sum = 0.0;
-  for (const auto& t : triangle)
-    sum += 0.5 * cross(Vec<3>(vertex[t[1]] - vertex[t[0]]), Vec<3>(vertex[t[2]] - vertex[t[0]])).norm();
+  for (std::size_t f = 0; f < triangle.size(); ++f) sum += facet_area(f);
   return sum;
 }
 

@@ -110,11 +110,9 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
           offsets.push_back(static_cast<int>(points.size()));
           cell_wall.push_back(wi);
           cell_force.push_back(shared ? (*facet_forces)[wi][f] : w.force);
-          const Vec<3>& a = w.mesh->vertex[t[0]];
-          const double area =
-              0.5 * cross(Vec<3>(w.mesh->vertex[t[1]] - a), Vec<3>(w.mesh->vertex[t[2]] - a)).norm();
-          cell_stress.push_back(
-              shared ? std::abs(cell_force.back().dot(w.axes * w.mesh->facet_normal[f])) / area : 0.0);
+          cell_stress.push_back(shared ? std::abs(cell_force.back().dot(w.axes * w.mesh->facet_normal[f])) /
+                                             w.mesh->facet_area(f)
+                                       : 0.0);
         }
         continue;
       }

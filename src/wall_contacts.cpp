@@ -45,9 +45,10 @@ void WallContactList<D>::build(const std::vector<Vec<D>>& position, const std::v
       if constexpr (D == 3) {
         if (wall_w.is_mesh()) {
           // Each facet within reach, in the mesh's own frame.
-          wall_w.mesh->facets_near(wall_w.axes.transpose() * (position[i] - wall_w.point), reach, near);
+          const Vec<D> local = wall_w.to_local(position[i]);
+          wall_w.mesh->facets_near(local, reach, near);
           for (auto f : near) {
-            if (wall_w.facet_touch(position[i], f).gap < reach) add(w, f);
+            if (wall_w.facet_touch_local(local, f).gap < reach) add(w, f);
           }
           continue;
         }

@@ -68,8 +68,9 @@ void for_each_wall_touch(const std::vector<Wall<D>>& walls, List& list, std::siz
       }
     };
     std::uint32_t touching = 0;
+    const Vec<D> local = w.to_local(x);
     for (std::uint32_t j = 0; j < m; ++j) {
-      touch[j] = w.facet_touch(x, list.facet[k + j]);
+      touch[j] = w.facet_touch_local(local, list.facet[k + j]);
       set_counts(j, true);
       if (touch[j].gap < r) order[touching++] = j;
     }

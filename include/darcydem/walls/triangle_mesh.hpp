@@ -44,7 +44,8 @@ struct TriangleMesh {
   };
   [[nodiscard]] Nearest nearest(const Vec<3>& x) const;
 
-  /// Total area, m^2.
+  /// Facet f's area and the total, m^2.
+  [[nodiscard]] double facet_area(std::size_t f) const;
   [[nodiscard]] double area() const;
 
  private:

@@ -318,21 +318,28 @@ struct Wall {
   /// the contacts take each facet's, facet_touch, and mesh_touches.hpp).
   [[nodiscard]] Touch mesh_touch(const Vec<D>& x) const {
     if constexpr (D == 3) {
-      return facet_touch(x, mesh->nearest(axes.transpose() * (x - point)).facet);
+      const Vec<D> local = to_local(x);
+      return facet_touch_local(local, mesh->nearest(local).facet);
     } else {
       return {std::numeric_limits<double>::infinity(), Vec<D>::Zero()};
     }
   }
+  /// A point in the wall's own frame (a box's or mesh's axes about its point).
+  [[nodiscard]] Vec<D> to_local(const Vec<D>& x) const { return axes.transpose() * (x - point); }
   /// A mesh's touch on its facet f: from the facet's nearest point to x,
   /// towards x (on the facet itself, along its normal).
   [[nodiscard]] Touch facet_touch(const Vec<D>& x, std::uint32_t f) const {
+    return facet_touch_local(to_local(x), f);
+  }
+  /// The same from x in the wall's own frame (to_local), for a point
+  /// tried against many facets.
+  [[nodiscard]] Touch facet_touch_local(const Vec<D>& local, std::uint32_t f) const {
     if constexpr (D == 3) {
-      const Vec<D> local = axes.transpose() * (x - point);
       const Vec<D> out = local - mesh->closest_point(f, local);
       const double g = out.norm();
       return g > 0.0 ? Touch{g, axes * (out / g)} : Touch{0.0, axes * mesh->facet_normal[f]};
     } else {
-      (void)x;
+      (void)local;
       (void)f;
       return {std::numeric_limits<double>::infinity(), Vec<D>::Zero()};
     }
