@@ -9,8 +9,9 @@
 // the simulation), peak_rss_bytes. Also the time to write and read a
 // checkpoint of the stack (BM_Checkpoint), the stack cemented by
 // contact bonds (BM_BondedPacking), with the energy budget tracked
-// (BM_EnergyTracking), and in a box of triangle meshes instead of planes
-// (BM_MeshBox). Write JSON with
+// (BM_EnergyTracking), in a box of triangle meshes instead of planes
+// (BM_MeshBox), and paired into rigid dumbbells (BM_ClumpPacking). Write
+// JSON with
 //   bench_dense_packing --benchmark_out=bench/results/dense_packing.json
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -222,6 +223,60 @@ void BM_MeshBox(benchmark::State& state) {
   for (auto _ : state) sim.advance(kStepsPerIteration);
   report(state, sim, threads, builds0);
 }
+
+// The FCC stack with its spheres paired into rigid dumbbells (range(2) = 1:
+// in each cubic cell, the corner sphere with the face centre beside it in
+// the base, and the two other face centres, each pair touching), or the
+// same spheres loose (0), settled alike, back to back: what the clumps'
+// serial pass (gather, kicks, drift, placing the members) costs a step.
+darcydem::Simulation<3> make_clump_packing(std::int64_t target, bool clumps) {
+  using darcydem::ClumpShape;
+  Simulation<3> sim = bench::grain_simulation();
+  const double d = 1e-3;
+  const double r = 0.5 * d;
+  const double a = std::sqrt(2.0) * d;
+  const int n = std::max(2, static_cast<int>(std::cbrt(static_cast<double>(target) / 4.0 / 2.0)));
+  const Vec<3> basis[4] = {Vec<3>(0, 0, 0), Vec<3>(0.5 * a, 0.5 * a, 0), Vec<3>(0.5 * a, 0, 0.5 * a),
+                           Vec<3>(0, 0.5 * a, 0.5 * a)};
+  const auto low = darcydem::make_clump_shape<3>({basis[0], basis[1]}, {r, r});
+  const auto high = darcydem::make_clump_shape<3>({basis[2], basis[3]}, {r, r});
+  const auto upright = ClumpShape<3>::identity_orientation();
+  for (int k = 0; static_cast<std::int64_t>(sim.particles.size()) < target; ++k) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        if (static_cast<std::int64_t>(sim.particles.size()) + 4 > target) break;
+        const Vec<3> corner(r + i * a, r + j * a, r + k * a);
+        if (clumps) {
+          sim.clumps.add(sim.particles, low, d, corner + 0.5 * (basis[0] + basis[1]), upright, 2650.0, 0,
+                         false, Vec<3>::Zero());
+          sim.clumps.add(sim.particles, high, d, corner + 0.5 * (basis[2] + basis[3]), upright, 2650.0, 0,
+                         false, Vec<3>::Zero());
+        } else {
+          for (const auto& b : basis) sim.particles.add(corner + b, r, 2650.0, 0, false);
+        }
+      }
+    }
+  }
+  bench::close_box(sim, n * a + 0.5 * a);
+  for (int s = 0; s < 300; ++s) sim.step();
+  return sim;
+}
+
+void BM_ClumpPacking(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(1));
+  omp_set_num_threads(threads);
+  auto sim = make_clump_packing(state.range(0), state.range(2) == 1);
+  state.counters["clumps"] = static_cast<double>(sim.clumps.size());
+  const auto builds0 = sim.list_builds();
+  for (auto _ : state) sim.advance(kStepsPerIteration);
+  report(state, sim, threads, builds0);
+}
+
+BENCHMARK(BM_ClumpPacking)
+    ->ArgsProduct({{100'000}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
 
 BENCHMARK(BM_MeshBox)
     ->ArgsProduct({{100'000}, {1, 2}, {0, 1}})

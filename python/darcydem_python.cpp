@@ -747,6 +747,15 @@ class Model {
     return i;
   }
 
+  /// A clump's member moves with its clump: it cannot be set on its own.
+  void refuse_clump_member(std::size_t i, std::int64_t number, const char* call) {
+    if (sim().particles.fixed[i] != ParticleData<D>::clump_member) return;
+    throw py::value_error(
+        fmt::format("{}: particle {} is a member of clump {}, which moves it as a rigid body: it cannot be "
+                    "set on its own",
+                    call, number, sim().clumps.clump_of[i]));
+  }
+
   /// Fixes a particle (it keeps its velocity, driven, as the scene's fixed
   /// grains) or frees it (its mass and inertia from its material, its
   /// critical time step checked as add_particle's), between steps: YADE's
@@ -756,6 +765,7 @@ class Model {
     auto& s = sim();
     auto& p = s.particles;
     const std::size_t i = particle_index(number, "set_particle_fixed");
+    refuse_clump_member(i, number, "set_particle_fixed");
     if ((p.fixed[i] != 0) == fixed) return;
     auto kinetic = [&] {
       return 0.5 * p.velocity[i].squaredNorm() / p.inv_mass[i] +
@@ -800,6 +810,7 @@ class Model {
     auto& s = sim();
     auto& p = s.particles;
     const std::size_t i = particle_index(number, "set_particle_velocity");
+    refuse_clump_member(i, number, "set_particle_velocity");
     if (!velocity && angular_velocity.is_none())
       throw py::value_error(
           "set_particle_velocity: give velocity = [D numbers] (m/s) and or angular_velocity (rad/s: a number "
@@ -1306,6 +1317,41 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
       .def_property(
           "gravity", [](const M& s) { return as_tuple<D>(s.sim().gravity); },
           [](M& s, const std::vector<double>& g) { s.sim().gravity = as_vec<D>(g, "gravity"); }, "m/s^2")
+      .def_property_readonly(
+          "clumps",
+          [](const M& s) {
+            const auto& c = s.sim().clumps;
+            const auto& p = s.sim().particles;
+            py::list out;
+            for (std::size_t k = 0; k < c.size(); ++k) {
+              py::dict d;
+              d["position"] = as_tuple<D>(c.position[k]);
+              d["velocity"] = as_tuple<D>(c.velocity[k]);
+              if constexpr (D == 2) {
+                d["angle"] = c.orientation[k][0];
+                d["angular_velocity"] = c.angular_velocity[k][0];
+                d["inertia"] = c.inertia[k][0];
+              } else {
+                d["orientation"] = py::make_tuple(c.orientation[k][0], c.orientation[k][1],
+                                                  c.orientation[k][2], c.orientation[k][3]);
+                d["angular_velocity"] = as_tuple<D>(c.angular_velocity[k]);
+                d["inertia"] = as_tuple<D>(c.inertia[k]);
+              }
+              d["mass"] = c.mass[k];
+              d["force"] = as_tuple<D>(c.force[k]);
+              py::list members;
+              for (std::uint32_t m = c.first[k]; m < c.first[k + 1]; ++m)
+                members.append(p.id[c.member_index[m]]);
+              d["members"] = members;
+              out.append(d);
+            }
+            return out;
+          },
+          "the clumps (rigid bodies of particles), a dict each: position (its centre of mass, m), velocity, "
+          "orientation (3D: a unit quaternion w, x, y, z; 2D: angle, rad), angular_velocity (rad/s), mass "
+          "(kg), "
+          "inertia (principal moments, kg m^2), force (N: the last resultant), members (particle numbers, "
+          "model.ids)")
       .def_property_readonly(
           "walls",
           [](const M& s) {

@@ -332,7 +332,8 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   auto write_snapshot = [&] {
     const std::string name = fmt::format("particles_{:05d}.vtu", pos.snapshot_index);
     write_particles_vtu<D>((out / name).string(), sim.particles,
-                           fluid != nullptr ? &sim.field_forces() : nullptr);
+                           fluid != nullptr ? &sim.field_forces() : nullptr,
+                           sim.clumps.empty() ? nullptr : &sim.clumps.clump_of);
     series.add(sim.time, name);
     if (!sim.walls.empty()) {
       // Planes are drawn across the particles' box and the fluid grid's.

@@ -17,6 +17,7 @@
 #include "darcydem/generation/generators.hpp"
 #include "darcydem/neighbour/linked_cells.hpp"
 #include "darcydem/particles/grading.hpp"
+#include "darcydem/scene/scene_clumps.hpp"
 #include "darcydem/scene/scene_fluid.hpp"
 #include "darcydem/scene/scene_inlet.hpp"
 #include "darcydem/scene/scene_sizes.hpp"
@@ -42,9 +43,9 @@ void check_count_fits(const TableReader& r, std::string_view key, double count) 
   }
 }
 
-const std::vector<std::string> kTopLevel = {"simulation", "periodic", "material", "contact", "wall",
-                                            "particles",  "output",   "probe",    "stage",   "fluid",
-                                            "analysis",   "domain",   "inlet"};
+const std::vector<std::string> kTopLevel = {"simulation", "periodic", "material", "contact",       "wall",
+                                            "particles",  "output",   "probe",    "stage",         "fluid",
+                                            "analysis",   "domain",   "inlet",    "clump_template"};
 
 template <int D>
 Vec<D> to_vec(const std::vector<double>& v) {
@@ -782,6 +783,8 @@ void check_initial_overlaps(const Simulation<D>& sim, double tolerance,
   for (std::size_t i = 0; i < p.size(); ++i) {
     cells.for_each_near(cells.cell_of(p.position[i]), [&](std::uint32_t j) {
       if (j <= i) return;
+      const auto& clump_of = sim.clumps.clump_of;  // a clump's members may touch
+      if (!clump_of.empty() && clump_of[i] >= 0 && clump_of[i] == clump_of[j]) return;
       const double overlap =
           p.radius[i] + p.radius[j] - sim.periodic.shortest(p.position[j] - p.position[i]).norm();
       const double allowed = tolerance * std::min(p.radius[i], p.radius[j]);
@@ -1137,12 +1140,42 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     require_loaded_area<D>(r, sim.walls, i, sim.periodic);
   }
 
+  // [[clump_template]]: shapes the generators' `clump` key places.
+  std::map<std::string, ClumpShape<D>> clump_shapes;
+  std::vector<std::string> clump_names;
+  for_each_table(top, "clump_template", "clump_template", [&](TableReader& r, int) {
+    auto [name, shape] = read_clump_template<D>(r);
+    if (clump_shapes.count(name) != 0)
+      r.fail("name", fmt::format("\"{}\" is already a [[clump_template]]", name));
+    clump_shapes.emplace(name, std::move(shape));
+    clump_names.push_back(name);
+  });
+
   // [[particles]]
   std::vector<std::string> origin;
   for_each_table(top, "particles", "particles", [&](TableReader& r, int index) {
     const std::string gen = r.choice("generator", {"lattice", "column", "random", "csv"});
     const auto mat = materials.lookup(r, "material", r.string("material"));
     const bool fixed = r.boolean_or("fixed", false);
+    const ClumpShape<D>* clump = nullptr;
+    if (auto name = r.optional_string("clump")) {
+      auto it = clump_shapes.find(*name);
+      if (it == clump_shapes.end()) {
+        std::string hint;
+        if (auto near = did_you_mean(*name, clump_names); !near.empty())
+          hint = fmt::format(" (did you mean \"{}\"?)", near);
+        r.fail("clump", fmt::format("\"{}\" is not a [[clump_template]]'s name{}{}", *name, hint,
+                                    clump_names.empty() ? ": the scene has none" : ""));
+      }
+      if (sim.periodic.any())
+        r.fail("clump",
+               "clumps are not supported with [periodic] boundaries yet (their members would be "
+               "wrapped into the period one by one)");
+      if (top.has("domain"))
+        r.fail("clump",
+               "clumps are not supported with a [domain] yet (their members would be removed one by one)");
+      clump = &it->second;
+    }
     Packing<D> pk;
     if (gen == "lattice") {
       const Vec<D> lo = to_vec<D>(r.numbers("min", D));
@@ -1261,11 +1294,25 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         to_vec<D>(r.optional_numbers("velocity", D).value_or(std::vector<double>(D, 0.0)));
     if (pk.position.empty()) r.fail_table("made no particles (is the box smaller than one particle?)");
     const double density = sim.materials[mat].density;
+    if (clump != nullptr) {
+      const std::size_t added = add_clumps<D>(r, sim, *clump, pk, mat, fixed, velocity);
+      scene.notes.push_back(fmt::format(
+          "{}: {} clumps \"{}\" of {} {} each ({} particles), each in place of a grain of the generator's "
+          "size: its members' sizes are those the grading reports",
+          r.where(), pk.position.size(), *r.optional_string("clump"), clump->radius.size(),
+          D == 2 ? "discs" : "spheres", added));
+      for (std::size_t k = 0; k < added; ++k)
+        origin.push_back(fmt::format("{} ([[particles]] #{})", r.here(), index));
+      return;
+    }
+    if (r.has("orientation") || r.has("orientation_seed"))
+      r.fail(r.has("orientation") ? "orientation" : "orientation_seed", "orients clumps: give 'clump' too");
     for (std::size_t k = 0; k < pk.position.size(); ++k) {
       sim.particles.add(pk.position[k], pk.radius[k], density, mat, fixed, velocity);
       origin.push_back(fmt::format("{} ([[particles]] #{})", r.here(), index));
     }
   });
+  if (!sim.clumps.empty()) sim.clumps.refresh(sim.particles);
   if (sim.particles.size() == 0 && (!top.has("inlet") || top.has("fluid"))) {
     top.fail_table(top.has("inlet")
                        ? "needs at least one [[particles]] generator that makes particles: with a "
@@ -1742,6 +1789,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         p.quantity == ProbeQuantity::boundary_work || p.quantity == ProbeQuantity::damping_dissipation ||
         p.quantity == ProbeQuantity::contact_dissipation) {
       sim.track_energy = true;
+      if (!sim.clumps.empty())
+        r.fail("quantity", fmt::format("\"{}\" needs the energy budget, which does not count clumps yet", q));
     }
     scene.output.probes.push_back(p);
   });

@@ -38,6 +38,14 @@ void Simulation<D>::prepare() {
   rolling_ = contact_table.any_rolling();
   skin = skin_or_default();
   if (time_step <= 0.0) throw std::logic_error("time step not set");
+  if (!clumps.empty()) {
+    // Not yet: a clump's members would be wrapped into the period one by
+    // one, or removed from the domain one by one.
+    if (periodic.any())
+      throw std::invalid_argument("clumps: periodic boundaries are not supported with clumps");
+    if (has_domain) throw std::invalid_argument("clumps: a [domain] is not supported with clumps");
+    clumps.refresh(particles);
+  }
   check_periods();
   rebuild();
   compute_forces(Finish::none);
@@ -54,6 +62,8 @@ void Simulation<D>::advance(std::uint64_t count) {
   if (!prepared_) prepare();
   if (count == 0) return;
   const bool tracked = track_energy;
+  if (tracked && !clumps.empty())
+    throw std::invalid_argument("clumps: the energy budget does not count clumps yet (track_energy)");
   if (tracked && !energy.started) {
     energy.elastic_start = elastic_energy();
     energy.kinetic_start = kinetic_energy();
@@ -217,11 +227,13 @@ void Simulation<D>::rebuild() {
       compose(order);
     }
   }
+  if (!clumps.empty()) clumps.refresh(particles);
   const std::vector<std::uint32_t>* old_index = old.empty() ? nullptr : &old;
   // Bonds the build does not carry over (a removed grain's; a pair no
   // longer listed) are lost: counted as broken.
   const std::size_t bonds_before = list_.bonded.empty() ? 0 : bond_count();
-  list_.build(particles.position, particles.radius, skin, rolling_, old_index, periodic);
+  list_.build(particles.position, particles.radius, skin, rolling_, old_index, periodic,
+              clumps.empty() ? nullptr : &clumps.clump_of);
   wall_list_.build(particles.position, particles.radius, walls, skin, rolling_, old_index);
   if (bonds_before > 0) broken_bonds += bonds_before - bond_count();
   block_sums_.assign(static_cast<std::size_t>(list_.block_count()), {0.0, 0.0});
@@ -336,7 +348,11 @@ double Simulation<D>::kick_drift() {
     kick_group(first, half_dt);
     return drift_group(first, referenced);
   };
-  const double moved2 = max_over_index(groups, parallel_threshold / 4, one);
+  double moved2 = max_over_index(groups, parallel_threshold / 4, one);
+  if (!clumps.empty()) {
+    clumps.kick(particles, half_dt, damping.local, damping.viscous);
+    moved2 = std::max(moved2, clumps.drift(particles, time_step, list_.reference()));
+  }
   return std::sqrt(moved2);
 }
 
@@ -382,15 +398,28 @@ double Simulation<D>::compute_forces_for_law(Finish finish) {
 
 template <int D>
 double Simulation<D>::compute_forces(Finish finish) {
+  double moved = 0.0;
   switch (law_choice_) {
     case LawChoice::linear:
-      return compute_forces_for_law<LinearSpringDashpot>(finish);
+      moved = compute_forces_for_law<LinearSpringDashpot>(finish);
+      break;
     case LawChoice::hertz:
-      return compute_forces_for_law<HertzMindlin>(finish);
+      moved = compute_forces_for_law<HertzMindlin>(finish);
+      break;
     case LawChoice::mixed:
-      return compute_forces_for_law<MixedNormalLaw>(finish);
+      moved = compute_forces_for_law<MixedNormalLaw>(finish);
+      break;
   }
-  return 0.0;
+  if (clumps.empty()) return moved;
+  // The members' kicks were skipped and their drift was a straight line:
+  // their clumps now take the same steps and put them in place.
+  clumps.gather(particles);
+  if (finish == Finish::none) return moved;
+  const double half_dt = 0.5 * time_step;
+  clumps.kick(particles, half_dt, damping.local, damping.viscous);
+  if (finish == Finish::kick) return moved;
+  clumps.kick(particles, half_dt, damping.local, damping.viscous);
+  return std::max(moved, std::sqrt(clumps.drift(particles, time_step, list_.reference())));
 }
 
 template <int D>
@@ -866,7 +895,18 @@ double Simulation<D>::critical_time_step() const {
     const auto mat = particles.material[i];
     used[mat] = true;
     r_min[mat] = std::min(r_min[mat], particles.radius[i]);
-    if (particles.inv_mass[i] > 0.0) m_min[mat] = std::min(m_min[mat], 1.0 / particles.inv_mass[i]);
+    if (particles.inv_mass[i] > 0.0 && particles.fixed[i] != ParticleData<D>::clump_member)
+      m_min[mat] = std::min(m_min[mat], 1.0 / particles.inv_mass[i]);
+  }
+  // A clump's member moves with the clump: a contact on it drives the
+  // clump's mass and inertia, felt at its arm.
+  for (std::size_t c = 0; c < clumps.size(); ++c) {
+    if (clumps.fixed[c] != 0) continue;
+    for (std::uint32_t k = clumps.first[c]; k < clumps.first[c + 1]; ++k) {
+      const std::uint32_t i = clumps.member_index[k];
+      const auto mat = particles.material[i];
+      m_min[mat] = std::min(m_min[mat], clumps.contact_mass(c, k, particles.radius[i]));
+    }
   }
   std::vector<bool> wall_used(nm, false);
   for (const auto& w : walls) wall_used[w.material] = true;
@@ -983,8 +1023,14 @@ double Simulation<D>::unbalanced_force_ratio() const {
   double resultant = 0.0;
   std::size_t free_count = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.inv_mass[i] == 0.0) continue;
+    // A clump's members pass forces to each other: the clump's resultant counts.
+    if (p.inv_mass[i] == 0.0 || p.fixed[i] == ParticleData<D>::clump_member) continue;
     resultant += p.force[i].norm();
+    ++free_count;
+  }
+  for (std::size_t c = 0; c < clumps.size(); ++c) {
+    if (clumps.fixed[c] != 0) continue;
+    resultant += clumps.force[c].norm();
     ++free_count;
   }
   double contact = 0.0;

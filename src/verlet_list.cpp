@@ -33,7 +33,7 @@ std::vector<std::uint32_t> VerletList<D>::spatial_order(const std::vector<Vec<D>
 template <int D>
 void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector<double>& radius, double skin,
                           bool keep_rolling, const std::vector<std::uint32_t>* old_index,
-                          const PeriodicCell<D>& cell) {
+                          const PeriodicCell<D>& cell, const std::vector<std::int32_t>* group) {
   const auto n = static_cast<std::int64_t>(position.size());
   double r_max = 0.0;
   for (double r : radius) r_max = std::max(r_max, r);
@@ -45,8 +45,10 @@ void VerletList<D>::build(const std::vector<Vec<D>>& position, const std::vector
   auto for_each_partner = [&](std::int64_t i, auto&& emit) {
     const Vec<D>& xi = position[i];
     const double ri = radius[i] + skin;
+    const std::int32_t gi = group != nullptr ? (*group)[i] : -1;
     cells_.for_each_near(cells_.cell_of(xi), [&](std::uint32_t j) {
       if (j <= i) return;
+      if (gi >= 0 && (*group)[j] == gi) return;
       const double range = ri + radius[j];
       if (cell.shortest(position[j] - xi).squaredNorm() < range * range) emit(j);
     });

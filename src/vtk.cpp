@@ -40,7 +40,7 @@ void write_scalar_array(fmt::ostream& out, const char* type, const char* name, s
 
 template <int D>
 void write_particles_vtu(const std::string& path, const ParticleData<D>& p,
-                         const std::vector<Vec<D>>* fluid_force) {
+                         const std::vector<Vec<D>>* fluid_force, const std::vector<std::int32_t>* clump) {
   try {
     auto out = fmt::output_file(path);
     const std::size_t n = p.size();
@@ -69,6 +69,9 @@ void write_particles_vtu(const std::string& path, const ParticleData<D>& p,
         return p.angular_velocity[i];
       }
     });
+    if (clump != nullptr && clump->size() == n) {
+      write_scalar_array(out, "Int32", "clump", n, [&](std::size_t i) { return (*clump)[i]; });
+    }
     out.print("      </PointData>\n      <Cells>\n");
     out.print("        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\"></DataArray>\n");
     out.print("        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\"></DataArray>\n");
@@ -353,8 +356,10 @@ void write_contacts_vtu(const std::string& path, const ParticleData<D>& p,
   }
 }
 
-template void write_particles_vtu<2>(const std::string&, const ParticleData<2>&, const std::vector<Vec<2>>*);
-template void write_particles_vtu<3>(const std::string&, const ParticleData<3>&, const std::vector<Vec<3>>*);
+template void write_particles_vtu<2>(const std::string&, const ParticleData<2>&, const std::vector<Vec<2>>*,
+                                     const std::vector<std::int32_t>*);
+template void write_particles_vtu<3>(const std::string&, const ParticleData<3>&, const std::vector<Vec<3>>*,
+                                     const std::vector<std::int32_t>*);
 template void write_contacts_vtu<2>(const std::string&, const ParticleData<2>&,
                                     const std::vector<ContactRecord<2>>&);
 template void write_contacts_vtu<3>(const std::string&, const ParticleData<3>&,

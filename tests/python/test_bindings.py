@@ -395,6 +395,43 @@ class FluidBoundaries(unittest.TestCase):
         self.assertTrue(np.all(np.isfinite(small.positions)))
 
 
+class Clumps(unittest.TestCase):
+    """examples/dem_cases/clump_pour.toml: 100 dumbbells and 100 trimers."""
+
+    def setUp(self):
+        self.model = darcydem.load(os.path.join(SOURCE, "examples/dem_cases/clump_pour.toml"))
+
+    def test_members_stay_rigidly_apart_and_cannot_be_set_alone(self):
+        m = self.model
+        clumps = m.clumps
+        self.assertEqual(len(clumps), 200)
+        self.assertEqual(sorted({len(c["members"]) for c in clumps}), [2, 3])
+        row = {int(n): k for k, n in enumerate(m.ids)}
+
+        def distances():
+            x = m.positions
+            return [
+                math.dist(x[row[a]], x[row[b]]) for c in m.clumps for a in c["members"] for b in c["members"] if a < b
+            ]
+
+        # A clump's mass is its members' (they do not overlap), by hand from
+        # their radii and the density: round-off only.
+        r = m.radii
+        for c in clumps[:5]:
+            mass = sum(2650.0 * 4.0 / 3.0 * math.pi * r[row[n]] ** 3 for n in c["members"])
+            self.assertAlmostEqual(c["mass"], mass, delta=1e-12 * mass)
+        before = distances()
+        m.step(30000)  # 0.05 s: they fall, land, turn and knock each other
+        self.assertGreater(max(math.sqrt(sum(w * w for w in c["angular_velocity"])) for c in m.clumps), 1.0)
+        # Members keep their distances to round-off of positions of 0.02 m.
+        for d0, d in zip(before, distances()):
+            self.assertAlmostEqual(d, d0, delta=1e-15)
+        with self.assertRaisesRegex(ValueError, "member of clump"):
+            m.set_particle_velocity(int(m.ids[0]), velocity=[0.0, 0.0, 1.0])
+        with self.assertRaisesRegex(ValueError, "member of clump"):
+            m.set_particle_fixed(int(m.ids[0]), True)
+
+
 class CriticalStep(unittest.TestCase):
     """model.critical_time_step, the step "auto" takes its fraction of, and
     model.time_step set from Python."""

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <string>
 
 #include <unistd.h>
@@ -2273,6 +2274,55 @@ TEST(SceneErrors, BondStrengthScatterIsReadAndChecked) {
   msg = load_error(replace(good, "strength_weibull_modulus = 5.0, ", ""));
   EXPECT_NE(msg.find("key 'strength_seed': applies with 'strength_weibull_modulus'"), std::string::npos)
       << msg;
+}
+
+}  // namespace
+}  // namespace darcydem
+
+namespace darcydem {
+namespace {
+
+// [[clump_template]] and a generator's `clump`: a column of three grains
+// becomes three pairs of touching discs, each pair's bounding circle the
+// grain's (radius 0.5 mm: discs of 0.25 mm at +-0.25 mm), placed as given
+// with orientation "aligned". Bad templates and uses are refused at their key.
+TEST(SceneErrors, ClumpsAreChecked) {
+  const std::string pair =
+      "[[clump_template]]\nname = \"pair\"\ncircles = [[-1.0, 0.0, 1.0], [1.0, 0.0, 1.0]]\n\n";
+  const std::string good = replace(replace(kGood, "[[particles]]", pair + "[[particles]]"), "radius = 0.0005",
+                                   "radius = 0.0005\nclump = \"pair\"\norientation = \"aligned\"");
+  ASSERT_EQ(load_error(good), "");
+  {
+    const auto scene = built_scene<2>(good);
+    const auto& sim = scene.simulation;
+    ASSERT_EQ(sim.clumps.size(), 3u);
+    ASSERT_EQ(sim.particles.size(), 6u);
+    for (std::size_t i = 0; i < 6; ++i) {
+      EXPECT_NEAR(sim.particles.radius[i], 0.25e-3, 1e-18);
+      EXPECT_NEAR(std::abs(sim.particles.position[i].x()), 0.25e-3, 1e-18);
+    }
+    EXPECT_NEAR(sim.clumps.position[1].y(), 1.5e-3, 1e-18);
+    // The mass is the two discs' (per metre), the inertia theirs about the centre.
+    const double m = 2650.0 * std::numbers::pi * 0.25e-3 * 0.25e-3;
+    EXPECT_NEAR(sim.clumps.mass[0], 2.0 * m, 1e-12 * m);
+    EXPECT_NEAR(sim.clumps.inertia[0][0], 2.0 * (0.5 * m * 0.0625e-6 + m * 0.0625e-6), 1e-12 * m * 1e-7);
+  }
+  auto expect_error = [&](const std::string& text, const std::string& part) {
+    const std::string msg = load_error(text);
+    EXPECT_NE(msg.find(part), std::string::npos) << part << " | " << msg;
+  };
+  expect_error(replace(good, "clump = \"pair\"", "clump = \"pear\""), "did you mean \"pair\"");
+  expect_error(replace(good, "[1.0, 0.0, 1.0]]", "[0.5, 0.0, 1.0]]"), "members 1 and 2 overlap");
+  expect_error(replace(good, "[1.0, 0.0, 1.0]]", "[1.0, 0.0]]"), "member 2 must be [x, y, r]");
+  expect_error(replace(good, "[1.0, 0.0, 1.0]]", "[1.0, 0.0, 0.0]]"), "member 2: its radius must be > 0");
+  expect_error(replace(good, "circles =", "spheres ="), "'circles'");
+  expect_error(replace(good, "orientation = \"aligned\"", "orientation = \"upright\""), "orientation");
+  expect_error(replace(good, "orientation = \"aligned\"", "orientation = \"aligned\"\norientation_seed = 3"),
+               "seeds a random orientation");
+  expect_error(replace(good, "clump = \"pair\"\n", ""), "orients clumps: give 'clump' too");
+  expect_error(good + "\n[domain]\nmin = [-1.0, -1.0]\nmax = [1.0, 1.0]\n", "not supported with a [domain]");
+  expect_error(good + "\n[[probe]]\nname = \"g\"\nquantity = \"gravity_work\"\n", "energy budget");
+  expect_error(replace(good, "[[-1.0, 0.0, 1.0], [1.0, 0.0, 1.0]]", "[]"), "must be a non-empty array");
 }
 
 }  // namespace

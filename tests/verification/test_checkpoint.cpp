@@ -354,6 +354,21 @@ TEST(Checkpoint, ResumedHopperOfFacetsWritesTheSameFiles) {
   expect_resumed_run_writes_the_same_files<3>(scene, dir, 2, 50000, 1);
 }
 
+TEST(Checkpoint, ResumedClumpPourWritesTheSameFiles) {
+  // examples/dem_cases/clump_pour.toml for 0.05 s (29 500 steps), stopped
+  // at step 20 000 when the lowest clumps have landed and turn: each
+  // clump's place, orientation, velocities and last force and moment must
+  // come back, and its members be found again by their numbers.
+  const fs::path dir = fresh_dir("clump_pour");
+  fs::create_directories(dir);
+  const std::string text = darcydem::testing::scene_variant(
+      "examples/dem_cases/clump_pour.toml",
+      {{"name = \"settle\"\nduration = 1.5", "name = \"settle\"\nduration = 0.05"}});
+  const std::string scene = (dir / "clump_pour.toml").string();
+  std::ofstream(scene) << text;
+  expect_resumed_run_writes_the_same_files<3>(scene, dir, 1, 20000, 0);
+}
+
 TEST(Checkpoint, ResumedSiloWritesTheSameFilesAfterGrainsLeftTheDomain) {
   // examples/dem_cases/silo_discharge.toml with 300 discs, 0.2 s of filling
   // and 0.3 s of discharge (19 306 steps), stopped at step 15 000 (0.39 s),

@@ -48,10 +48,12 @@ class VerletList {
   /// Builds the list for the given particles, keeping old histories.
   /// old_index[i] (if given) is the index particle i had at the last build.
   /// With periodic axes a pair is listed once, at its partners' nearest
-  /// images (the positions must be wrapped into the period).
+  /// images (the positions must be wrapped into the period). With `group`
+  /// (one entry per particle), particles of the same group >= 0 (a clump's
+  /// members) are never paired.
   void build(const std::vector<Vec<D>>& position, const std::vector<double>& radius, double skin,
              bool keep_rolling, const std::vector<std::uint32_t>* old_index = nullptr,
-             const PeriodicCell<D>& cell = {});
+             const PeriodicCell<D>& cell = {}, const std::vector<std::int32_t>* group = nullptr);
 
   /// The particles in linked-cell order (cell by cell, x fastest), a
   /// permutation that makes neighbours close in memory.

@@ -3,6 +3,7 @@
 // angular velocity, force, id) and a .pvd series that ParaView opens. The
 // series file is rewritten after every snapshot, so it stays valid when a
 // run is interrupted.
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,10 +17,12 @@ namespace darcydem {
 
 /// The particles as VTK points (.vtu): radius, id, velocity, force,
 /// angular_velocity, and with `fluid_force` (one per particle, N) the pore
-/// fluid's force on each too.
+/// fluid's force on each too, and with `clump` (one per particle) the clump
+/// each is a member of (-1: none; Clumps::clump_of), to colour clumps by.
 template <int D>
 void write_particles_vtu(const std::string& path, const ParticleData<D>& particles,
-                         const std::vector<Vec<D>>* fluid_force = nullptr);
+                         const std::vector<Vec<D>>* fluid_force = nullptr,
+                         const std::vector<std::int32_t>* clump = nullptr);
 
 /// The contact network as VTK lines (.vtu), one per contact: from the first
 /// particle's centre to the other's (its nearest periodic image) or to the

@@ -17,7 +17,9 @@ struct ParticleData {
   std::vector<double> inv_mass;         ///< 1/kg (0 for fixed particles)
   std::vector<double> inv_inertia;      ///< 1/(kg m^2) (0 for fixed particles)
   std::vector<std::uint16_t> material;  ///< index into the material table
-  std::vector<std::uint8_t> fixed;      ///< 1: velocity prescribed, not integrated
+  /// 1: velocity prescribed, not integrated; clump_member: moved by its
+  /// clump (clumps.hpp). Either way the particle's own kick is skipped.
+  std::vector<std::uint8_t> fixed;
   // State.
   std::vector<Vec<D>> position;             ///< m
   std::vector<Vec<D>> velocity;             ///< m/s
@@ -27,6 +29,9 @@ struct ParticleData {
   /// N, added every step (user loads). Empty unless the user sizes it to N:
   /// most scenes have none, and an unused array still costs memory traffic.
   std::vector<Vec<D>> external_force;
+
+  /// The `fixed` value of a member of a clump.
+  static constexpr std::uint8_t clump_member = 2;
 
   [[nodiscard]] std::size_t size() const { return position.size(); }
 

@@ -16,6 +16,7 @@
 #include "darcydem/core/periodic_cell.hpp"
 #include "darcydem/core/vec.hpp"
 #include "darcydem/neighbour/verlet_list.hpp"
+#include "darcydem/particles/clumps.hpp"
 #include "darcydem/particles/particle_data.hpp"
 #include "darcydem/simulation/energy_budget.hpp"
 #include "darcydem/simulation/force_field.hpp"
@@ -52,6 +53,10 @@ class Simulation {
  public:
   using Moment = Eigen::Matrix<double, D, D>;  ///< a tensor of force x length (N m) or stress (Pa)
   ParticleData<D> particles;
+  /// Rigid clumps of particles (clumps.hpp): their members are particles
+  /// moved by their clumps; pairs within a clump never touch. Not with
+  /// periodic boundaries, a domain or the energy budget (yet).
+  Clumps<D> clumps;
   std::vector<Material> materials;
   ContactTable contact_table;
   std::vector<Wall<D>> walls;
@@ -215,7 +220,8 @@ class Simulation {
   void checkpoint(Archive& ar) {
     ar(particles, walls, gravity, damping, skin, time_step, time, steps, list_, wall_list_, field_force_,
        block_sums_, removed_count, removed_mass, removed_volume, inserted_count, inserted_mass, broken_bonds,
-       energy, force_gravity_);
+       energy, force_gravity_, clumps);
+    if constexpr (Archive::loading) clumps.refresh(particles);
     // A stage may have changed the pairs' friction (Stage::frictions).
     std::vector<double> friction = contact_table.frictions();
     ar(friction);

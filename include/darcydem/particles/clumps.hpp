@@ -1,0 +1,137 @@
+#pragma once
+// Clumps: rigid bodies made of several particles (PFC's clumps, YADE's
+// clumps). Each member stays an ordinary particle for contacts, walls, the
+// pore fluid and output; its own integration is switched off (its `fixed`
+// flag is ParticleData::clump_member) and it moves with its clump:
+//   x_i = x_c + R b_i,  v_i = v_c + w x (R b_i),  w_i = w,
+// b_i its offset in the clump's principal frame, R the clump's orientation.
+// Members keep their own masses, so the clump's mass, centre of mass and
+// inertia are their sums (members may touch but not overlap: each point of
+// the clump belongs to one member). The clump takes the members' forces
+// (contacts, gravity, the pore fluid's) and moments about its centre, and
+// integrates them by velocity Verlet: half kicks of its momentum and
+// angular momentum, and a drift that turns it at the angular velocity of
+// the midpoint of the turn (implicit midpoint: the angular momentum of a
+// free clump is kept to round-off, its energy to second order in dt).
+// Pairs of members of one clump are never in contact.
+#include <cstdint>
+#include <vector>
+
+#include "darcydem/core/vec.hpp"
+#include "darcydem/particles/particle_data.hpp"
+
+namespace darcydem {
+
+/// A clump's orientation: 2D the angle (rad, counter-clockwise); 3D a unit
+/// quaternion (w, x, y, z).
+template <int D>
+using Orientation = Eigen::Matrix<double, D == 2 ? 1 : 4, 1>;
+
+/// The rotation matrix of an orientation.
+Eigen::Matrix<double, 2, 2> rotation_matrix(const Orientation<2>& q);
+Eigen::Matrix<double, 3, 3> rotation_matrix(const Orientation<3>& q);
+
+/// The shape of a clump: its members' centres and radii about its centre of
+/// mass, in its principal axes, scaled so that the sphere (2D: circle) about
+/// the centre of mass that holds every member has radius 1.
+template <int D>
+struct ClumpShape {
+  std::vector<Vec<D>> centre;
+  std::vector<double> radius;
+  /// Principal moments of inertia per unit density at this scale
+  /// (kg m^2 / (kg/m^3) for a size of 1 m; 2D: one, per metre).
+  AngVec<D> inertia_per_density = AngVec<D>::Zero();
+  double volume = 0.0;  ///< per unit size cubed (2D: squared, per metre)
+  /// The principal axes in the frame the members were given in: a clump
+  /// placed at orientation q stands as given, turned by q.
+  Orientation<D> principal = identity_orientation();
+  static Orientation<D> identity_orientation() {
+    Orientation<D> q = Orientation<D>::Zero();
+    if constexpr (D == 3) q[0] = 1.0;
+    return q;
+  }
+};
+
+/// The orientation q1 after q0: turned by q0, then by q1.
+Orientation<2> compose(const Orientation<2>& q1, const Orientation<2>& q0);
+Orientation<3> compose(const Orientation<3>& q1, const Orientation<3>& q0);
+
+/// Makes a clump's shape from members given in any frame and unit
+/// (centres and radii): moves their centre of mass to the origin, turns
+/// them into their principal axes and scales them to a bounding radius of 1.
+/// Throws std::invalid_argument, saying which, if fewer than one member is
+/// given, a radius is not positive or two members overlap (by more than
+/// 1e-9 of the smaller radius).
+template <int D>
+ClumpShape<D> make_clump_shape(const std::vector<Vec<D>>& centres, const std::vector<double>& radii);
+
+template <int D>
+struct Clumps {
+  // Per clump.
+  std::vector<std::uint32_t> first;  ///< its members are member_id[first[c] .. first[c + 1])
+  std::vector<double> mass;          ///< kg (2D: per metre)
+  std::vector<AngVec<D>> inertia;    ///< principal moments, kg m^2 (2D: per metre)
+  std::vector<std::uint8_t> fixed;   ///< 1: its velocities are prescribed
+  std::vector<Vec<D>> position;      ///< centre of mass, m
+  std::vector<Orientation<D>> orientation;
+  std::vector<Vec<D>> velocity;             ///< m/s
+  std::vector<AngVec<D>> angular_velocity;  ///< rad/s, world frame
+  std::vector<Vec<D>> force;                ///< N: the members' last forces, summed
+  std::vector<AngVec<D>> torque;            ///< N m, about the centre of mass
+  // Per member, in clump order.
+  std::vector<std::uint32_t> member_id;  ///< the particle's id (creation number)
+  std::vector<Vec<D>> offset;            ///< b_i, m, in the principal frame
+  /// Derived from the particles' order (refresh): each member's index now,
+  /// and each particle's clump (-1 for none). Not checkpointed.
+  std::vector<std::uint32_t> member_index;
+  std::vector<std::int32_t> clump_of;
+
+  [[nodiscard]] std::size_t size() const { return mass.size(); }
+  [[nodiscard]] bool empty() const { return mass.empty(); }
+
+  /// Adds a clump of `shape` scaled by `size` (m) with its centre of mass at
+  /// x, turned by q from the frame its shape was given in, its members appended to the particles (material
+  /// `mat` of `density`), all moving at velocity v without spin; returns its
+  /// number. Call refresh() before using the members' indices.
+  std::size_t add(ParticleData<D>& particles, const ClumpShape<D>& shape, double size, const Vec<D>& x,
+                  const Orientation<D>& q, double density, std::uint16_t mat, bool is_fixed, const Vec<D>& v);
+
+  /// Re-derives member_index and clump_of from the particles' ids (after the
+  /// particles were reordered, removed or added).
+  void refresh(const ParticleData<D>& particles);
+
+  /// Each clump's force and moment from its members' (particles.force and
+  /// torque, as the last force evaluation left them).
+  void gather(const ParticleData<D>& particles);
+
+  /// Half kick of every clump that is not fixed, with Cundall's local
+  /// damping alpha on each component of its force and moment and viscous
+  /// damping beta (as kick.hpp does for particles); its members' velocities
+  /// follow.
+  void kick(ParticleData<D>& particles, double half_dt, double alpha, double beta);
+
+  /// Drift: every clump moves and turns over dt, its members put where
+  /// it carries them. Returns the largest squared displacement of a member
+  /// from `reference` (its place at the last list build; infinite when
+  /// `reference` does not cover the particles).
+  double drift(ParticleData<D>& particles, double dt, const std::vector<Vec<D>>& reference);
+
+  /// Puts each member where its clump is, at its clump's velocity.
+  void place_members(ParticleData<D>& particles) const;
+  /// The same for the members of clump c.
+  void place(std::size_t c, ParticleData<D>& particles) const;
+
+  /// The least effective mass of a normal contact on member k of clump c
+  /// over the contact's directions (kg): what the critical time step takes
+  /// for a member (its tangential mode as for a sphere's, a factor of the
+  /// contact law's).
+  [[nodiscard]] double contact_mass(std::size_t c, std::size_t k, double member_radius) const;
+
+  template <class Archive>
+  void checkpoint(Archive& ar) {
+    ar(first, mass, inertia, fixed, position, orientation, velocity, angular_velocity, force, torque,
+       member_id, offset);
+  }
+};
+
+}  // namespace darcydem

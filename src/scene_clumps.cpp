@@ -1,0 +1,95 @@
+// [[clump_template]] and the generators' `clump` key (scene_clumps.hpp).
+#include "darcydem/scene/scene_clumps.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+
+namespace darcydem {
+
+template <int D>
+std::pair<std::string, ClumpShape<D>> read_clump_template(TableReader& r) {
+  const std::string name = r.string("name");
+  const char* key = D == 2 ? "circles" : "spheres";
+  const char* form = D == 2 ? "[x, y, r]" : "[x, y, z, r]";
+  const toml::array* rows = r.optional_array(key);
+  const std::string what = fmt::format(
+      "a non-empty array of the clump's members, {} each (centre and radius, in any one unit: the clump is "
+      "scaled to each grain it replaces)",
+      form);
+  if (rows == nullptr) r.missing(key, what);
+  if (rows->empty()) r.fail(key, "must be " + what);
+  std::vector<Vec<D>> centres;
+  std::vector<double> radii;
+  for (std::size_t i = 0; i < rows->size(); ++i) {
+    const toml::array* row = (*rows)[i].as_array();
+    bool ok = row != nullptr && row->size() == D + 1;
+    std::array<double, D + 1> v{};
+    for (std::size_t c = 0; ok && c < D + 1; ++c) {
+      const auto x = (*row)[c].value<double>();
+      ok = x.has_value() && std::isfinite(*x);
+      if (ok) v[c] = *x;
+    }
+    if (!ok) r.fail(key, fmt::format("member {} must be {}, {} finite numbers", i + 1, form, D + 1));
+    if (!(v[D] > 0.0)) r.fail(key, fmt::format("member {}: its radius must be > 0, got {}", i + 1, v[D]));
+    Vec<D> x;
+    for (int k = 0; k < D; ++k) x[k] = v[k];
+    centres.push_back(x);
+    radii.push_back(v[D]);
+  }
+  try {
+    return {name, make_clump_shape<D>(centres, radii)};
+  } catch (const std::invalid_argument& e) {
+    r.fail(key, e.what());
+  }
+}
+
+namespace {
+double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+/// A uniformly random orientation (Shoemake's quaternion in 3D).
+Orientation<2> random_orientation(std::mt19937_64& rng, std::integral_constant<int, 2>) {
+  return Orientation<2>(2.0 * std::numbers::pi * unit(rng));
+}
+Orientation<3> random_orientation(std::mt19937_64& rng, std::integral_constant<int, 3>) {
+  const double u1 = unit(rng);
+  const double u2 = 2.0 * std::numbers::pi * unit(rng);
+  const double u3 = 2.0 * std::numbers::pi * unit(rng);
+  const double a = std::sqrt(1.0 - u1);
+  const double b = std::sqrt(u1);
+  return Orientation<3>(b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3));
+}
+}  // namespace
+
+template <int D>
+std::size_t add_clumps(TableReader& r, Simulation<D>& sim, const ClumpShape<D>& shape,
+                       const Packing<D>& packing, std::uint16_t material, bool fixed,
+                       const Vec<D>& velocity) {
+  const std::string orientation = r.optional_choice("orientation", {"random", "aligned"}).value_or("random");
+  const auto seed = r.optional_integer("orientation_seed").value_or(1);
+  if (seed < 0) r.fail("orientation_seed", "must be an integer >= 0");
+  if (r.has("orientation_seed") && orientation != "random")
+    r.fail("orientation_seed", "seeds a random orientation; this generator's clumps are \"aligned\"");
+  std::mt19937_64 rng(static_cast<std::uint64_t>(seed));
+  const double density = sim.materials.at(material).density;
+  const std::size_t before = sim.particles.size();
+  for (std::size_t k = 0; k < packing.position.size(); ++k) {
+    Orientation<D> q = ClumpShape<D>::identity_orientation();
+    if (orientation == "random") q = random_orientation(rng, std::integral_constant<int, D>{});
+    sim.clumps.add(sim.particles, shape, packing.radius[k], packing.position[k], q, density, material, fixed,
+                   velocity);
+  }
+  return sim.particles.size() - before;
+}
+
+template std::pair<std::string, ClumpShape<2>> read_clump_template<2>(TableReader&);
+template std::pair<std::string, ClumpShape<3>> read_clump_template<3>(TableReader&);
+template std::size_t add_clumps<2>(TableReader&, Simulation<2>&, const ClumpShape<2>&, const Packing<2>&,
+                                   std::uint16_t, bool, const Vec<2>&);
+template std::size_t add_clumps<3>(TableReader&, Simulation<3>&, const ClumpShape<3>&, const Packing<3>&,
+                                   std::uint16_t, bool, const Vec<3>&);
+
+}  // namespace darcydem

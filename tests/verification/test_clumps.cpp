@@ -1,0 +1,390 @@
+// Clumps (rigid bodies of several particles) against the mechanics of
+// rigid bodies. A dumbbell of two equal spheres on a common axle has the
+// mass, the rolling inertia (2/5 M r^2) and the contacts per unit mass of
+// one of its spheres alone: rolling down a slope it must go exactly as that
+// sphere does. A free axisymmetric clump precesses about its angular
+// momentum at |L| / I_perp (Euler's torque-free top); a free asymmetric one
+// keeps its angular momentum and energy while it tumbles. Two clumps that
+// collide without friction keep their total momentum and angular momentum
+// to round-off (the contact forces are equal, opposite and along the line
+// of the members' centres) and, elastic, their kinetic energy.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "darcydem/fluid/pore_fluid.hpp"
+#include "darcydem/particles/clumps.hpp"
+#include "darcydem/simulation/runner.hpp"
+#include "dem_setup.hpp"
+#include "run_output.hpp"
+#include "scene_loading.hpp"
+
+namespace darcydem {
+namespace {
+
+using darcydem::testing::plane;
+using darcydem::testing::read_probes;
+using darcydem::testing::scene_from_text;
+using darcydem::testing::scene_variant;
+using darcydem::testing::single_material;
+using darcydem::testing::temp_dir;
+
+constexpr double kDensity = 2500.0;
+
+/// A clump of the given members (centres and radii, m, about any point),
+/// at x turned by q, moving at v; returns its number.
+template <int D>
+std::size_t add_clump(Simulation<D>& sim, const std::vector<Vec<D>>& centres,
+                      const std::vector<double>& radii, const Vec<D>& x, const Orientation<D>& q,
+                      const Vec<D>& v = Vec<D>::Zero()) {
+  const ClumpShape<D> shape = make_clump_shape<D>(centres, radii);
+  // The shape is scaled to a bounding radius of 1: scale it back.
+  double reach = 0.0;
+  Vec<D> centroid = Vec<D>::Zero();
+  double volume = 0.0;
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    centroid += particle_volume<D>(radii[i]) * centres[i];
+    volume += particle_volume<D>(radii[i]);
+  }
+  centroid /= volume;
+  for (std::size_t i = 0; i < centres.size(); ++i)
+    reach = std::max(reach, (centres[i] - centroid).norm() + radii[i]);
+  const std::size_t c = sim.clumps.add(sim.particles, shape, reach, x, q, kDensity, 0, false, v);
+  sim.clumps.refresh(sim.particles);
+  return c;
+}
+
+/// The total angular momentum of the clumps about the origin (kg m^2/s).
+template <int D>
+AngVec<D> angular_momentum(const Simulation<D>& sim) {
+  const auto& c = sim.clumps;
+  AngVec<D> l = AngVec<D>::Zero();
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const auto r = rotation_matrix(c.orientation[k]);
+    l += c.mass[k] * cross(c.position[k], c.velocity[k]);
+    if constexpr (D == 2) {
+      l += c.inertia[k].cwiseProduct(c.angular_velocity[k]);
+    } else {
+      l += r * c.inertia[k].cwiseProduct(r.transpose() * c.angular_velocity[k]);
+    }
+  }
+  return l;
+}
+
+template <int D>
+double clump_kinetic_energy(const Simulation<D>& sim) {
+  const auto& c = sim.clumps;
+  double e = 0.0;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const auto r = rotation_matrix(c.orientation[k]);
+    AngVec<D> w = c.angular_velocity[k];
+    if constexpr (D == 3) w = r.transpose() * w;
+    e += 0.5 * c.mass[k] * c.velocity[k].squaredNorm() + 0.5 * w.dot(c.inertia[k].cwiseProduct(w));
+  }
+  return e;
+}
+
+Orientation<3> identity3() { return ClumpShape<3>::identity_orientation(); }
+
+// The shape's mass properties by hand: two spheres of radius r touching at
+// the origin, along x. Volume 2 (4/3 pi r^3); about the axis 2 (2/5) m r^2,
+// across it 2 ((2/5) m r^2 + m r^2). The shape is scaled to a bounding
+// radius of 1 (2r = 1). Round-off only: 1e-12.
+TEST(Clump, ADumbbellHasTheMassAndInertiaOfItsTwoSpheres) {
+  const double r = 0.5;
+  const auto shape = make_clump_shape<3>({Vec<3>(-r, 0, 0), Vec<3>(r, 0, 0)}, {r, r});
+  const double v = particle_volume<3>(r);
+  EXPECT_NEAR(shape.volume, 2.0 * v, 1e-12);
+  EXPECT_NEAR(shape.inertia_per_density.minCoeff(), 2.0 * 0.4 * v * r * r, 1e-12);
+  EXPECT_NEAR(shape.inertia_per_density.maxCoeff(), 2.0 * 1.4 * v * r * r, 1e-12);
+  // Placed as given (orientation identity), its members lie along x.
+  auto sim = single_material<3>(kDensity, ContactSpec{.normal_stiffness = 1.0});
+  sim.clumps.add(sim.particles, shape, 1e-3, Vec<3>(0, 0, 0), identity3(), kDensity, 0, false,
+                 Vec<3>::Zero());
+  EXPECT_NEAR(sim.particles.position[0].x(), -0.5e-3, 1e-15);
+  EXPECT_NEAR(sim.particles.position[1].x(), 0.5e-3, 1e-15);
+  EXPECT_NEAR(sim.particles.position[0].tail<2>().norm(), 0.0, 1e-15);
+  EXPECT_THROW(make_clump_shape<3>({Vec<3>(0, 0, 0), Vec<3>(0.9, 0, 0)}, {0.5, 0.5}), std::invalid_argument);
+}
+
+// Members of one clump never touch each other: a lone clump of four
+// touching spheres in free fall has no contact, and falls as a point mass,
+// x = x0 + v0 t + g t^2 / 2, which velocity Verlet integrates exactly (to
+// round-off: 1e-12 of the distance), without turning: the members' weights
+// have no moment about the centre of mass but round-off's (1e-20 N m), which
+// spins it at no more than 1e-10 rad/s over the fall (a turn of 1e-12 rad).
+TEST(Clump, AClumpOfTouchingSpheresFallsFreelyWithoutContactsOrSpin) {
+  const double r = 1e-3;
+  auto sim = single_material<3>(kDensity, ContactSpec{.normal_stiffness = 100.0, .restitution = 0.5});
+  const double h = r * std::sqrt(3.0);  // a triangle of side 2r, and one on top
+  const Vec<3> v0(0.1, -0.05, 0.2);
+  add_clump<3>(
+      sim,
+      {Vec<3>(0, 0, 0), Vec<3>(2 * r, 0, 0), Vec<3>(r, h, 0), Vec<3>(r, h / 3, std::sqrt(8.0 / 3.0) * r)},
+      {r, r, r, r}, Vec<3>(0, 0, 1), identity3(), v0);
+  sim.gravity = Vec<3>(0, 0, -9.81);
+  sim.time_step = 1e-5;
+  const Vec<3> x0 = sim.clumps.position[0];
+  const Vec<3> arm0 = sim.particles.position[3] - x0;
+  sim.prepare();
+  sim.advance(5000);
+  EXPECT_EQ(sim.contact_count(), 0u);
+  const double t = sim.time;
+  const Vec<3> expected = x0 + v0 * t + 0.5 * sim.gravity * t * t;
+  EXPECT_LT((sim.clumps.position[0] - expected).norm(), 1e-12 * (expected - x0).norm());
+  EXPECT_LT((sim.particles.position[3] - sim.clumps.position[0] - arm0).norm(), 1e-14);  // positions near 1 m
+  EXPECT_LT(sim.clumps.angular_velocity[0].norm(), 1e-10);
+}
+
+// A dumbbell of two spheres of radius r touching on an axle along y rolls
+// down a slope (gravity tilted by 20 degrees about y) as one sphere alone
+// does: twice the mass, two contacts with the same springs and dashpots
+// (the dashpot takes each member's own mass), the inertia about the axle
+// 2 (2/5) m r^2 = (2/5) M r^2. The two runs do the same arithmetic up to
+// the round-off of the clump's rotation matrix (1e-16): its centre of mass
+// follows the sphere to 1e-9 r and 1e-9 of the speed over 0.1 s (12 mm,
+// 13 000 steps; measured 2e-11 r and 3e-12), and both roll at 5/7 g sin 20 t, to the tangential
+// spring's start-up oscillation (1 %, as in test_mesh_walls.cpp).
+TEST(Clump, ADumbbellRollsDownASlopeAsOneOfItsSpheres) {
+  const double r = 1e-3;
+  const double g = 9.81;
+  const double slope = 20.0 * std::numbers::pi / 180.0;
+  const double m = kDensity * particle_volume<3>(r);
+  ContactSpec spec{.normal_stiffness = m * g / (1e-4 * r), .restitution = 0.5, .friction = 0.5};
+  auto make = [&](bool clump) {
+    auto sim = single_material<3>(kDensity, spec);
+    const double z = r - m * g * std::cos(slope) / spec.normal_stiffness;  // resting overlap
+    if (clump) {
+      add_clump<3>(sim, {Vec<3>(0, -r, 0), Vec<3>(0, r, 0)}, {r, r}, Vec<3>(0, 0, z), identity3());
+    } else {
+      sim.particles.add(Vec<3>(0, 0, z), r, kDensity, 0, false);
+    }
+    sim.walls.push_back(plane<3>(Vec<3>::Zero(), Vec<3>(0, 0, 1), "floor"));
+    sim.gravity = Vec<3>(g * std::sin(slope), 0.0, -g * std::cos(slope));
+    sim.time_step = 0.05 * std::sqrt(m / spec.normal_stiffness);
+    sim.prepare();
+    return sim;
+  };
+  auto sphere = make(false);
+  auto dumbbell = make(true);
+  while (sphere.time < 0.1) {
+    sphere.advance(100);
+    dumbbell.advance(100);
+  }
+  const double v = 5.0 / 7.0 * g * std::sin(slope) * sphere.time;
+  EXPECT_EQ(dumbbell.contact_count(), 2u);
+  EXPECT_LT((dumbbell.clumps.position[0] - sphere.particles.position[0]).norm(), 1e-9 * r);
+  EXPECT_LT((dumbbell.clumps.velocity[0] - sphere.particles.velocity[0]).norm(), 1e-9 * v);
+  EXPECT_LT((dumbbell.clumps.angular_velocity[0] - sphere.particles.angular_velocity[0]).norm(),
+            1e-9 * v / r);
+  EXPECT_NEAR(sphere.particles.velocity[0].x(), v, 0.01 * v);
+  EXPECT_GT(sphere.particles.position[0].x(), 0.01);  // 12 mm: 6 diameters
+}
+
+// Euler's free symmetric top: a dumbbell (I_3 about its axis, I_perp across
+// it) spun about an axis 30 degrees off its own, without gravity or
+// contacts. Its angular momentum L stays put; its axis turns about L at
+// |L| / I_perp, on a cone of fixed angle. Over 1.5 turns of the precession
+// (56 000 steps of w dt = 3e-4), the implicit midpoint's phase error is of
+// order (w dt)^2 w t / 12 = 1e-7 rad: the axis within 1e-6 of the closed
+// form (measured 7e-9); the energy to (w dt)^2 (1e-6; measured 2e-11). L is the drift's invariant: each
+// step maps it to the angular velocity and back, three products of 3 x 3
+// matrices, a few 1e-16 of it; over 56 000 steps they add up to 4e-11
+// (measured): within 1e-9.
+TEST(Clump, AFreeDumbbellPrecessesAsEulersSymmetricTop) {
+  const double r = 1e-3;
+  auto sim = single_material<3>(kDensity, ContactSpec{.normal_stiffness = 100.0, .restitution = 0.5});
+  add_clump<3>(sim, {Vec<3>(0, 0, -r), Vec<3>(0, 0, r)}, {r, r}, Vec<3>::Zero(), identity3());
+  const double w = 100.0;
+  const double tilt = 30.0 * std::numbers::pi / 180.0;
+  sim.clumps.angular_velocity[0] = w * Vec<3>(std::sin(tilt), 0.0, std::cos(tilt));
+  sim.clumps.place_members(sim.particles);
+  const auto& c = sim.clumps;
+  const double i_perp = c.inertia[0].maxCoeff();
+  const AngVec<3> l0 = angular_momentum(sim);
+  const double e0 = clump_kinetic_energy(sim);
+  const Vec<3> axis0 = (sim.particles.position[1] - sim.particles.position[0]).normalized();
+  sim.time_step = 3e-6;
+  sim.prepare();
+  const double turn = 2.0 * std::numbers::pi * i_perp / l0.norm();
+  const auto steps = static_cast<std::uint64_t>(1.5 * turn / sim.time_step);
+  sim.advance(steps);
+  const Vec<3> axis = (sim.particles.position[1] - sim.particles.position[0]).normalized();
+  const Eigen::AngleAxisd precession(l0.norm() / i_perp * sim.time, l0.normalized());
+  EXPECT_LT((axis - precession * axis0).norm(), 1e-6);
+  EXPECT_LT((angular_momentum(sim) - l0).norm(), 1e-9 * l0.norm());
+  EXPECT_NEAR(clump_kinetic_energy(sim), e0, 1e-6 * e0);
+  EXPECT_NEAR(sim.kinetic_energy(), e0, 1e-6 * e0);  // the members' sum: the same body
+}
+
+// An asymmetric clump (three unequal spheres in a bent row) spun near its
+// intermediate axis tumbles, flipping over and back (Dzhanibekov's nut): a
+// hard case for an integrator. Its angular momentum stays to round-off
+// (1.2e-10 measured over 100 000 steps, as above: within 1e-9), its energy
+// to (w dt)^2 (1e-5; measured 5e-10).
+TEST(Clump, AnAsymmetricClumpTumblesKeepingItsMomentumAndEnergy) {
+  auto sim = single_material<3>(kDensity, ContactSpec{.normal_stiffness = 100.0, .restitution = 0.5});
+  add_clump<3>(sim, {Vec<3>(-1.8e-3, 0, 0), Vec<3>(0, 0, 0), Vec<3>(1.5e-3, 1e-3, 0)}, {0.8e-3, 1e-3, 0.8e-3},
+               Vec<3>::Zero(), identity3());
+  auto& c = sim.clumps;
+  // Nearly about the intermediate principal axis (the second column).
+  const auto r = rotation_matrix(c.orientation[0]);
+  c.angular_velocity[0] = 100.0 * (r.col(1) + 0.01 * r.col(0)).normalized();
+  c.place_members(sim.particles);
+  const AngVec<3> l0 = angular_momentum(sim);
+  const double e0 = clump_kinetic_energy(sim);
+  sim.time_step = 3e-6;
+  sim.prepare();
+  double flip = 1.0;  // the intermediate axis's lowest alignment with L
+  for (int k = 0; k < 1000; ++k) {
+    sim.advance(100);
+    flip = std::min(flip, (rotation_matrix(c.orientation[0]).col(1)).dot(l0.normalized()));
+  }
+  EXPECT_LT(flip, -0.9);  // it turned over
+  EXPECT_LT((angular_momentum(sim) - l0).norm(), 1e-9 * l0.norm());
+  EXPECT_NEAR(clump_kinetic_energy(sim), e0, 1e-5 * e0);
+}
+
+// Two clumps meet off-centre, without friction or damping (restitution 1),
+// in zero gravity: they bounce and spin apart. The forces are equal,
+// opposite and along the line through the two members' centres, so the
+// total momentum stays to round-off (1e-12), and the angular momentum about
+// the origin too, a sum of terms x_c x M v_c as large as 5 r |p| that
+// cancel, its round-off over 10 000 steps up to 1e-10 of that; the kinetic
+// energy comes back after the contact to the spring's discrete error,
+// (w_c dt)^2 with dt = pi sqrt(m / k) / 100 and w_c up to 2 sqrt(k / m) at
+// an off-centre contact (1e-3; measured 1.6e-4 in 2D, 1e-9 in 3D).
+template <int D>
+void collide() {
+  const double r = 1e-3;
+  auto sim = single_material<D>(kDensity, ContactSpec{.normal_stiffness = 100.0, .restitution = 1.0});
+  Vec<D> along = Vec<D>::Zero();
+  along[0] = 1.0;
+  Vec<D> across = Vec<D>::Zero();
+  across[1] = 1.0;
+  auto q0 = ClumpShape<D>::identity_orientation();
+  // Dumbbells along y, the second one higher by r: they meet member to member.
+  add_clump<D>(sim, {Vec<D>(-r * across), Vec<D>(r * across)}, {r, r}, Vec<D>::Zero(), q0,
+               Vec<D>(0.2 * along));
+  add_clump<D>(sim, {Vec<D>(-r * across), Vec<D>(r * across)}, {r, r},
+               Vec<D>(4.5 * r * along + 1.2 * r * across), q0, Vec<D>(-0.1 * along));
+  const double m = kDensity * particle_volume<D>(r);
+  sim.time_step = std::sqrt(m / 100.0) * std::numbers::pi / 100.0;
+  const Vec<D> p0 = sim.clumps.mass[0] * sim.clumps.velocity[0] + sim.clumps.mass[1] * sim.clumps.velocity[1];
+  const AngVec<D> l0 = angular_momentum(sim);
+  const double e0 = clump_kinetic_energy(sim);
+  sim.prepare();
+  sim.advance(10000);
+  EXPECT_EQ(sim.contact_count(), 0u);                     // apart again
+  EXPECT_GT(sim.clumps.angular_velocity[0].norm(), 1.0);  // spun by the off-centre blow
+  const Vec<D> p = sim.clumps.mass[0] * sim.clumps.velocity[0] + sim.clumps.mass[1] * sim.clumps.velocity[1];
+  EXPECT_LT((p - p0).norm(), 1e-12 * p0.norm());
+  EXPECT_LT((angular_momentum(sim) - l0).norm(), 1e-10 * (l0.norm() + p0.norm() * 5 * r));
+  EXPECT_NEAR(clump_kinetic_energy(sim), e0, 1e-3 * e0);
+}
+
+TEST(Clump, TwoDumbbellsCollideKeepingMomentumAndEnergy2D) { collide<2>(); }
+TEST(Clump, TwoDumbbellsCollideKeepingMomentumAndEnergy3D) { collide<3>(); }
+
+// examples/dem_cases/clump_pour.toml: 100 dumbbells and 100 trimers poured
+// into a box of five frictional plane walls, settled until the unbalanced
+// force ratio is below 1e-4. At rest the walls carry the clumps' weight
+// (the floor nearly all, the sides the rest by friction): their vertical
+// loads add up to it to the clumps' residual net force, at most about 1e-4
+// of a contact force each, some 1e-4 of the weight in all (measured
+// 2e-5): within 1e-3. No member got through a wall.
+TEST(Clump, APouredBedOfClumpsRestsOnItsWalls) {
+  const std::string dir = temp_dir("clump_pour");
+  std::string probes;
+  for (const char* w : {"west", "east", "south", "north"}) {
+    probes += fmt::format(
+        "\n[[probe]]\nname = \"{}_z\"\nquantity = \"wall_force\"\nwall = \"{}\"\ncomponent = \"z\"\n", w, w);
+  }
+  Scene<3> scene = scene_from_text<3>(
+      dir, "pour.toml",
+      scene_variant("examples/dem_cases/clump_pour.toml", {{"[[stage]]", probes + "\n[[stage]]"}}));
+  double weight = 0.0;
+  for (double m : scene.simulation.clumps.mass) weight += m * 9.81;
+  RunOptions options;
+  options.out_dir = dir + "/out";
+  ASSERT_FALSE(run_scene<3>(scene, options).interrupted);
+  const auto rows = read_probes(dir + "/out/probes.csv");
+  const auto last = [&](const char* name) { return rows.at(name).back(); };
+  EXPECT_LT(last("unbalanced"), 1e-4);  // settled, not out of time
+  const double carried =
+      -(last("floor_z") + last("west_z") + last("east_z") + last("south_z") + last("north_z"));
+  std::printf("clump pour: weight %.6g N, carried by the walls %.6g N (%.2e)\n", weight, carried,
+              carried / weight - 1.0);
+  EXPECT_NEAR(carried, weight, 1e-3 * weight);
+  const auto& p = scene.simulation.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec<3>& x = p.position[i];
+    EXPECT_TRUE(x.z() > 0.0 && std::abs(x.x()) < 0.006 && std::abs(x.y()) < 0.006) << i;
+  }
+  // The snapshots give each particle its clump, to colour them by: the
+  // first generator's 100 clumps of two, then 100 of three.
+  const std::string text = darcydem::testing::file_contents(dir + "/out/particles_00000.vtu");
+  const auto at = text.find("Name=\"clump\"");
+  ASSERT_NE(at, std::string::npos);
+  std::istringstream values(text.substr(text.find('>', at) + 1));
+  std::vector<int> members(200, 0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    int c = -1;
+    values >> c;
+    ASSERT_TRUE(c >= 0 && c < 200) << i;
+    ++members[static_cast<std::size_t>(c)];
+  }
+  for (std::size_t c = 0; c < 200; ++c) EXPECT_EQ(members[c], c < 100 ? 2 : 3) << c;
+}
+
+// examples/fluid_cases/hydrostatic_bed.toml with its lattice cut to one
+// layer of 2 x 2 spheres, each made a dumbbell along x (members of
+// 0.245 mm), in still water drained at the top. They sink onto the floor,
+// the pore pressure their fall raised drains away, and at rest the floor
+// carries their submerged weight, sum of (m - rho_f V) g over the members,
+// within 0.5 % (issue 3's tolerance for the bed of spheres; measured 5e-9): the pore water
+// acts on each member, buoyancy and drag, and each clump sums them. (A
+// stack of them would not do: a column of spheres on spheres topples, its
+// lean growing as exp(t sqrt(g / r)), with clumps or without.)
+TEST(Clump, ClumpsInStillWaterRestWithTheirSubmergedWeight) {
+  const std::string dir = temp_dir("clump_bed");
+  Scene<3> scene = scene_from_text<3>(
+      dir, "bed.toml",
+      scene_variant(
+          "examples/fluid_cases/hydrostatic_bed.toml",
+          {{"[[particles]]",
+            "[[clump_template]]\nname = \"dumbbell\"\nspheres = [[-1.0, 0.0, 0.0, 1.0], [1.0, 0.0, 0.0, "
+            "1.0]]\n\n[[particles]]"},
+           {"min = [0.0, 0.0, 0.0]\nmax = [0.006, 0.006, 0.008]",
+            "min = [0.002, 0.002, 0.0]\nmax = [0.004, 0.004, 0.001]"},
+           {"radius = 0.00049", "radius = 0.00049\nclump = \"dumbbell\"\norientation = \"aligned\""}}));
+  RunOptions options;
+  options.out_dir = dir + "/out";
+  ASSERT_FALSE(run_scene<3>(scene, options).interrupted);
+  const auto& sim = scene.simulation;
+  ASSERT_EQ(sim.clumps.size(), 4u);
+  EXPECT_EQ(sim.contact_count(), 8u);  // each member on the floor
+  double submerged = 0.0;
+  for (std::size_t i = 0; i < sim.particles.size(); ++i) {
+    submerged +=
+        (1.0 / sim.particles.inv_mass[i] - 1000.0 * particle_volume<3>(sim.particles.radius[i])) * 9.80665;
+  }
+  const double floor = -sim.walls[0].force.z();
+  std::printf("clumps in water: floor %.6e N, submerged weight %.6e N (%+.2e); kinetic energy %.3g J\n",
+              floor, submerged, floor / submerged - 1.0, sim.kinetic_energy());
+  EXPECT_NEAR(floor, submerged, 0.005 * submerged);
+  const double stress = submerged / (0.006 * 0.006);
+  // Drained: the excess pressure of their fall (0.3 Pa, above the floor's
+  // stress) is below 1e-3 of that stress by the end (measured 4e-4 at 0.1 s
+  // and still falling: few grains in cells of 2 mm let the water through
+  // slowly to the drained top, 8 mm up).
+  for (double u : scene.fluid->pressure()) EXPECT_LT(std::abs(u), 1e-3 * stress);
+}
+
+}  // namespace
+}  // namespace darcydem
