@@ -2,6 +2,8 @@
 // (clumps.hpp).
 #include "darcydem/particles/clumps.hpp"
 
+#include "darcydem/core/parallel.hpp"
+
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
@@ -37,15 +39,24 @@ Orientation<3> compose(const Orientation<3>& q1, const Orientation<3>& q0) {
 
 namespace {
 
-/// The orientation q turned by the rotation vector phi (rad) in the world frame.
-Orientation<2> turned(const Orientation<2>& q, const AngVec<2>& phi) { return Orientation<2>(q[0] + phi[0]); }
-Orientation<3> turned(const Orientation<3>& q, const AngVec<3>& phi) {
-  const double angle = phi.norm();
-  Eigen::Quaterniond turn = Eigen::Quaterniond::Identity();
-  if (angle > 0.0) turn = Eigen::Quaterniond(Eigen::AngleAxisd(angle, phi / angle));
-  Eigen::Quaterniond out = turn * Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
-  out.normalize();
-  return Orientation<3>(out.w(), out.x(), out.y(), out.z());
+/// The turn by the rotation vector phi (rad) as a unit quaternion:
+/// (cos(a/2), sin(a/2) phi/a), a = |phi|. A clump turns by w dt each step,
+/// a few 1e-4 rad: below a = 1e-3 by the series of cos(a/2) and
+/// sin(a/2)/a to a^4, whose next terms (a^6 / 46080) lie below round-off,
+/// without sine, cosine or square root.
+Eigen::Quaterniond turn_of(const AngVec<3>& phi) {
+  const double a2 = phi.squaredNorm();
+  double c = 0.0;
+  double s = 0.0;
+  if (a2 < 1e-6) {
+    c = 1.0 - a2 / 8.0 + a2 * a2 / 384.0;
+    s = 0.5 - a2 / 48.0 + a2 * a2 / 3840.0;
+  } else {
+    const double a = std::sqrt(a2);
+    c = std::cos(0.5 * a);
+    s = std::sin(0.5 * a) / a;
+  }
+  return {c, s * phi.x(), s * phi.y(), s * phi.z()};
 }
 
 /// The angular velocity (world frame) of a clump of principal moments I at
@@ -158,6 +169,7 @@ std::size_t Clumps<D>::add(ParticleData<D>& particles, const ClumpShape<D>& shap
     particles.add(x + r * b, radius, density, mat, false, v);
     particles.fixed.back() = ParticleData<D>::clump_member;
     member_id.push_back(particles.id.back());
+    member_index.push_back(static_cast<std::uint32_t>(particles.size() - 1));
     offset.push_back(b);
     m += ParticleData<D>::mass_of(density, radius);
   }
@@ -171,6 +183,11 @@ std::size_t Clumps<D>::add(ParticleData<D>& particles, const ClumpShape<D>& shap
   angular_velocity.push_back(AngVec<D>::Zero());
   force.push_back(Vec<D>::Zero());
   torque.push_back(AngVec<D>::Zero());
+  // The members are the last particles: the indices stay valid until the
+  // particles are reordered or removed (refresh()).
+  clump_of.resize(particles.size(), -1);
+  for (std::uint32_t k = first[mass.size() - 1]; k < first.back(); ++k)
+    clump_of[member_index[k]] = static_cast<std::int32_t>(mass.size() - 1);
   return mass.size() - 1;
 }
 
@@ -196,79 +213,97 @@ void Clumps<D>::refresh(const ParticleData<D>& particles) {
 }
 
 template <int D>
+void Clumps<D>::gather_one(std::size_t c, const Rotation& r, const ParticleData<D>& particles) {
+  Vec<D> f = Vec<D>::Zero();
+  AngVec<D> t = AngVec<D>::Zero();
+  for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
+    const std::uint32_t i = member_index[k];
+    f += particles.force[i];
+    t += particles.torque[i] + cross(Vec<D>(r * offset[k]), particles.force[i]);
+  }
+  force[c] = f;
+  torque[c] = t;
+}
+
+template <int D>
 void Clumps<D>::gather(const ParticleData<D>& particles) {
-  for (std::size_t c = 0; c < size(); ++c) {
-    const auto r = rotation_matrix(orientation[c]);
-    Vec<D> f = Vec<D>::Zero();
-    AngVec<D> t = AngVec<D>::Zero();
-    for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
-      const std::uint32_t i = member_index[k];
-      f += particles.force[i];
-      t += particles.torque[i] + cross(Vec<D>(r * offset[k]), particles.force[i]);
+  for_each_index(static_cast<std::int64_t>(size()), [&](std::int64_t c) {
+    gather_one(static_cast<std::size_t>(c), rotation_matrix(orientation[c]), particles);
+  });
+}
+
+template <int D>
+void Clumps<D>::kick_one(std::size_t c, const Rotation& r, double half_dt, double alpha, double beta) {
+  const Vec<D> f = locally_damped<D>(force[c], velocity[c], alpha);
+  const AngVec<D> t = locally_damped<rotation_dim<D>>(torque[c], angular_velocity[c], alpha);
+  velocity[c] += (f / mass[c] - beta * velocity[c]) * half_dt;
+  AngVec<D> momentum = momentum_of(r, inertia[c], angular_velocity[c]);
+  momentum += (t - beta * momentum) * half_dt;
+  angular_velocity[c] = spin_of(r, inertia[c], momentum);
+}
+
+template <int D>
+typename Clumps<D>::Rotation Clumps<D>::turn_one(std::size_t c, const Rotation& r, double dt) {
+  const AngVec<D> w = angular_velocity[c];
+  if (!(w.squaredNorm() > 0.0)) return r;
+  if constexpr (D == 2) {
+    orientation[c][0] += w[0] * dt;
+    return rotation_matrix(orientation[c]);
+  } else {
+    // The implicit midpoint: turn at the angular velocity the clump has
+    // halfway through the turn, its angular momentum unchanged (no torque
+    // acts during the drift). Three fixed-point passes leave an error of
+    // order (w dt)^3 in that velocity.
+    const Eigen::Quaterniond q0(orientation[c][0], orientation[c][1], orientation[c][2], orientation[c][3]);
+    const AngVec<D> momentum = momentum_of(r, inertia[c], w);
+    AngVec<D> mid = w;
+    for (int pass = 0; pass < 3; ++pass) {
+      mid = spin_of((turn_of(AngVec<D>(0.5 * dt * mid)) * q0).toRotationMatrix(), inertia[c], momentum);
     }
-    force[c] = f;
-    torque[c] = t;
+    Eigen::Quaterniond q1 = turn_of(AngVec<D>(mid * dt)) * q0;
+    q1.normalize();
+    orientation[c] = Orientation<3>(q1.w(), q1.x(), q1.y(), q1.z());
+    const Rotation r1 = q1.toRotationMatrix();
+    angular_velocity[c] = spin_of(r1, inertia[c], momentum);
+    return r1;
   }
 }
 
 template <int D>
-void Clumps<D>::kick(ParticleData<D>& particles, double half_dt, double alpha, double beta) {
-  for (std::size_t c = 0; c < size(); ++c) {
-    if (fixed[c] != 0) continue;
-    const auto r = rotation_matrix(orientation[c]);
-    const Vec<D> f = locally_damped<D>(force[c], velocity[c], alpha);
-    const AngVec<D> t = locally_damped<rotation_dim<D>>(torque[c], angular_velocity[c], alpha);
-    velocity[c] += (f / mass[c] - beta * velocity[c]) * half_dt;
-    AngVec<D> momentum = momentum_of(r, inertia[c], angular_velocity[c]);
-    momentum += (t - beta * momentum) * half_dt;
-    angular_velocity[c] = spin_of(r, inertia[c], momentum);
-    for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
-      const std::uint32_t i = member_index[k];
-      particles.velocity[i] = velocity[c] + cross(angular_velocity[c], Vec<D>(r * offset[k]));
-      particles.angular_velocity[i] = angular_velocity[c];
-    }
-  }
-}
-
-template <int D>
-double Clumps<D>::drift(ParticleData<D>& particles, double dt, const std::vector<Vec<D>>& reference) {
+double Clumps<D>::advance(ParticleData<D>& particles, int kicks, double half_dt, double alpha, double beta,
+                          double dt, const std::vector<Vec<D>>& reference) {
   const bool referenced = reference.size() == particles.size();
-  double moved2 = 0.0;
-  for (std::size_t c = 0; c < size(); ++c) {
-    position[c] += velocity[c] * dt;
-    const AngVec<D> w = angular_velocity[c];
-    if (w.squaredNorm() > 0.0) {
-      if constexpr (D == 2) {
-        orientation[c] = turned(orientation[c], AngVec<D>(w * dt));
-      } else {
-        // The implicit midpoint: turn at the angular velocity the clump has
-        // halfway through the turn, its angular momentum unchanged (no torque
-        // acts during the drift). Three fixed-point passes leave an error of
-        // order (w dt)^3 in that velocity.
-        const AngVec<D> momentum = momentum_of(rotation_matrix(orientation[c]), inertia[c], w);
-        AngVec<D> mid = w;
-        for (int pass = 0; pass < 3; ++pass) {
-          mid = spin_of(rotation_matrix(turned(orientation[c], AngVec<D>(0.5 * dt * mid))), inertia[c],
-                        momentum);
-        }
-        orientation[c] = turned(orientation[c], AngVec<D>(mid * dt));
-        angular_velocity[c] = spin_of(rotation_matrix(orientation[c]), inertia[c], momentum);
-      }
+  auto one = [&](std::int64_t index) {
+    const auto c = static_cast<std::size_t>(index);
+    const Rotation r = rotation_matrix(orientation[c]);
+    gather_one(c, r, particles);
+    if (fixed[c] == 0) {
+      for (int k = 0; k < kicks; ++k) kick_one(c, r, half_dt, alpha, beta);
     }
-    place(c, particles);
+    if (!(dt > 0.0)) {
+      for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
+        const std::uint32_t i = member_index[k];
+        particles.velocity[i] = velocity[c] + cross(angular_velocity[c], Vec<D>(r * offset[k]));
+        particles.angular_velocity[i] = angular_velocity[c];
+      }
+      return 0.0;
+    }
+    position[c] += velocity[c] * dt;
+    place(c, turn_one(c, r, dt), particles);
+    double moved2 = 0.0;
     for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
       const std::uint32_t i = member_index[k];
       const double d2 = referenced ? (particles.position[i] - reference[i]).squaredNorm()
                                    : std::numeric_limits<double>::infinity();
       moved2 = std::max(moved2, std::isnan(d2) ? std::numeric_limits<double>::infinity() : d2);
     }
-  }
-  return moved2;
+    return moved2;
+  };
+  return max_over_index(static_cast<std::int64_t>(size()), parallel_threshold, one);
 }
 
 template <int D>
-void Clumps<D>::place(std::size_t c, ParticleData<D>& particles) const {
-  const auto r = rotation_matrix(orientation[c]);
+void Clumps<D>::place(std::size_t c, const Rotation& r, ParticleData<D>& particles) const {
   for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
     const std::uint32_t i = member_index[k];
     const Vec<D> arm = r * offset[k];
@@ -280,7 +315,7 @@ void Clumps<D>::place(std::size_t c, ParticleData<D>& particles) const {
 
 template <int D>
 void Clumps<D>::place_members(ParticleData<D>& particles) const {
-  for (std::size_t c = 0; c < size(); ++c) place(c, particles);
+  for (std::size_t c = 0; c < size(); ++c) place(c, rotation_matrix(orientation[c]), particles);
 }
 
 template <int D>

@@ -350,8 +350,8 @@ double Simulation<D>::kick_drift() {
   };
   double moved2 = max_over_index(groups, parallel_threshold / 4, one);
   if (!clumps.empty()) {
-    clumps.kick(particles, half_dt, damping.local, damping.viscous);
-    moved2 = std::max(moved2, clumps.drift(particles, time_step, list_.reference()));
+    moved2 = std::max(moved2, clumps.advance(particles, 1, half_dt, damping.local, damping.viscous, time_step,
+                                             list_.reference()));
   }
   return std::sqrt(moved2);
 }
@@ -413,13 +413,14 @@ double Simulation<D>::compute_forces(Finish finish) {
   if (clumps.empty()) return moved;
   // The members' kicks were skipped and their drift was a straight line:
   // their clumps now take the same steps and put them in place.
-  clumps.gather(particles);
-  if (finish == Finish::none) return moved;
-  const double half_dt = 0.5 * time_step;
-  clumps.kick(particles, half_dt, damping.local, damping.viscous);
-  if (finish == Finish::kick) return moved;
-  clumps.kick(particles, half_dt, damping.local, damping.viscous);
-  return std::max(moved, std::sqrt(clumps.drift(particles, time_step, list_.reference())));
+  if (finish == Finish::none) {
+    clumps.gather(particles);
+    return moved;
+  }
+  const bool drift = finish == Finish::kick_kick_drift;
+  const double moved2 = clumps.advance(particles, drift ? 2 : 1, 0.5 * time_step, damping.local,
+                                       damping.viscous, drift ? time_step : 0.0, list_.reference());
+  return std::max(moved, std::sqrt(moved2));
 }
 
 template <int D>

@@ -86,13 +86,16 @@ struct Clumps {
   std::vector<std::uint32_t> member_index;
   std::vector<std::int32_t> clump_of;
 
+  using Rotation = Eigen::Matrix<double, D, D>;
+
   [[nodiscard]] std::size_t size() const { return mass.size(); }
   [[nodiscard]] bool empty() const { return mass.empty(); }
 
   /// Adds a clump of `shape` scaled by `size` (m) with its centre of mass at
   /// x, turned by q from the frame its shape was given in, its members appended to the particles (material
   /// `mat` of `density`), all moving at velocity v without spin; returns its
-  /// number. Call refresh() before using the members' indices.
+  /// number. The members' indices (member_index, clump_of) are those of the
+  /// particles now, until they are reordered or removed (refresh()).
   std::size_t add(ParticleData<D>& particles, const ClumpShape<D>& shape, double size, const Vec<D>& x,
                   const Orientation<D>& q, double density, std::uint16_t mat, bool is_fixed, const Vec<D>& v);
 
@@ -104,22 +107,21 @@ struct Clumps {
   /// torque, as the last force evaluation left them).
   void gather(const ParticleData<D>& particles);
 
-  /// Half kick of every clump that is not fixed, with Cundall's local
-  /// damping alpha on each component of its force and moment and viscous
-  /// damping beta (as kick.hpp does for particles); its members' velocities
-  /// follow.
-  void kick(ParticleData<D>& particles, double half_dt, double alpha, double beta);
-
-  /// Drift: every clump moves and turns over dt, its members put where
-  /// it carries them. Returns the largest squared displacement of a member
-  /// from `reference` (its place at the last list build; infinite when
-  /// `reference` does not cover the particles).
-  double drift(ParticleData<D>& particles, double dt, const std::vector<Vec<D>>& reference);
+  /// Each clump (in parallel over the clumps): gathers its force and moment;
+  /// unless fixed, takes `kicks` half kicks with Cundall's local damping
+  /// alpha on each component of its force and moment and viscous damping
+  /// beta (as kick.hpp does for particles); then with dt > 0 drifts (moves
+  /// and turns over dt) and puts its members where it carries them, else
+  /// gives them its velocities. Returns the largest squared displacement of
+  /// a member from `reference` (its place at the last list build; infinite
+  /// when `reference` does not cover the particles; 0 without a drift).
+  double advance(ParticleData<D>& particles, int kicks, double half_dt, double alpha, double beta, double dt,
+                 const std::vector<Vec<D>>& reference);
 
   /// Puts each member where its clump is, at its clump's velocity.
   void place_members(ParticleData<D>& particles) const;
-  /// The same for the members of clump c.
-  void place(std::size_t c, ParticleData<D>& particles) const;
+  /// The same for the members of clump c, at its orientation's rotation r.
+  void place(std::size_t c, const Rotation& r, ParticleData<D>& particles) const;
 
   /// The least effective mass of a normal contact on member k of clump c
   /// over the contact's directions (kg): what the critical time step takes
@@ -132,6 +134,13 @@ struct Clumps {
     ar(first, mass, inertia, fixed, position, orientation, velocity, angular_velocity, force, torque,
        member_id, offset);
   }
+
+ private:
+  void gather_one(std::size_t c, const Rotation& r, const ParticleData<D>& particles);
+  void kick_one(std::size_t c, const Rotation& r, double half_dt, double alpha, double beta);
+  /// Turns clump c over dt from orientation r (its angular velocity follows
+  /// in 3D); returns its new rotation.
+  Rotation turn_one(std::size_t c, const Rotation& r, double dt);
 };
 
 }  // namespace darcydem
