@@ -3,6 +3,7 @@
 #include "darcydem/particles/clumps.hpp"
 
 #include "darcydem/core/parallel.hpp"
+#include "darcydem/simulation/kick.hpp"
 
 #include <fmt/format.h>
 
@@ -72,18 +73,6 @@ AngVec<2> momentum_of(const Eigen::Matrix<double, 2, 2>&, const AngVec<2>& inert
 }
 AngVec<3> momentum_of(const Eigen::Matrix<double, 3, 3>& r, const AngVec<3>& inertia, const AngVec<3>& spin) {
   return r * (r.transpose() * spin).cwiseProduct(inertia);
-}
-
-/// Cundall's local damping of a load f moving with v, component by component.
-template <int K>
-Eigen::Matrix<double, K, 1> locally_damped(const Eigen::Matrix<double, K, 1>& f,
-                                           const Eigen::Matrix<double, K, 1>& v, double alpha) {
-  if (alpha == 0.0) return f;
-  Eigen::Matrix<double, K, 1> out;
-  for (int k = 0; k < K; ++k) {
-    out[k] = f[k] - alpha * std::abs(f[k]) * static_cast<double>((v[k] > 0.0) - (v[k] < 0.0));
-  }
-  return out;
 }
 
 }  // namespace
@@ -234,8 +223,12 @@ void Clumps<D>::gather(const ParticleData<D>& particles) {
 
 template <int D>
 void Clumps<D>::kick_one(std::size_t c, const Rotation& r, double half_dt, double alpha, double beta) {
-  const Vec<D> f = locally_damped<D>(force[c], velocity[c], alpha);
-  const AngVec<D> t = locally_damped<rotation_dim<D>>(torque[c], angular_velocity[c], alpha);
+  Vec<D> f = force[c];
+  AngVec<D> t = torque[c];
+  if (alpha != 0.0) {
+    f += kick::local_damping<D>(alpha, f, velocity[c]);
+    t += kick::local_damping<rotation_dim<D>>(alpha, t, angular_velocity[c]);
+  }
   velocity[c] += (f / mass[c] - beta * velocity[c]) * half_dt;
   AngVec<D> momentum = momentum_of(r, inertia[c], angular_velocity[c]);
   momentum += (t - beta * momentum) * half_dt;
@@ -319,7 +312,7 @@ void Clumps<D>::place_members(ParticleData<D>& particles) const {
 }
 
 template <int D>
-double Clumps<D>::contact_mass(std::size_t c, std::size_t k, double) const {
+double Clumps<D>::contact_mass(std::size_t c, std::size_t k) const {
   // A normal force f n at the member's surface has the moment b x (f n)
   // about the centre of mass (the member's own radius lies along n): the
   // point's acceleration per unit force along n is 1/M + (b x n).I^-1 (b x n),

@@ -2,22 +2,10 @@
 // kind of force in a half kick, and the moving walls' work.
 #include "darcydem/simulation/energy_budget.hpp"
 
+#include "darcydem/simulation/kick.hpp"
 #include "darcydem/simulation/simulation.hpp"
 
 namespace darcydem {
-
-namespace {
-/// Cundall's local damping force on a load f moving with v (kick.hpp):
-/// -alpha |f_k| sign(v_k), component by component.
-template <int K>
-Eigen::Matrix<double, K, 1> local_damping(double alpha, const Eigen::Matrix<double, K, 1>& f,
-                                          const Eigen::Matrix<double, K, 1>& v) {
-  Eigen::Matrix<double, K, 1> out;
-  for (int k = 0; k < K; ++k)
-    out[k] = -alpha * std::abs(f[k]) * static_cast<double>((v[k] > 0.0) - (v[k] < 0.0));
-  return out;
-}
-}  // namespace
 
 template <int D>
 void Simulation<D>::account_kick(std::size_t i, const Vec<D>& v, const AngVec<D>& w, double half_dt,
@@ -47,8 +35,8 @@ void Simulation<D>::account_kick(std::size_t i, const Vec<D>& v, const AngVec<D>
   sum.external_work += q * f_external.dot(sv);
   sum.contact_work += q * (f_contact.dot(sv) + t.dot(sw));
   if (damping.local > 0.0) {
-    sum.local_damping_work += q * (local_damping<D>(damping.local, f, v).dot(sv) +
-                                   local_damping<rotation_dim<D>>(damping.local, t, w).dot(sw));
+    sum.local_damping_work += q * (kick::local_damping<D>(damping.local, f, v).dot(sv) +
+                                   kick::local_damping<rotation_dim<D>>(damping.local, t, w).dot(sw));
   }
   if (damping.viscous > 0.0) {
     sum.viscous_damping_work -=

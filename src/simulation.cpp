@@ -44,7 +44,6 @@ void Simulation<D>::prepare() {
     if (periodic.any())
       throw std::invalid_argument("clumps: periodic boundaries are not supported with clumps");
     if (has_domain) throw std::invalid_argument("clumps: a [domain] is not supported with clumps");
-    clumps.refresh(particles);
   }
   check_periods();
   rebuild();
@@ -906,7 +905,7 @@ double Simulation<D>::critical_time_step() const {
     for (std::uint32_t k = clumps.first[c]; k < clumps.first[c + 1]; ++k) {
       const std::uint32_t i = clumps.member_index[k];
       const auto mat = particles.material[i];
-      m_min[mat] = std::min(m_min[mat], clumps.contact_mass(c, k, particles.radius[i]));
+      m_min[mat] = std::min(m_min[mat], clumps.contact_mass(c, k));
     }
   }
   std::vector<bool> wall_used(nm, false);

@@ -127,7 +127,7 @@ struct Clumps {
   /// over the contact's directions (kg): what the critical time step takes
   /// for a member (its tangential mode as for a sphere's, a factor of the
   /// contact law's).
-  [[nodiscard]] double contact_mass(std::size_t c, std::size_t k, double member_radius) const;
+  [[nodiscard]] double contact_mass(std::size_t c, std::size_t k) const;
 
   template <class Archive>
   void checkpoint(Archive& ar) {

@@ -11,8 +11,11 @@
 // does not depend on where it falls in a group, a thread's share or a sweep.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <utility>
+
+#include <Eigen/Core>
 
 #include "darcydem/core/lanes.hpp"
 
@@ -90,6 +93,18 @@ template <int W>
   }
   (std::make_integer_sequence<int, W>{});
   if (!full) std::copy(pad_v, pad_v + count * W, velocity);
+}
+
+/// Cundall's local damping force on a load f moving with v, one particle or
+/// body at a time (the lanes above do the same four at a time):
+/// -alpha |f_k| sign(v_k), component by component.
+template <int K>
+Eigen::Matrix<double, K, 1> local_damping(double alpha, const Eigen::Matrix<double, K, 1>& f,
+                                          const Eigen::Matrix<double, K, 1>& v) {
+  Eigen::Matrix<double, K, 1> out;
+  for (int k = 0; k < K; ++k)
+    out[k] = -alpha * std::abs(f[k]) * static_cast<double>((v[k] > 0.0) - (v[k] < 0.0));
+  return out;
 }
 
 }  // namespace darcydem::kick
