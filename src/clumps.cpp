@@ -3,12 +3,15 @@
 #include "darcydem/particles/clumps.hpp"
 
 #include "darcydem/core/parallel.hpp"
+#include "darcydem/particles/ball_union.hpp"
 #include "darcydem/simulation/kick.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -75,6 +78,48 @@ AngVec<3> momentum_of(const Eigen::Matrix<double, 3, 3>& r, const AngVec<3>& ine
   return r * (r.transpose() * spin).cwiseProduct(inertia);
 }
 
+/// Each member's share of the volume of the union of overlapping members
+/// (which the pore fluid sees as its solid and gravity as its mass): the
+/// shares add up to the union's volume and their moment about the members'
+/// centres puts it at the union's centroid, so that the members' weights
+/// and buoyancies, acting at their centres, turn the clump no more than
+/// the true distribution would. Of such shares, the nearest to the
+/// members' own volumes scaled to the union's, in the metric weighted by
+/// those (w_i = w0_i (1 + a_i . lambda), a_i = (1, c_i - centroid)).
+template <int D>
+std::vector<double> volume_shares(const std::vector<Vec<D>>& centres, const std::vector<double>& radii,
+                                  double volume, const Vec<D>& centroid) {
+  const auto n = static_cast<Eigen::Index>(centres.size());
+  double own = 0.0;
+  for (double r : radii) own += particle_volume<D>(r);
+  Eigen::VectorXd w0(n);
+  Eigen::MatrixXd a(D + 1, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    w0[i] = particle_volume<D>(radii[k]) * volume / own;
+    a(0, i) = 1.0;
+    a.block<D, 1>(1, i) = centres[k] - centroid;
+  }
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(D + 1);
+  b[0] = volume;
+  const Eigen::MatrixXd weighted = a * w0.asDiagonal();
+  const Eigen::VectorXd lambda =
+      (weighted * a.transpose()).completeOrthogonalDecomposition().solve(b - a * w0);
+  const Eigen::VectorXd w = w0 + weighted.transpose() * lambda;
+  double reach = 0.0;
+  for (std::size_t i = 0; i < centres.size(); ++i)
+    reach = std::max(reach, (centres[i] - centroid).norm() + radii[i]);
+  const Eigen::VectorXd miss = a * w - b;
+  if (!(w.minCoeff() > 0.0) || !(std::abs(miss[0]) <= 1e-9 * volume) ||
+      !(miss.tail<D>().norm() <= 1e-9 * volume * reach)) {
+    throw std::invalid_argument(fmt::format(
+        "the members' centres do not surround the centre of mass of their union ({}): no positive share "
+        "of its volume per member puts its weight there; add a member about that point",
+        fmt::join(centroid, ", ")));
+  }
+  return {w.data(), w.data() + n};
+}
+
 }  // namespace
 
 template <int D>
@@ -87,42 +132,58 @@ ClumpShape<D> make_clump_shape(const std::vector<Vec<D>>& centres, const std::ve
       throw std::invalid_argument(fmt::format("member {} needs a finite centre and a radius > 0", i + 1));
     }
   }
+  bool overlapping = false;
   for (std::size_t i = 0; i < centres.size(); ++i) {
     for (std::size_t j = i + 1; j < centres.size(); ++j) {
       const double gap = (centres[j] - centres[i]).norm() - radii[i] - radii[j];
-      if (gap < -1e-9 * std::min(radii[i], radii[j])) {
-        throw std::invalid_argument(fmt::format(
-            "members {} and {} overlap by {:.6g} (of radii {:.6g} and {:.6g}): members may touch but not "
-            "overlap, so that the clump's mass and inertia are the sums of its members'",
-            i + 1, j + 1, -gap, radii[i], radii[j]));
+      overlapping = overlapping || gap < -1e-9 * std::min(radii[i], radii[j]);
+      const double d = (centres[j] - centres[i]).norm();
+      if (d + std::min(radii[i], radii[j]) <= std::max(radii[i], radii[j])) {
+        const bool i_inside = radii[i] <= radii[j];
+        throw std::invalid_argument(
+            fmt::format("member {} lies wholly inside member {}: it adds nothing to the "
+                        "clump's solid; leave it out",
+                        i_inside ? i + 1 : j + 1, i_inside ? j + 1 : i + 1));
       }
     }
   }
   ClumpShape<D> shape;
+  shape.overlapping = overlapping;
+  // The volume, centroid and second moments (about the origin given) of
+  // the solid: the members' sums, or with overlaps those of their union.
   double volume = 0.0;
   Vec<D> centroid = Vec<D>::Zero();
-  for (std::size_t i = 0; i < centres.size(); ++i) {
-    const double v = particle_volume<D>(radii[i]);
-    volume += v;
-    centroid += v * centres[i];
+  Eigen::Matrix<double, D, D> second = Eigen::Matrix<double, D, D>::Zero();
+  std::vector<double> share(centres.size());
+  if (!overlapping) {
+    for (std::size_t i = 0; i < centres.size(); ++i) {
+      const double v = particle_volume<D>(radii[i]);
+      share[i] = v;
+      volume += v;
+      centroid += v * centres[i];
+    }
+    centroid /= volume;
+  } else {
+    const BallUnionMoments<D> m = ball_union_moments<D>(centres, radii);
+    volume = m.volume;
+    centroid = m.centroid();
+    second = m.second - volume * centroid * centroid.transpose();
+    share = volume_shares<D>(centres, radii, volume, centroid);
   }
-  centroid /= volume;
   std::vector<Vec<D>> arm(centres.size());
   for (std::size_t i = 0; i < centres.size(); ++i) arm[i] = centres[i] - centroid;
-  AngVec<D> moments = AngVec<D>::Zero();
-  if constexpr (D == 2) {
+  if (!overlapping) {
     for (std::size_t i = 0; i < centres.size(); ++i) {
-      moments[0] +=
-          particle_volume<2>(radii[i]) * (inertia_factor<2> * radii[i] * radii[i] + arm[i].squaredNorm());
-    }
-  } else {
-    Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero();
-    for (std::size_t i = 0; i < centres.size(); ++i) {
-      const double v = particle_volume<3>(radii[i]);
-      tensor += v * ((inertia_factor<3> * radii[i] * radii[i] + arm[i].squaredNorm()) *
-                         Eigen::Matrix3d::Identity() -
+      const double v = particle_volume<D>(radii[i]);
+      second += v * (radii[i] * radii[i] / (D == 2 ? 4.0 : 5.0) * Eigen::Matrix<double, D, D>::Identity() +
                      arm[i] * arm[i].transpose());
     }
+  }
+  AngVec<D> moments = AngVec<D>::Zero();
+  if constexpr (D == 2) {
+    moments[0] = second.trace();
+  } else {
+    const Eigen::Matrix3d tensor = second.trace() * Eigen::Matrix3d::Identity() - second;
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(tensor);
     Eigen::Matrix3d axes = solver.eigenvectors();
     if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);  // a rotation, not a reflection
@@ -138,6 +199,7 @@ ClumpShape<D> make_clump_shape(const std::vector<Vec<D>>& centres, const std::ve
   for (std::size_t i = 0; i < arm.size(); ++i) {
     shape.centre[i] = arm[i] / reach;
     shape.radius[i] = radii[i] / reach;
+    shape.share.push_back(overlapping ? share[i] / std::pow(reach, D) : particle_volume<D>(shape.radius[i]));
   }
   shape.volume = volume / std::pow(reach, D);
   shape.inertia_per_density = moments / std::pow(reach, D + 2);
@@ -156,11 +218,18 @@ std::size_t Clumps<D>::add(ParticleData<D>& particles, const ClumpShape<D>& shap
     const Vec<D> b = size * shape.centre[k];
     const double radius = size * shape.radius[k];
     particles.add(x + r * b, radius, density, mat, false, v);
+    double member_mass = ParticleData<D>::mass_of(density, radius);
+    if (shape.overlapping) {
+      member_mass = density * shape.share[k] * std::pow(size, D);
+      particles.inv_mass.back() = 1.0 / member_mass;
+      particles.inv_inertia.back() = 1.0 / (inertia_factor<D> * member_mass * radius * radius);
+      particles.set_volume_scale(particles.size() - 1, shape.share[k] / particle_volume<D>(shape.radius[k]));
+    }
     particles.fixed.back() = ParticleData<D>::clump_member;
     member_id.push_back(particles.id.back());
     member_index.push_back(static_cast<std::uint32_t>(particles.size() - 1));
     offset.push_back(b);
-    m += ParticleData<D>::mass_of(density, radius);
+    m += member_mass;
   }
   first.push_back(static_cast<std::uint32_t>(member_id.size()));
   mass.push_back(m);

@@ -168,6 +168,9 @@ void PoreFluid<D>::compute_solid(const ParticleData<D>& particles) {
       for (int k = 0; k < D; ++k) sums.face_flux[k].assign(grid.face_count(k), 0.0);
     }
   }
+  // Members of a clump whose members overlap count their share of its
+  // volume (ParticleData::volume_scale).
+  const double* scale = particles.volume_scale.empty() ? nullptr : particles.volume_scale.data();
   auto sum_block = [&](std::size_t b) {
     SolidSums& sums = block_solid_[b];
     Lanes* cell = sums.cell.data();
@@ -184,6 +187,7 @@ void PoreFluid<D>::compute_solid(const ParticleData<D>& particles) {
     for_each_overlap(
         particles, count * b / blocks, count * (b + 1) / blocks,
         [&](std::size_t c, std::size_t i, double v) {
+          if (scale != nullptr) v *= scale[i];
           const Vec<D>& u = particles.velocity[i];
           Lanes weights{1.0, u[0], u[1], 0.0};
           if constexpr (D == 3) weights[3] = u[2];
@@ -192,6 +196,7 @@ void PoreFluid<D>::compute_solid(const ParticleData<D>& particles) {
           hi = std::max(hi, c + 1);
         },
         [&](int axis, std::size_t face, std::size_t i, double area) {
+          if (scale != nullptr) area *= scale[i];
           sums.face_flux[axis][face] += area * particles.velocity[i][axis];
           face_lo[axis] = std::min(face_lo[axis], face);
           face_hi[axis] = std::max(face_hi[axis], face + 1);
@@ -921,7 +926,7 @@ double PoreFluid<D>::critical_time_step(const ParticleData<D>& p, double dem_ste
     const double m = 1.0 / p.inv_mass[i];
     m_min = std::min(m_min, m);
     r_min = std::min(r_min, p.radius[i]);
-    rho_min = std::min(rho_min, m / particle_volume<D>(p.radius[i]));
+    rho_min = std::min(rho_min, m / p.solid_volume(i));
   }
   if (!std::isfinite(m_min)) return dem_step;
   double n_min = 1.0;

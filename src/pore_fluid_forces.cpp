@@ -155,6 +155,7 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
   const bool periodic = grid.any_periodic();
   // Ergun/Wen-Yu or the Darcy law: each compiled on its own, so that a
   // grain does only its law's work.
+  const double* scale = p.volume_scale.empty() ? nullptr : p.volume_scale.data();
   auto run = [&]<bool Ergun, bool Spread>(std::int64_t b) {
     const std::int64_t begin = b * chunk;
     const std::int64_t n = std::min(count, begin + chunk) - begin;
@@ -266,6 +267,10 @@ void PoreFluid<D>::particle_forces(const ParticleData<D>& p, const Vec<D>& gravi
         speed[j] = std::sqrt(slip2);
         re[j] *= 2.0 * r * speed[j];
       }
+    }
+    if (scale != nullptr) {
+      // A member of a clump of overlapping members: its share of the volume.
+      for (std::int64_t j = 0; j < n; ++j) vp[j] *= scale[begin + j];
     }
     if constexpr (Ergun) {
       // Re = 0 (no slip, as in fluid at rest) has no finite logarithm;

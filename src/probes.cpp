@@ -44,8 +44,9 @@ double box_porosity(const ParticleData<D>& particles, const Vec<D>& lo, const Ve
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const double r = particles.radius[i];
     const Vec<D>& x = particles.position[i];
+    const double scale = particles.volume_scale.empty() ? 1.0 : particles.volume_scale[i];
     if (!periodic.any()) {
-      solid += in_box(x, r);
+      solid += scale * in_box(x, r);
       continue;
     }
     // Along each periodic axis the whole periods n that bring an image
@@ -68,7 +69,7 @@ double box_porosity(const ParticleData<D>& particles, const Vec<D>& lo, const Ve
         image[k] += (first[k] + rest % count[k]) * periodic.length[k];
         rest /= count[k];
       }
-      solid += in_box(image, r);
+      solid += scale * in_box(image, r);
     }
   }
   return 1.0 - solid / (hi - lo).prod();

@@ -260,7 +260,7 @@ std::vector<std::uint32_t> Simulation<D>::remove_outside_domain() {
       continue;
     }
     ++removed_count;
-    removed_volume += particle_volume<D>(particles.radius[i]);
+    removed_volume += particles.solid_volume(i);
     if (particles.inv_mass[i] > 0.0) {
       removed_mass += 1.0 / particles.inv_mass[i];
       // The budget's kinetic energy leaves with it (the step's first half

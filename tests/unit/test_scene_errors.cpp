@@ -2312,7 +2312,19 @@ TEST(SceneErrors, ClumpsAreChecked) {
     EXPECT_NE(msg.find(part), std::string::npos) << part << " | " << msg;
   };
   expect_error(replace(good, "clump = \"pair\"", "clump = \"pear\""), "did you mean \"pair\"");
-  expect_error(replace(good, "[1.0, 0.0, 1.0]]", "[0.5, 0.0, 1.0]]"), "members 1 and 2 overlap");
+  {
+    // Members may overlap (PFC's pebbles): the mass is the union's, two
+    // discs of radius a (the grain's 0.5 mm over the reach 1.75) 1.5 a
+    // apart less the lens between them, counted once.
+    const auto scene = built_scene<2>(replace(good, "[1.0, 0.0, 1.0]]", "[0.5, 0.0, 1.0]]"));
+    const double a = 0.5e-3 / 1.75;
+    const double d = 1.5 * a;
+    const double lens = 2.0 * a * a * std::acos(0.5 * d / a) - 0.5 * d * std::sqrt(4.0 * a * a - d * d);
+    const double m = 2650.0 * (2.0 * std::numbers::pi * a * a - lens);
+    EXPECT_NEAR(scene.simulation.clumps.mass[0], m, 1e-12 * m);
+  }
+  expect_error(replace(good, "[1.0, 0.0, 1.0]]", "[-0.8, 0.0, 0.5]]"),
+               "member 2 lies wholly inside member 1");
   expect_error(replace(good, "[1.0, 0.0, 1.0]]", "[1.0, 0.0]]"), "member 2 must be [x, y, r]");
   expect_error(replace(good, "[1.0, 0.0, 1.0]]", "[1.0, 0.0, 0.0]]"), "member 2: its radius must be > 0");
   expect_error(replace(good, "circles =", "spheres ="), "'circles'");

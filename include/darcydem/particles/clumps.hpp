@@ -5,9 +5,13 @@
 // flag is ParticleData::clump_member) and it moves with its clump:
 //   x_i = x_c + R b_i,  v_i = v_c + w x (R b_i),  w_i = w,
 // b_i its offset in the clump's principal frame, R the clump's orientation.
-// Members keep their own masses, so the clump's mass, centre of mass and
-// inertia are their sums (members may touch but not overlap: each point of
-// the clump belongs to one member). The clump takes the members' forces
+// Members that do not overlap keep their own masses, and the clump's mass,
+// centre of mass and inertia are their sums. Members that overlap (PFC's
+// usual clump of pebbles) make a clump with the mass, centre of mass and
+// inertia of their union (ball_union.hpp), each member's mass and solid
+// volume for the pore fluid its share of the union, the shares placed so
+// that gravity and buoyancy on the members put no moment on the clump
+// about its centre of mass. The clump takes the members' forces
 // (contacts, gravity, the pore fluid's) and moments about its centre, and
 // integrates them by velocity Verlet: half kicks of its momentum and
 // angular momentum, and a drift that turns it at the angular velocity of
@@ -38,6 +42,11 @@ template <int D>
 struct ClumpShape {
   std::vector<Vec<D>> centre;
   std::vector<double> radius;
+  /// Each member's share of the clump's volume at this scale: its own
+  /// volume, or with overlapping members its share of their union
+  /// (volume_shares in clumps.cpp). Its mass and the pore fluid's solid.
+  std::vector<double> share;
+  bool overlapping = false;  ///< some members overlap (then share < own volume)
   /// Principal moments of inertia per unit density at this scale
   /// (kg m^2 / (kg/m^3) for a size of 1 m; 2D: one, per metre).
   AngVec<D> inertia_per_density = AngVec<D>::Zero();
@@ -59,9 +68,12 @@ Orientation<3> compose(const Orientation<3>& q1, const Orientation<3>& q0);
 /// Makes a clump's shape from members given in any frame and unit
 /// (centres and radii): moves their centre of mass to the origin, turns
 /// them into their principal axes and scales them to a bounding radius of 1.
-/// Throws std::invalid_argument, saying which, if fewer than one member is
-/// given, a radius is not positive or two members overlap (by more than
-/// 1e-9 of the smaller radius).
+/// Members may overlap (by more than 1e-9 of the smaller radius): then the
+/// volume, centre of mass and inertia are those of their union
+/// (ball_union.hpp) and each member gets a share of that volume. Throws
+/// std::invalid_argument, saying which, if fewer than one member is given,
+/// a radius is not positive, or no positive shares put the weight at the
+/// union's centre of mass.
 template <int D>
 ClumpShape<D> make_clump_shape(const std::vector<Vec<D>>& centres, const std::vector<double>& radii);
 

@@ -29,6 +29,10 @@ struct ParticleData {
   /// N, added every step (user loads). Empty unless the user sizes it to N:
   /// most scenes have none, and an unused array still costs memory traffic.
   std::vector<Vec<D>> external_force;
+  /// The particle's solid volume over its ball's (pore fluid, probes):
+  /// below 1 for members of a clump whose members overlap, each taking its
+  /// share of their union. Empty when every particle has 1.
+  std::vector<double> volume_scale;
 
   /// The `fixed` value of a member of a clump.
   static constexpr std::uint8_t clump_member = 2;
@@ -50,6 +54,22 @@ struct ParticleData {
     force.push_back(Vec<D>::Zero());
     torque.push_back(AngVec<D>::Zero());
     if (!external_force.empty()) external_force.push_back(Vec<D>::Zero());
+    if (!volume_scale.empty()) volume_scale.push_back(1.0);
+  }
+
+  /// Particle i's solid volume (m^3; 2D m^2 per metre).
+  [[nodiscard]] double solid_volume(std::size_t i) const {
+    const double v = particle_volume<D>(radius[i]);
+    return volume_scale.empty() ? v : v * volume_scale[i];
+  }
+
+  /// Gives particle i the solid volume `scale` times its ball's.
+  void set_volume_scale(std::size_t i, double scale) {
+    if (volume_scale.empty()) {
+      if (scale == 1.0) return;
+      volume_scale.assign(size(), 1.0);
+    }
+    volume_scale[i] = scale;
   }
 
   /// Index of the particle created as number `creation` (particles are
@@ -98,13 +118,14 @@ struct ParticleData {
     apply(force);
     apply(torque);
     apply(external_force);
+    apply(volume_scale);
   }
 
   /// Every array, in the order the checkpoint stores them (checkpoint_archive.hpp).
   template <class Archive>
   void checkpoint(Archive& ar) {
     ar(id, radius, inv_mass, inv_inertia, material, fixed, position, velocity, angular_velocity, force,
-       torque, external_force);
+       torque, external_force, volume_scale);
   }
 
   /// Bytes held by the arrays (capacity), for memory reports.
@@ -112,7 +133,7 @@ struct ParticleData {
     auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
     return bytes(id) + bytes(radius) + bytes(inv_mass) + bytes(inv_inertia) + bytes(material) + bytes(fixed) +
            bytes(position) + bytes(velocity) + bytes(angular_velocity) + bytes(force) + bytes(torque) +
-           bytes(external_force);
+           bytes(external_force) + bytes(volume_scale);
   }
 
   /// Mass from density for any particle, fixed or not (kg).
