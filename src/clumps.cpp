@@ -250,6 +250,35 @@ std::size_t Clumps<D>::add(ParticleData<D>& particles, const ClumpShape<D>& shap
 }
 
 template <int D>
+void Clumps<D>::keep(const std::vector<std::uint8_t>& kept) {
+  if (std::all_of(kept.begin(), kept.end(), [](std::uint8_t k) { return k != 0; })) return;
+  std::vector<std::uint32_t> clump_order;
+  std::vector<std::uint32_t> member_order;
+  std::vector<std::uint32_t> new_first{0};
+  for (std::size_t c = 0; c < size(); ++c) {
+    if (kept[c] == 0) continue;
+    clump_order.push_back(static_cast<std::uint32_t>(c));
+    for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) member_order.push_back(k);
+    new_first.push_back(static_cast<std::uint32_t>(member_order.size()));
+  }
+  auto per_clump = [&](auto& v) { ParticleData<D>::reorder(v, clump_order); };
+  per_clump(mass);
+  per_clump(inertia);
+  per_clump(fixed);
+  per_clump(position);
+  per_clump(orientation);
+  per_clump(velocity);
+  per_clump(angular_velocity);
+  per_clump(force);
+  per_clump(torque);
+  ParticleData<D>::reorder(member_id, member_order);
+  ParticleData<D>::reorder(offset, member_order);
+  first = clump_order.empty() ? std::vector<std::uint32_t>{} : new_first;
+  member_index.clear();
+  clump_of.clear();
+}
+
+template <int D>
 void Clumps<D>::refresh(const ParticleData<D>& particles) {
   std::uint32_t top = 0;
   for (auto id : particles.id) top = std::max(top, id);
@@ -366,10 +395,13 @@ double Clumps<D>::advance(ParticleData<D>& particles, int kicks, double half_dt,
 
 template <int D>
 void Clumps<D>::place(std::size_t c, const Rotation& r, ParticleData<D>& particles) const {
+  const bool periodic = period.any();
   for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
     const std::uint32_t i = member_index[k];
     const Vec<D> arm = r * offset[k];
-    particles.position[i] = position[c] + arm;
+    const Vec<D> x = position[c] + arm;
+    particles.position[i] =
+        periodic ? Vec<D>(particles.position[i] + period.shortest(x - particles.position[i])) : x;
     particles.velocity[i] = velocity[c] + cross(angular_velocity[c], arm);
     particles.angular_velocity[i] = angular_velocity[c];
   }
@@ -378,6 +410,14 @@ void Clumps<D>::place(std::size_t c, const Rotation& r, ParticleData<D>& particl
 template <int D>
 void Clumps<D>::place_members(ParticleData<D>& particles) const {
   for (std::size_t c = 0; c < size(); ++c) place(c, rotation_matrix(orientation[c]), particles);
+}
+
+template <int D>
+double Clumps<D>::largest_reach(const ParticleData<D>& particles) const {
+  double reach = 0.0;
+  for (std::size_t k = 0; k < member_id.size(); ++k)
+    reach = std::max(reach, offset[k].norm() + particles.radius[member_index[k]]);
+  return reach;
 }
 
 template <int D>

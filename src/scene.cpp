@@ -670,7 +670,22 @@ void check_periods(TableReader& r, const Simulation<D>& sim, const std::vector<s
     const std::string axis(1, "xyz"[k]);
     const double lo = cell.lower[k];
     const double hi = lo + cell.length[k];
+    // A clump's members may stick out of the period (the list builds put
+    // them back): its centre of mass starts inside it.
+    const auto& clumps = sim.clumps;
+    for (std::size_t c = 0; c < clumps.size(); ++c) {
+      const double x = clumps.position[c][k];
+      if (x < lo || x >= hi) {
+        const std::size_t i = clumps.member_index[clumps.first[c]];
+        throw SceneError(
+            fmt::format("{}: error: the centre of clump {} (of particle {}) starts at {} = {:.6g} m, "
+                        "outside the periodic range [periodic] {} = [{}, {}) (allowed: min <= {} < max)",
+                        origin[i], c, i, axis, x, axis, TableReader::format_number(lo),
+                        TableReader::format_number(hi), axis));
+      }
+    }
     for (std::size_t i = 0; i < p.size(); ++i) {
+      if (!clumps.clump_of.empty() && clumps.clump_of[i] >= 0) continue;
       if (p.position[i][k] < lo || p.position[i][k] >= hi) {
         throw SceneError(
             fmt::format("{}: error: particle {} starts at {} = {:.6g} m, outside the periodic range "
@@ -680,10 +695,16 @@ void check_periods(TableReader& r, const Simulation<D>& sim, const std::vector<s
       }
     }
     if (!(cell.length[k] > shortest)) {
-      r.fail(axis,
-             fmt::format("the period {:.6g} m must exceed 2 x (2 x largest radius + skin) = {:.6g} m, so "
-                         "that a particle meets one image of each neighbour",
-                         cell.length[k], shortest));
+      r.fail(
+          axis,
+          sim.clumps.empty()
+              ? fmt::format("the period {:.6g} m must exceed 2 x (2 x largest radius + skin) = {:.6g} m, so "
+                            "that a particle meets one image of each neighbour",
+                            cell.length[k], shortest)
+              : fmt::format("the period {:.6g} m must exceed 2 x (the larger of 2 x the largest radius and "
+                            "the largest clump's reach, + skin) = {:.6g} m, so that a particle meets one "
+                            "image of each neighbour and a clump none of itself",
+                            cell.length[k], shortest));
     }
   }
 }
@@ -737,12 +758,14 @@ void read_domain(TableReader& r, Simulation<D>& sim, const PoreFluid<D>* fluid,
   for (int k = 0; k < D; ++k)
     box += fmt::format("{}{} in [{}, {}]", k == 0 ? "" : ", ", "xyz"[k], TableReader::format_number(lo[k]),
                        TableReader::format_number(hi[k]));
-  notes.push_back(
-      fmt::format("[domain]: particles whose centres leave {} m are removed from the run (the "
-                  "removed_particles and removed_mass probes and run.json count them)",
-                  box));
+  notes.push_back(fmt::format(
+      "[domain]: particles whose centres leave {} m are removed from the run{} (the "
+      "removed_particles and removed_mass probes and run.json count them)",
+      box, sim.clumps.empty() ? "" : "; a clump whose centre of mass leaves it, with all its members"));
   if (fluid == nullptr) return;
-  double r_max = 0.0;
+  // A clump is removed by its centre of mass: its members reach that far
+  // beyond it.
+  double r_max = sim.clumps.largest_reach(p);
   for (double radius : p.radius) r_max = std::max(r_max, radius);
   const Vec<D> g_lo = fluid->grid.origin;
   const Vec<D> g_hi = fluid->grid.upper();
@@ -1167,13 +1190,6 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         r.fail("clump", fmt::format("\"{}\" is not a [[clump_template]]'s name{}{}", *name, hint,
                                     clump_names.empty() ? ": the scene has none" : ""));
       }
-      if (sim.periodic.any())
-        r.fail("clump",
-               "clumps are not supported with [periodic] boundaries yet (their members would be "
-               "wrapped into the period one by one)");
-      if (top.has("domain"))
-        r.fail("clump",
-               "clumps are not supported with a [domain] yet (their members would be removed one by one)");
       clump = &it->second;
     }
     Packing<D> pk;
@@ -1321,7 +1337,12 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                        : "needs at least one [[particles]] generator that makes particles (or "
                          "an [[inlet]] that adds them during the run)");
   }
-  if (periodic_reader && sim.particles.size() > 0) check_periods<D>(*periodic_reader, sim, origin);
+  if (periodic_reader && sim.particles.size() > 0) {
+    check_periods<D>(*periodic_reader, sim, origin);
+    // Members that stick out of the period go back in (as each list build
+    // puts them), their clumps' centres inside.
+    for (auto& x : sim.particles.position) x = sim.periodic.wrap(x);
+  }
 
   // Every pair of materials that can meet needs a [[contact]].
   {

@@ -38,13 +38,6 @@ void Simulation<D>::prepare() {
   rolling_ = contact_table.any_rolling();
   skin = skin_or_default();
   if (time_step <= 0.0) throw std::logic_error("time step not set");
-  if (!clumps.empty()) {
-    // Not yet: a clump's members would be wrapped into the period one by
-    // one, or removed from the domain one by one.
-    if (periodic.any())
-      throw std::invalid_argument("clumps: periodic boundaries are not supported with clumps");
-    if (has_domain) throw std::invalid_argument("clumps: a [domain] is not supported with clumps");
-  }
   check_periods();
   rebuild();
   compute_forces(Finish::none);
@@ -176,16 +169,20 @@ template <int D>
 double Simulation<D>::shortest_period() const {
   double r_max = 0.0;
   for (double r : particles.radius) r_max = std::max(r_max, r);
-  return 2.0 * (2.0 * r_max + skin_or_default());
+  // A clump must not reach its own image either (its members never touch
+  // each other, images included).
+  return 2.0 * (std::max(2.0 * r_max, clumps.largest_reach(particles)) + skin_or_default());
 }
 
 template <int D>
 void Simulation<D>::check_periods() const {
   for (int k = 0; k < D; ++k) {
     if (periodic.periodic[k] && !(periodic.length[k] > shortest_period())) {
-      throw std::invalid_argument(fmt::format(
-          "periodic axis {}: the period {:.6g} m must exceed 2 x (2 x largest radius + skin) = {:.6g} m",
-          "xyz"[k], periodic.length[k], shortest_period()));
+      throw std::invalid_argument(
+          fmt::format("periodic axis {}: the period {:.6g} m must exceed 2 x (the larger of 2 x the largest "
+                      "radius and the "
+                      "largest clump's reach, + skin) = {:.6g} m",
+                      "xyz"[k], periodic.length[k], shortest_period()));
     }
   }
 }
@@ -194,7 +191,9 @@ template <int D>
 void Simulation<D>::rebuild() {
   if (periodic.any()) {
     for (auto& x : particles.position) x = periodic.wrap(x);
+    for (auto& x : clumps.position) x = periodic.wrap(x);
   }
+  clumps.period = periodic;
   // Each particle's index at the last build, for the lists' histories
   // (empty: the same index); no_old_index for a particle added since.
   std::vector<std::uint32_t> old;
@@ -248,14 +247,23 @@ std::vector<std::uint32_t> Simulation<D>::remove_outside_domain() {
     return in;  // false for a NaN position: the list build reports it
   };
   const std::size_t n = particles.size();
+  // A clump's members stay or go with its centre of mass (clump_of is the
+  // last build's, and the particles have kept their order since; those an
+  // inlet added since are not members).
+  std::vector<std::uint8_t> clump_kept(clumps.size(), 1);
+  for (std::size_t c = 0; c < clumps.size(); ++c)
+    clump_kept[c] = inside(clumps.position[c]) || !clumps.position[c].allFinite() ? 1 : 0;
+  auto stays = [&](std::size_t i) {
+    if (i < clumps.clump_of.size() && clumps.clump_of[i] >= 0)
+      return clump_kept[static_cast<std::size_t>(clumps.clump_of[i])] != 0;
+    return inside(particles.position[i]) || !particles.position[i].allFinite();
+  };
   std::size_t first_out = 0;
-  while (first_out < n &&
-         (inside(particles.position[first_out]) || !particles.position[first_out].allFinite()))
-    ++first_out;
+  while (first_out < n && stays(first_out)) ++first_out;
   if (first_out == n) return kept;
   kept.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (inside(particles.position[i]) || !particles.position[i].allFinite()) {
+    if (stays(i)) {
       kept.push_back(static_cast<std::uint32_t>(i));
       continue;
     }
@@ -275,6 +283,7 @@ std::vector<std::uint32_t> Simulation<D>::remove_outside_domain() {
   // Forces a field holds go with their particles.
   if (field_force_.size() == n) ParticleData<D>::reorder(field_force_, kept);
   particles.permute(kept);
+  clumps.keep(clump_kept);  // rebuild() refreshes the members' indices
   return kept;
 }
 

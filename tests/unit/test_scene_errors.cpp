@@ -2282,6 +2282,49 @@ TEST(SceneErrors, BondStrengthScatterIsReadAndChecked) {
 namespace darcydem {
 namespace {
 
+// Clumps with [periodic] boundaries: the column of three grains made pairs
+// of discs along x (each a grain of 0.5 mm: discs of 0.25 mm at +-0.25 mm),
+// at x = 0, the lower end of a period [0, 6 mm): each clump's centre is
+// inside it, its left disc out of it and put back at the build (at
+// 6 - 0.25 mm). A centre outside the period is refused, and so is a
+// period a clump could meet its own image in: a pair of discs of 1/3 of
+// the grain 4/3 apart reaches 0.5 mm, so with the default skin (0.2 of
+// the smallest radius, 0.0333 mm) the period must exceed
+// 2 x (0.5 + 0.0333) = 1.0667 mm, more than the discs' own
+// 2 x (2 x 0.1667 + 0.0333) = 0.733 mm.
+TEST(SceneErrors, PeriodicClumpsAreChecked) {
+  const std::string pair =
+      "[[clump_template]]\nname = \"pair\"\ncircles = [[-1.0, 0.0, 1.0], [1.0, 0.0, 1.0]]\n\n";
+  const std::string good =
+      replace(replace(replace(kGood, "[[particles]]", pair + "[[particles]]"), "radius = 0.0005",
+                      "radius = 0.0005\nclump = \"pair\"\norientation = \"aligned\""),
+              "\n[[material]]", "\n[periodic]\nx = [0.0, 0.006]\n\n[[material]]");
+  ASSERT_EQ(load_error(good), "");
+  {
+    const auto scene = built_scene<2>(good);
+    const auto& p = scene.simulation.particles;
+    ASSERT_EQ(p.size(), 6u);
+    for (std::size_t i = 0; i < 6; ++i) {
+      const double expect = i % 2 == 0 ? 0.006 - 0.25e-3 : 0.25e-3;
+      EXPECT_NEAR(p.position[i].x(), expect, 1e-15) << i;
+    }
+  }
+  auto msg = load_error(replace(good, "x = [0.0, 0.006]", "x = [0.0001, 0.006]"));
+  EXPECT_NE(msg.find("the centre of clump 0 (of particle 0) starts at x = 0 m, outside the periodic range "
+                     "[periodic] x = [0.0001, 0.006)"),
+            std::string::npos)
+      << msg;
+  const std::string apart =
+      replace(replace(good, "[[-1.0, 0.0, 1.0], [1.0, 0.0, 1.0]]", "[[-2.0, 0.0, 1.0], [2.0, 0.0, 1.0]]"),
+              "x = [0.0, 0.006]", "x = [-0.0005, 0.0005]");
+  msg = load_error(apart);
+  EXPECT_NE(msg.find("key 'x': the period 0.001 m must exceed 2 x (the larger of 2 x the largest radius and "
+                     "the largest clump's reach, + skin) = 0.00106667 m"),
+            std::string::npos)
+      << msg;
+  EXPECT_EQ(load_error(replace(apart, "x = [-0.0005, 0.0005]", "x = [-0.0007, 0.0007]")), "");
+}
+
 // [[clump_template]] and a generator's `clump`: a column of three grains
 // becomes three pairs of touching discs, each pair's bounding circle the
 // grain's (radius 0.5 mm: discs of 0.25 mm at +-0.25 mm), placed as given
@@ -2332,7 +2375,13 @@ TEST(SceneErrors, ClumpsAreChecked) {
   expect_error(replace(good, "orientation = \"aligned\"", "orientation = \"aligned\"\norientation_seed = 3"),
                "seeds a random orientation");
   expect_error(replace(good, "clump = \"pair\"\n", ""), "orients clumps: give 'clump' too");
-  expect_error(good + "\n[domain]\nmin = [-1.0, -1.0]\nmax = [1.0, 1.0]\n", "not supported with a [domain]");
+  {
+    // A [domain] removes clumps whole, by their centres of mass (noted).
+    const auto scene = built_scene<2>(good + "\n[domain]\nmin = [-1.0, -1.0]\nmax = [1.0, 1.0]\n");
+    bool noted = false;
+    for (const auto& note : scene.notes) noted = noted || note.find("a clump whose centre of mass leaves it") != std::string::npos;
+    EXPECT_TRUE(noted);
+  }
   expect_error(good + "\n[[probe]]\nname = \"g\"\nquantity = \"gravity_work\"\n", "energy budget");
   expect_error(replace(good, "[[-1.0, 0.0, 1.0], [1.0, 0.0, 1.0]]", "[]"), "must be a non-empty array");
 }

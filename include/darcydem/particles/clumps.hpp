@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "darcydem/core/periodic_cell.hpp"
 #include "darcydem/core/vec.hpp"
 #include "darcydem/particles/particle_data.hpp"
 
@@ -97,6 +98,11 @@ struct Clumps {
   /// and each particle's clump (-1 for none). Not checkpointed.
   std::vector<std::uint32_t> member_index;
   std::vector<std::int32_t> clump_of;
+  /// The simulation's periodic boundaries (it sets them on every list
+  /// build): each member is placed at the image of x_c + R b_i nearest to
+  /// where it was, so it moves continuously while the list builds put the
+  /// particles, and the clumps' centres, back into the period one by one.
+  PeriodicCell<D> period;
 
   using Rotation = Eigen::Matrix<double, D, D>;
 
@@ -110,6 +116,11 @@ struct Clumps {
   /// particles now, until they are reordered or removed (refresh()).
   std::size_t add(ParticleData<D>& particles, const ClumpShape<D>& shape, double size, const Vec<D>& x,
                   const Orientation<D>& q, double density, std::uint16_t mat, bool is_fixed, const Vec<D>& v);
+
+  /// Keeps the clumps c with kept[c] != 0 (in order), drops the others
+  /// with their members' entries; member_index and clump_of are left for
+  /// refresh() (their particles were removed too).
+  void keep(const std::vector<std::uint8_t>& kept);
 
   /// Re-derives member_index and clump_of from the particles' ids (after the
   /// particles were reordered, removed or added).
@@ -134,6 +145,10 @@ struct Clumps {
   void place_members(ParticleData<D>& particles) const;
   /// The same for the members of clump c, at its orientation's rotation r.
   void place(std::size_t c, const Rotation& r, ParticleData<D>& particles) const;
+
+  /// The largest distance from a clump's centre of mass to its members'
+  /// surfaces (m; 0 without clumps).
+  [[nodiscard]] double largest_reach(const ParticleData<D>& particles) const;
 
   /// The least effective mass of a normal contact on member k of clump c
   /// over the contact's directions (kg): what the critical time step takes
