@@ -64,7 +64,14 @@ std::vector<std::pair<double, double>> exposed_arcs(const std::vector<Disc>& dis
       continue;
     }
     if (d + b.r <= a.r) continue;
-    const double half = std::acos(std::clamp((a.r * a.r + d * d - b.r * b.r) / (2.0 * a.r * d), -1.0, 1.0));
+    // The half angle of the arc inside b, from the chord's distance to a's
+    // centre x = (d^2 + a^2 - b^2) / 2d and its half length h, each factor
+    // of h^2 = (a - x)(a + x) free of cancellation (an acos near +-1 would
+    // lose half the digits of a short arc's ends).
+    const double a_minus_x = (b.r - d + a.r) * (b.r + d - a.r) / (2.0 * d);
+    const double a_plus_x = (a.r + d - b.r) * (a.r + d + b.r) / (2.0 * d);
+    const double half =
+        std::atan2(std::sqrt(std::max(0.0, a_minus_x * a_plus_x)), 0.5 * (a_plus_x - a_minus_x));
     double lo = std::atan2(b.y - a.y, b.x - a.x) - half;
     lo -= turn * std::floor(lo / turn);
     const double hi = lo + 2.0 * half;
@@ -187,7 +194,7 @@ BallUnionMoments<D> scaled_moments(const std::vector<Vec<D>>& centres, const std
     out.first = Vec<2>(p[1], p[2]);
     out.second << p[3], p[5], p[5], p[4];
   } else {
-    const GaussLegendre depth_rule(8);
+    const GaussLegendre depth_rule(16);
     const SliceIntegral integral{centres, radii, plane_rule, depth_rule, 1e-14};
     std::vector<double> breaks;
     for (std::size_t i = 0; i < centres.size(); ++i) {

@@ -320,17 +320,67 @@ void Clumps<D>::gather(const ParticleData<D>& particles) {
 }
 
 template <int D>
-void Clumps<D>::kick_one(std::size_t c, const Rotation& r, double half_dt, double alpha, double beta) {
+std::pair<Vec<D>, AngVec<D>> Clumps<D>::kick_one(std::size_t c, const Rotation& r, double half_dt,
+                                                 double alpha, double beta) {
   Vec<D> f = force[c];
   AngVec<D> t = torque[c];
+  Vec<D> f_damping = Vec<D>::Zero();
+  AngVec<D> t_damping = AngVec<D>::Zero();
   if (alpha != 0.0) {
-    f += kick::local_damping<D>(alpha, f, velocity[c]);
-    t += kick::local_damping<rotation_dim<D>>(alpha, t, angular_velocity[c]);
+    f_damping = kick::local_damping<D>(alpha, f, velocity[c]);
+    t_damping = kick::local_damping<rotation_dim<D>>(alpha, t, angular_velocity[c]);
+    f += f_damping;
+    t += t_damping;
   }
   velocity[c] += (f / mass[c] - beta * velocity[c]) * half_dt;
   AngVec<D> momentum = momentum_of(r, inertia[c], angular_velocity[c]);
   momentum += (t - beta * momentum) * half_dt;
   angular_velocity[c] = spin_of(r, inertia[c], momentum);
+  return {f_damping, t_damping};
+}
+
+template <int D>
+void Clumps<D>::account_kick(std::size_t c, const Rotation& r, double half_dt, double alpha, double beta,
+                             const std::array<Vec<D>, 3>& load, const std::array<AngVec<D>, 3>& moment,
+                             EnergyBudget& works) {
+  // The half kick changes the kinetic energy by exactly
+  // (dt/4) [(F - beta M v) . (v + v') + (T - beta L) . (w + w')]
+  // (the orientation held: 1/2 L.I^-1 L with I^-1 symmetric); each kind of
+  // load's share is its part of F and T.
+  const Vec<D> f_contact = force[c] - load[0] - load[1] - load[2];
+  const AngVec<D> t_contact = torque[c] - moment[0] - moment[1] - moment[2];
+  if (fixed[c] != 0) {
+    works.boundary_work -= half_dt * (f_contact.dot(velocity[c]) + t_contact.dot(angular_velocity[c]));
+    return;
+  }
+  const Vec<D> v = velocity[c];
+  const AngVec<D> w = angular_velocity[c];
+  const AngVec<D> momentum = momentum_of(r, inertia[c], w);
+  const auto [f_damping, t_damping] = kick_one(c, r, half_dt, alpha, beta);
+  const double q = 0.5 * half_dt;
+  const Vec<D> sv = v + velocity[c];
+  const AngVec<D> sw = w + angular_velocity[c];
+  works.gravity_work += q * (load[0].dot(sv) + moment[0].dot(sw));
+  works.field_work += q * (load[1].dot(sv) + moment[1].dot(sw));
+  works.external_work += q * (load[2].dot(sv) + moment[2].dot(sw));
+  works.contact_work += q * (f_contact.dot(sv) + t_contact.dot(sw));
+  works.local_damping_work += q * (f_damping.dot(sv) + t_damping.dot(sw));
+  works.viscous_damping_work -= q * beta * (mass[c] * v.dot(sv) + momentum.dot(sw));
+}
+
+template <int D>
+double Clumps<D>::kinetic_energy(std::size_t c) const {
+  if (fixed[c] != 0) return 0.0;
+  const Rotation r = rotation_matrix(orientation[c]);
+  return 0.5 * mass[c] * velocity[c].squaredNorm() +
+         0.5 * angular_velocity[c].dot(momentum_of(r, inertia[c], angular_velocity[c]));
+}
+
+template <int D>
+double Clumps<D>::kinetic_energy() const {
+  double sum = 0.0;
+  for (std::size_t c = 0; c < size(); ++c) sum += kinetic_energy(c);
+  return sum;
 }
 
 template <int D>
@@ -362,13 +412,33 @@ typename Clumps<D>::Rotation Clumps<D>::turn_one(std::size_t c, const Rotation& 
 
 template <int D>
 double Clumps<D>::advance(ParticleData<D>& particles, int kicks, double half_dt, double alpha, double beta,
-                          double dt, const std::vector<Vec<D>>& reference) {
+                          double dt, const std::vector<Vec<D>>& reference, const ClumpLoadKinds<D>* kinds) {
   const bool referenced = reference.size() == particles.size();
   auto one = [&](std::int64_t index) {
     const auto c = static_cast<std::size_t>(index);
     const Rotation r = rotation_matrix(orientation[c]);
     gather_one(c, r, particles);
-    if (fixed[c] == 0) {
+    if (kinds != nullptr) {
+      // The members' loads by kind (gravity, the field's, the external)
+      // and their moments about the centre of mass.
+      std::array<Vec<D>, 3> load{Vec<D>::Zero(), Vec<D>::Zero(), Vec<D>::Zero()};
+      std::array<AngVec<D>, 3> moment{AngVec<D>::Zero(), AngVec<D>::Zero(), AngVec<D>::Zero()};
+      const bool field = kinds->field != nullptr && kinds->field->size() == particles.size();
+      const bool external = !particles.external_force.empty();
+      for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
+        const std::uint32_t i = member_index[k];
+        const Vec<D> arm = r * offset[k];
+        const std::array<Vec<D>, 3> f{Vec<D>(kinds->gravity / particles.inv_mass[i]),
+                                      field ? (*kinds->field)[i] : Vec<D>::Zero(),
+                                      external ? particles.external_force[i] : Vec<D>::Zero()};
+        for (int kind = 0; kind < 3; ++kind) {
+          load[kind] += f[kind];
+          moment[kind] += cross(arm, f[kind]);
+        }
+      }
+      for (int k = 0; k < kicks; ++k)
+        account_kick(c, r, half_dt, alpha, beta, load, moment, (*kinds->works)[c]);
+    } else if (fixed[c] == 0) {
       for (int k = 0; k < kicks; ++k) kick_one(c, r, half_dt, alpha, beta);
     }
     if (!(dt > 0.0)) {

@@ -11,6 +11,7 @@ template <int D>
 void Simulation<D>::account_kick(std::size_t i, const Vec<D>& v, const AngVec<D>& w, double half_dt,
                                  EnergyBudget& sum) const {
   const auto& p = particles;
+  if (p.fixed[i] == ParticleData<D>::clump_member) return;  // its clump's kick counts (Clumps::advance)
   const Vec<D>& f = p.force[i];
   const AngVec<D>& t = p.torque[i];
   // The load's kinds, as the force evaluation added them (finish_one).

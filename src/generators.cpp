@@ -393,6 +393,9 @@ Packing<D> read_packing_csv(const std::string& path) {
   std::string line;
   int line_no = 0;
   bool header = true;
+  bool clumps = false;
+  std::int64_t last_clump = -1;
+  std::vector<std::uint8_t> clump_done;  // a clump whose rows have ended
   while (std::getline(in, line)) {
     ++line_no;
     if (line.empty() || line[0] == '#') continue;
@@ -408,15 +411,46 @@ Packing<D> read_packing_csv(const std::string& path) {
         c.erase(std::remove_if(c.begin(), c.end(), ::isspace), c.end());
         got += (got.empty() ? "" : ",") + c;
       }
-      if (got != want) {
-        throw std::runtime_error(
-            fmt::format("{}:{}: the header must be '{}', got '{}'", path, line_no, want, got));
+      clumps = got == want + ",clump";
+      if (got != want && !clumps) {
+        throw std::runtime_error(fmt::format("{}:{}: the header must be '{}' or '{},clump', got '{}'", path,
+                                             line_no, want, want, got));
       }
       continue;
     }
-    if (cells.size() != D + 1) {
+    const std::size_t columns = clumps ? D + 2 : D + 1;
+    if (cells.size() != columns) {
       throw std::runtime_error(fmt::format("{}:{}: expected {} comma-separated numbers, got {}", path,
-                                           line_no, D + 1, cells.size()));
+                                           line_no, columns, cells.size()));
+    }
+    if (clumps) {
+      std::int64_t c = -2;
+      std::size_t used = 0;
+      try {
+        c = std::stoll(cells[D + 1], &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      while (used < cells[D + 1].size() && std::isspace(static_cast<unsigned char>(cells[D + 1][used])))
+        ++used;
+      if (used == 0 || used != cells[D + 1].size() || c < -1) {
+        throw std::runtime_error(fmt::format(
+            "{}:{}: the clump column must be an integer >= 0 (the particle's clump) or -1 (none), got '{}'",
+            path, line_no, cells[D + 1]));
+      }
+      if (c != last_clump && last_clump >= 0) clump_done[static_cast<std::size_t>(last_clump)] = 1;
+      if (c >= 0) {
+        const auto k = static_cast<std::size_t>(c);
+        if (k >= clump_done.size()) clump_done.resize(k + 1, 0);
+        if (clump_done[k] != 0) {
+          throw std::runtime_error(fmt::format(
+              "{}:{}: clump {} began on an earlier row and other rows came between: a clump's members must "
+              "be on consecutive rows",
+              path, line_no, c));
+        }
+      }
+      last_clump = c;
+      out.clump.push_back(c);
     }
     Vec<D> x;
     double r = 0.0;
@@ -438,16 +472,20 @@ Packing<D> read_packing_csv(const std::string& path) {
 }
 
 template <int D>
-void write_packing_csv(const std::string& path, const ParticleData<D>& p, const std::string& comment) {
+void write_packing_csv(const std::string& path, const ParticleData<D>& p, const std::string& comment,
+                       const std::vector<std::int32_t>* clump_of) {
   const std::vector<std::size_t> by_id = p.creation_order();
   std::string text;
   std::stringstream lines(comment);
   std::string line;
   while (std::getline(lines, line)) text += "# " + line + "\n";
-  text += D == 2 ? "x,y,radius\n" : "x,y,z,radius\n";
+  const bool clumps = clump_of != nullptr && clump_of->size() == p.size();
+  text += D == 2 ? "x,y,radius" : "x,y,z,radius";
+  text += clumps ? ",clump\n" : "\n";
   for (std::size_t i : by_id) {
     for (int k = 0; k < D; ++k) text += fmt::format("{:.17g},", p.position[i][k]);
-    text += fmt::format("{:.17g}\n", p.radius[i]);
+    text += fmt::format("{:.17g}", p.radius[i]);
+    text += clumps ? fmt::format(",{}\n", (*clump_of)[i]) : "\n";
   }
   std::ofstream out(path);
   out << text;
@@ -466,7 +504,8 @@ void write_packing_csv(const std::string& path, const ParticleData<D>& p, const 
                                                     const RadiusDistribution&, std::uint64_t, std::int64_t, \
                                                     const std::array<bool, D>&);                            \
   template Packing<D> read_packing_csv<D>(const std::string&);                                              \
-  template void write_packing_csv<D>(const std::string&, const ParticleData<D>&, const std::string&);
+  template void write_packing_csv<D>(const std::string&, const ParticleData<D>&, const std::string&,        \
+                                     const std::vector<std::int32_t>*);
 DARCYDEM_INSTANTIATE(2)
 DARCYDEM_INSTANTIATE(3)
 #undef DARCYDEM_INSTANTIATE

@@ -121,16 +121,29 @@ void write_final_particles(const fs::path& out, const Scene<D>& scene, bool inte
   }
   const double r_min = *std::min_element(sim.particles.radius.begin(), sim.particles.radius.end());
   const double overlap = sim.max_overlap();
+  // A clump's members where the clump puts them, about its centre of mass
+  // in the period (the list builds put members back into it one by one):
+  // read back, each clump stands whole.
+  ParticleData<D> particles = sim.particles;
+  const auto& clumps = sim.clumps;
+  for (std::size_t c = 0; c < clumps.size(); ++c) {
+    const Vec<D> x = sim.periodic.any() ? sim.periodic.wrap(clumps.position[c]) : clumps.position[c];
+    const auto turn = rotation_matrix(clumps.orientation[c]);
+    for (std::uint32_t k = clumps.first[c]; k < clumps.first[c + 1]; ++k)
+      particles.position[clumps.member_index[k]] = x + turn * clumps.offset[k];
+  }
   write_packing_csv<D>(
-      path, sim.particles,
+      path, particles,
       fmt::format(
           "darcydem {}: the particles of {} at t = {:.17g} s (step {}, {})\n"
-          "a scene starts from them with [[particles]] generator = \"csv\"; centres and radii only (no "
+          "a scene starts from them with [[particles]] generator = \"csv\"; centres and radii{} only (no "
           "velocities, materials or contact histories)\n"
           "largest overlap {:.4g} m = {:.4g} of the smallest radius: the scene needs [simulation] "
           "initial_overlap_tolerance >= {:.2g} (walls where they were at the start)",
-          version_string, scene.file, sim.time, sim.steps, interrupted ? "interrupted" : "completed", overlap,
-          overlap / r_min, std::ceil(overlap / r_min * 1.05 * 1000.0) / 1000.0));
+          version_string, scene.file, sim.time, sim.steps, interrupted ? "interrupted" : "completed",
+          clumps.empty() ? "" : ", and each particle's clump (-1: none)", overlap, overlap / r_min,
+          std::ceil(overlap / r_min * 1.05 * 1000.0) / 1000.0),
+      clumps.empty() ? nullptr : &clumps.clump_of);
 }
 
 /// The energy budget since tracking began, for the run log at a stage's end.

@@ -1310,6 +1310,23 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         to_vec<D>(r.optional_numbers("velocity", D).value_or(std::vector<double>(D, 0.0)));
     if (pk.position.empty()) r.fail_table("made no particles (is the box smaller than one particle?)");
     const double density = sim.materials[mat].density;
+    if (std::any_of(pk.clump.begin(), pk.clump.end(), [](std::int64_t c) { return c >= 0; })) {
+      if (clump != nullptr)
+        r.fail("clump", "the file's clump column gives its clumps already: leave 'clump' out");
+      if (r.has("orientation") || r.has("orientation_seed"))
+        r.fail(r.has("orientation") ? "orientation" : "orientation_seed",
+               "the file's clumps stand as the file has them: leave it out");
+      const std::size_t before = sim.particles.size();
+      const std::size_t made = add_clumps_from_file<D>(r, sim, pk, mat, fixed, velocity);
+      scene.notes.push_back(
+          fmt::format("{}: {} clumps from the file's clump column ({} of its {} particles)", r.where(), made,
+                      sim.particles.size() - before -
+                          static_cast<std::size_t>(std::count(pk.clump.begin(), pk.clump.end(), -1)),
+                      pk.position.size()));
+      for (std::size_t k = before; k < sim.particles.size(); ++k)
+        origin.push_back(fmt::format("{} ([[particles]] #{})", r.here(), index));
+      return;
+    }
     if (clump != nullptr) {
       const std::size_t added = add_clumps<D>(r, sim, *clump, pk, mat, fixed, velocity);
       scene.notes.push_back(fmt::format(
@@ -1810,8 +1827,6 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
         p.quantity == ProbeQuantity::boundary_work || p.quantity == ProbeQuantity::damping_dissipation ||
         p.quantity == ProbeQuantity::contact_dissipation) {
       sim.track_energy = true;
-      if (!sim.clumps.empty())
-        r.fail("quantity", fmt::format("\"{}\" needs the energy budget, which does not count clumps yet", q));
     }
     scene.output.probes.push_back(p);
   });

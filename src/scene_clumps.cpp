@@ -85,11 +85,52 @@ std::size_t add_clumps(TableReader& r, Simulation<D>& sim, const ClumpShape<D>& 
   return sim.particles.size() - before;
 }
 
+template <int D>
+std::size_t add_clumps_from_file(TableReader& r, Simulation<D>& sim, const Packing<D>& packing,
+                                 std::uint16_t material, bool fixed, const Vec<D>& velocity) {
+  const double density = sim.materials.at(material).density;
+  std::size_t clumps = 0;
+  const std::size_t n = packing.position.size();
+  for (std::size_t row = 0; row < n;) {
+    const std::int64_t c = packing.clump[row];
+    if (c < 0) {
+      sim.particles.add(packing.position[row], packing.radius[row], density, material, fixed, velocity);
+      ++row;
+      continue;
+    }
+    std::size_t end = row;
+    while (end < n && packing.clump[end] == c) ++end;
+    const std::vector<Vec<D>> centres(packing.position.begin() + static_cast<std::ptrdiff_t>(row),
+                                      packing.position.begin() + static_cast<std::ptrdiff_t>(end));
+    const std::vector<double> radii(packing.radius.begin() + static_cast<std::ptrdiff_t>(row),
+                                    packing.radius.begin() + static_cast<std::ptrdiff_t>(end));
+    try {
+      const ClumpShape<D> shape = make_clump_shape<D>(centres, radii);
+      // Placed as it stands: turned by its principal axes, at the centre
+      // of mass that puts its first member where the file has it.
+      const double size = radii[0] / shape.radius[0];
+      const Vec<D> x = centres[0] - rotation_matrix(shape.principal) * Vec<D>(size * shape.centre[0]);
+      sim.clumps.add(sim.particles, shape, size, x, ClumpShape<D>::identity_orientation(), density, material,
+                     fixed, velocity);
+    } catch (const std::invalid_argument& e) {
+      r.fail("file", fmt::format("clump {} (its {} rows from particle {} of the file): {}", c, end - row, row,
+                                 e.what()));
+    }
+    ++clumps;
+    row = end;
+  }
+  return clumps;
+}
+
 template std::pair<std::string, ClumpShape<2>> read_clump_template<2>(TableReader&);
 template std::pair<std::string, ClumpShape<3>> read_clump_template<3>(TableReader&);
 template std::size_t add_clumps<2>(TableReader&, Simulation<2>&, const ClumpShape<2>&, const Packing<2>&,
                                    std::uint16_t, bool, const Vec<2>&);
 template std::size_t add_clumps<3>(TableReader&, Simulation<3>&, const ClumpShape<3>&, const Packing<3>&,
                                    std::uint16_t, bool, const Vec<3>&);
+template std::size_t add_clumps_from_file<2>(TableReader&, Simulation<2>&, const Packing<2>&, std::uint16_t,
+                                             bool, const Vec<2>&);
+template std::size_t add_clumps_from_file<3>(TableReader&, Simulation<3>&, const Packing<3>&, std::uint16_t,
+                                             bool, const Vec<3>&);
 
 }  // namespace darcydem

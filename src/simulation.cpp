@@ -54,8 +54,6 @@ void Simulation<D>::advance(std::uint64_t count) {
   if (!prepared_) prepare();
   if (count == 0) return;
   const bool tracked = track_energy;
-  if (tracked && !clumps.empty())
-    throw std::invalid_argument("clumps: the energy budget does not count clumps yet (track_energy)");
   if (tracked && !energy.started) {
     energy.elastic_start = elastic_energy();
     energy.kinetic_start = kinetic_energy();
@@ -272,8 +270,8 @@ std::vector<std::uint32_t> Simulation<D>::remove_outside_domain() {
     if (particles.inv_mass[i] > 0.0) {
       removed_mass += 1.0 / particles.inv_mass[i];
       // The budget's kinetic energy leaves with it (the step's first half
-      // kick is in the budget and in this velocity alike).
-      if (energy.started) {
+      // kick is in the budget and in this velocity alike); a clump's below.
+      if (energy.started && particles.fixed[i] != ParticleData<D>::clump_member) {
         energy.removed_kinetic +=
             0.5 * particles.velocity[i].squaredNorm() / particles.inv_mass[i] +
             0.5 * particles.angular_velocity[i].squaredNorm() / particles.inv_inertia[i];
@@ -283,6 +281,11 @@ std::vector<std::uint32_t> Simulation<D>::remove_outside_domain() {
   // Forces a field holds go with their particles.
   if (field_force_.size() == n) ParticleData<D>::reorder(field_force_, kept);
   particles.permute(kept);
+  if (energy.started) {
+    for (std::size_t c = 0; c < clumps.size(); ++c) {
+      if (clump_kept[c] == 0) energy.removed_kinetic += clumps.kinetic_energy(c);
+    }
+  }
   clumps.keep(clump_kept);  // rebuild() refreshes the members' indices
   return kept;
 }
@@ -388,8 +391,17 @@ double Simulation<D>::tracked_kick(bool drift) {
     }
     return drift ? drift_group(first, referenced) : 0.0;
   };
-  const double moved2 = max_over_index(groups, parallel_threshold / 4, one);
+  double moved2 = max_over_index(groups, parallel_threshold / 4, one);
   for (const auto& works : group_works_) energy.add(works);
+  if (!clumps.empty()) {
+    // The clumps' half kicks (their members' were skipped), each clump's
+    // works apart, added in clump order.
+    clump_works_.assign(clumps.size(), EnergyBudget{});
+    const ClumpLoadKinds<D> kinds{force_gravity_, &field_force_, &clump_works_};
+    moved2 = std::max(moved2, clumps.advance(p, 1, half_dt, damping.local, damping.viscous,
+                                             drift ? time_step : 0.0, list_.reference(), &kinds));
+    for (const auto& works : clump_works_) energy.add(works);
+  }
   return std::sqrt(moved2);
 }
 
@@ -942,11 +954,14 @@ double Simulation<D>::critical_time_step() const {
 template <int D>
 double Simulation<D>::kinetic_energy() const {
   const auto& p = particles;
-  return deterministic_sum(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
-    if (p.inv_mass[i] == 0.0) return 0.0;
+  // A clump's members count as its body: 1/2 M v^2 + 1/2 w.L (with
+  // overlapping members not their sum).
+  const double loose = deterministic_sum(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
+    if (p.inv_mass[i] == 0.0 || p.fixed[i] == ParticleData<D>::clump_member) return 0.0;
     return 0.5 * p.velocity[i].squaredNorm() / p.inv_mass[i] +
            0.5 * p.angular_velocity[i].squaredNorm() / p.inv_inertia[i];
   });
+  return clumps.empty() ? loose : loose + clumps.kinetic_energy();
 }
 
 template <int D>
@@ -954,6 +969,10 @@ double Simulation<D>::gravitational_energy() const {
   const auto& p = particles;
   return deterministic_sum(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
     if (p.inv_mass[i] == 0.0) return 0.0;
+    // A fixed clump's members, as fixed particles, hold none.
+    if (p.fixed[i] == ParticleData<D>::clump_member &&
+        clumps.fixed[static_cast<std::size_t>(clumps.clump_of[static_cast<std::size_t>(i)])] != 0)
+      return 0.0;
     return -gravity.dot(p.position[i]) / p.inv_mass[i];
   });
 }

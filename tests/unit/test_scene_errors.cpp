@@ -2325,6 +2325,45 @@ TEST(SceneErrors, PeriodicClumpsAreChecked) {
   EXPECT_EQ(load_error(replace(apart, "x = [-0.0005, 0.0005]", "x = [-0.0007, 0.0007]")), "");
 }
 
+// A csv generator whose file has a `clump` column makes the clumps it says
+// (each of its rows' members, where they stand); with `clump` too, or with
+// a clump make_clump_shape refuses, the scene is refused at the key.
+TEST(SceneErrors, CsvClumpsAreChecked) {
+  const auto csv =
+      std::filesystem::temp_directory_path() / ("darcydem_clumps_" + std::to_string(::getpid()) + ".csv");
+  auto write = [&](const std::string& text) {
+    std::ofstream f(csv);
+    f << text;
+  };
+  const std::string column =
+      "generator = \"column\"\nmaterial = \"sand\"\nbase = [0.0, 0.0]\ncount = 3\nradius = 0.0005";
+  const std::string good =
+      replace(kGood, column, "generator = \"csv\"\nmaterial = \"sand\"\nfile = \"" + csv.string() + "\"");
+  // A pair of discs of 0.25 mm side by side at y = 0.5 mm, and a loose disc above.
+  write("x,y,radius,clump\n-0.00025,0.0005,0.00025,0\n0.00025,0.0005,0.00025,0\n0.0,0.0015,0.0005,-1\n");
+  {
+    const auto scene = built_scene<2>(good);
+    ASSERT_EQ(scene.simulation.clumps.size(), 1u);
+    ASSERT_EQ(scene.simulation.particles.size(), 3u);
+    EXPECT_NEAR(scene.simulation.clumps.position[0].y(), 0.0005, 1e-18);
+    EXPECT_NEAR(scene.simulation.clumps.mass[0], 2.0 * 2650.0 * std::numbers::pi * 0.25e-3 * 0.25e-3, 1e-15);
+    EXPECT_NEAR(scene.simulation.particles.position[1].x(), 0.00025, 1e-18);
+  }
+  const std::string pair =
+      "[[clump_template]]\nname = \"pair\"\ncircles = [[-1.0, 0.0, 1.0], [1.0, 0.0, 1.0]]\n\n[[particles]]";
+  auto msg =
+      load_error(replace(replace(good, "[[particles]]", pair), "file = ", "clump = \"pair\"\nfile = "));
+  EXPECT_NE(msg.find("key 'clump': the file's clump column gives its clumps already"), std::string::npos)
+      << msg;
+  write("x,y,radius,clump\n0.0,0.0005,0.0005,0\n0.0001,0.0005,0.0002,0\n");
+  msg = load_error(good);
+  EXPECT_NE(msg.find("key 'file': clump 0 (its 2 rows from particle 0 of the file): member 2 lies wholly "
+                     "inside member 1"),
+            std::string::npos)
+      << msg;
+  std::filesystem::remove(csv);
+}
+
 // [[clump_template]] and a generator's `clump`: a column of three grains
 // becomes three pairs of touching discs, each pair's bounding circle the
 // grain's (radius 0.5 mm: discs of 0.25 mm at +-0.25 mm), placed as given
@@ -2379,10 +2418,13 @@ TEST(SceneErrors, ClumpsAreChecked) {
     // A [domain] removes clumps whole, by their centres of mass (noted).
     const auto scene = built_scene<2>(good + "\n[domain]\nmin = [-1.0, -1.0]\nmax = [1.0, 1.0]\n");
     bool noted = false;
-    for (const auto& note : scene.notes) noted = noted || note.find("a clump whose centre of mass leaves it") != std::string::npos;
+    for (const auto& note : scene.notes)
+      noted = noted || note.find("a clump whose centre of mass leaves it") != std::string::npos;
     EXPECT_TRUE(noted);
   }
-  expect_error(good + "\n[[probe]]\nname = \"g\"\nquantity = \"gravity_work\"\n", "energy budget");
+  // The energy budget counts clumps: its probes load and track it.
+  EXPECT_TRUE(built_scene<2>(good + "\n[[probe]]\nname = \"g\"\nquantity = \"gravity_work\"\n")
+                  .simulation.track_energy);
   expect_error(replace(good, "[[-1.0, 0.0, 1.0], [1.0, 0.0, 1.0]]", "[]"), "must be a non-empty array");
 }
 

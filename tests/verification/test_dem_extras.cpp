@@ -240,6 +240,39 @@ TEST(Generators, CsvRoundTripAndBadRow) {
   std::filesystem::remove(path);
 }
 
+// A csv packing may say each particle's clump (a `clump` column, as
+// particles_final.csv has with clumps): read as written; a clump whose rows
+// are not consecutive, or a clump that is not an integer >= -1, is refused
+// with the file and line.
+TEST(Generators, CsvClumpColumn) {
+  const auto path =
+      std::filesystem::temp_directory_path() / ("darcydem_clumps_" + std::to_string(getpid()) + ".csv");
+  auto write = [&](const std::string& text) {
+    std::ofstream f(path);
+    f << text;
+  };
+  write("# a comment\nx,y,radius,clump\n0,0,1,0\n2,0,1,0\n5,0,1,-1\n7,0,1,1\n");
+  const auto pk = read_packing_csv<2>(path.string());
+  EXPECT_EQ(pk.clump, (std::vector<std::int64_t>{0, 0, -1, 1}));
+  auto refused = [&](const std::string& text, const std::string& part) {
+    write(text);
+    try {
+      read_packing_csv<2>(path.string());
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const std::runtime_error& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(part), std::string::npos) << msg;
+      EXPECT_NE(msg.find(path.string()), std::string::npos) << msg;
+    }
+  };
+  refused("x,y,radius,clump\n0,0,1,0\n5,0,1,1\n2,0,1,0\n", ":4: clump 0 began on an earlier row");
+  refused("x,y,radius,clump\n0,0,1,0.5\n", ":2: the clump column must be an integer >= 0");
+  refused("x,y,radius,clump\n0,0,1,-2\n", ":2: the clump column must be an integer >= 0");
+  refused("x,y,radius,clump\n0,0,1\n", ":2: expected 4 comma-separated numbers, got 3");
+  refused("x,y,radius,group\n0,0,1,0\n", "the header must be 'x,y,radius' or 'x,y,radius,clump'");
+  std::filesystem::remove(path);
+}
+
 // A run ends by writing particles_final.csv, which the csv generator reads
 // back: the settled column (stopped at an unbalanced-force ratio of 1e-6)
 // reloaded into a new scene carries its weight from the first step, so a

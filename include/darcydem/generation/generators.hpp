@@ -56,6 +56,9 @@ template <int D>
 struct Packing {
   std::vector<Vec<D>> position;
   std::vector<double> radius;
+  /// From a file with a `clump` column: each particle's clump (-1: none);
+  /// empty otherwise.
+  std::vector<std::int64_t> clump;
 };
 
 /// Centres of a square (2D) or cubic (3D) lattice of the given spacing whose
@@ -101,16 +104,20 @@ Packing<D> random_packing_to_porosity(const Vec<D>& lo, const Vec<D>& hi, double
                                       const RadiusDistribution& radii, std::uint64_t seed,
                                       std::int64_t max_attempts, const std::array<bool, D>& wrap = {});
 
-/// Reads `x,y[,z],radius` rows (a header line naming the columns first).
+/// Reads `x,y[,z],radius` rows (a header line naming the columns first),
+/// or `x,y[,z],radius,clump`: the clump (an integer >= 0) each particle is
+/// a member of, -1 for none, a clump's members on consecutive rows.
 /// Throws std::runtime_error naming the file and line on a bad row.
 template <int D>
 Packing<D> read_packing_csv(const std::string& path);
 
 /// Writes the particles' centres and radii as read_packing_csv reads them,
 /// in creation order (ParticleData::id), to 17 significant digits (read
-/// back exactly); `comment` goes first as '#' lines. Throws
+/// back exactly); with `clump_of` (each particle's clump, -1 for none; not
+/// empty) a `clump` column too. `comment` goes first as '#' lines. Throws
 /// std::runtime_error if the file cannot be written.
 template <int D>
-void write_packing_csv(const std::string& path, const ParticleData<D>& particles, const std::string& comment);
+void write_packing_csv(const std::string& path, const ParticleData<D>& particles, const std::string& comment,
+                       const std::vector<std::int32_t>* clump_of = nullptr);
 
 }  // namespace darcydem

@@ -6,7 +6,8 @@
 //       bound the union (each arc's integrand a trigonometric polynomial of
 //       degree 4, integrated by Gauss-Legendre to round-off);
 //   3D: the same for each slice z = const (a union of discs), integrated
-//       over z by adaptive Gauss-Legendre between the balls' poles, to
+//       over z by adaptive Gauss-Legendre (16 points; bisected until the
+//       halves agree with the whole) between the balls' poles, to
 //       about 1e-12 of the union's volume (the slices' moments have kinks
 //       where two slice circles start to cross, which the adaptive
 //       bisection resolves).

@@ -18,12 +18,15 @@
 // the midpoint of the turn (implicit midpoint: the angular momentum of a
 // free clump is kept to round-off, its energy to second order in dt).
 // Pairs of members of one clump are never in contact.
+#include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "darcydem/core/periodic_cell.hpp"
 #include "darcydem/core/vec.hpp"
 #include "darcydem/particles/particle_data.hpp"
+#include "darcydem/simulation/energy_budget.hpp"
 
 namespace darcydem {
 
@@ -77,6 +80,15 @@ Orientation<3> compose(const Orientation<3>& q1, const Orientation<3>& q0);
 /// union's centre of mass.
 template <int D>
 ClumpShape<D> make_clump_shape(const std::vector<Vec<D>>& centres, const std::vector<double>& radii);
+
+/// What Clumps::advance needs to split each clump's load by kind for the
+/// energy budget (energy_budget.hpp), and where it puts the works.
+template <int D>
+struct ClumpLoadKinds {
+  Vec<D> gravity = Vec<D>::Zero();             ///< m/s^2, as the last force evaluation had it
+  const std::vector<Vec<D>>* field = nullptr;  ///< N, the force field's per particle (or none)
+  std::vector<EnergyBudget>* works = nullptr;  ///< per clump: each half kick's works added
+};
 
 template <int D>
 struct Clumps {
@@ -138,8 +150,19 @@ struct Clumps {
   /// gives them its velocities. Returns the largest squared displacement of
   /// a member from `reference` (its place at the last list build; infinite
   /// when `reference` does not cover the particles; 0 without a drift).
+  /// With `kinds`, each half kick's works by kind of load go into
+  /// kinds->works[c] (sized to the clumps): gravity, the field's and the
+  /// external forces' (the members' loads of each kind and their moments
+  /// about the centre of mass), the contacts' (the rest), damping's; for a
+  /// fixed clump the contacts' work on it, as a boundary's.
   double advance(ParticleData<D>& particles, int kicks, double half_dt, double alpha, double beta, double dt,
-                 const std::vector<Vec<D>>& reference);
+                 const std::vector<Vec<D>>& reference, const ClumpLoadKinds<D>* kinds = nullptr);
+
+  /// The clumps' kinetic energy, 1/2 M v^2 + 1/2 w.L, the fixed ones' left
+  /// out (as fixed particles' are) (J; 2D per metre).
+  [[nodiscard]] double kinetic_energy() const;
+  /// Clump c's.
+  [[nodiscard]] double kinetic_energy(std::size_t c) const;
 
   /// Puts each member where its clump is, at its clump's velocity.
   void place_members(ParticleData<D>& particles) const;
@@ -164,7 +187,13 @@ struct Clumps {
 
  private:
   void gather_one(std::size_t c, const Rotation& r, const ParticleData<D>& particles);
-  void kick_one(std::size_t c, const Rotation& r, double half_dt, double alpha, double beta);
+  /// Returns the local damping's force and moment it applied.
+  std::pair<Vec<D>, AngVec<D>> kick_one(std::size_t c, const Rotation& r, double half_dt, double alpha,
+                                        double beta);
+  /// One half kick as kick_one, its works by kind added to `works`.
+  void account_kick(std::size_t c, const Rotation& r, double half_dt, double alpha, double beta,
+                    const std::array<Vec<D>, 3>& load, const std::array<AngVec<D>, 3>& moment,
+                    EnergyBudget& works);
   /// Turns clump c over dt from orientation r (its angular velocity follows
   /// in 3D); returns its new rotation.
   Rotation turn_one(std::size_t c, const Rotation& r, double dt);

@@ -28,4 +28,13 @@ template <int D>
 std::size_t add_clumps(TableReader& r, Simulation<D>& sim, const ClumpShape<D>& shape,
                        const Packing<D>& packing, std::uint16_t material, bool fixed, const Vec<D>& velocity);
 
+/// A csv packing with a `clump` column (read_packing_csv): adds its rows
+/// in order, loose particles as such and each clump's members as a clump of
+/// those members where they stand (its shape, mass and inertia from them,
+/// as a [[clump_template]] of them would give). Refuses, at `file`, a clump
+/// make_clump_shape refuses. Returns how many clumps it added.
+template <int D>
+std::size_t add_clumps_from_file(TableReader& r, Simulation<D>& sim, const Packing<D>& packing,
+                                 std::uint16_t material, bool fixed, const Vec<D>& velocity);
+
 }  // namespace darcydem

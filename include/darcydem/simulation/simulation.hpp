@@ -302,6 +302,7 @@ class Simulation {
   WallContactList<D> wall_list_;
   std::vector<Vec<D>> field_force_;
   std::vector<EnergyBudget> group_works_;  ///< tracked_kick's works per group of four
+  std::vector<EnergyBudget> clump_works_;  ///< tracked_kick's works per clump
   Vec<D> force_gravity_ = Vec<D>::Zero();  ///< the gravity in the last force evaluation (the budget's split)
   bool recording_ = false;                 ///< this force evaluation stores pair_force_
   std::vector<Vec<D>> pair_force_;         ///< force on i of each pair, as recorded
