@@ -861,61 +861,140 @@ class Model {
       throw py::value_error("add_particle: position and velocity must be finite");
     if (!(radius > 0.0 && std::isfinite(radius)))
       throw py::value_error(fmt::format("add_particle: radius must be > 0 m, got {}", radius));
-    // A material the scene's grains use: their contacts with everything
-    // they can meet were checked when it loaded.
+    const std::uint16_t mat = grain_material(material, "add_particle");
+    const Vec<D> reach = Vec<D>::Constant(radius);
+    check_place(x, x - reach, x + reach, 2.0 * radius, "2 x radius", "add_particle");
+    const Added before = added_so_far();
+    s.add_particle(x, radius, mat, v);
+    check_critical_step(before, false, fmt::format("add_particle: a grain of radius {} m", radius));
+    return s.particles.id.back();
+  }
+
+  /// A clump added between steps (YADE's O.bodies.appendClumped, PFC's
+  /// clump create): its members given where they stand, [x, y, (z,) r]
+  /// each, checked as add_particle's grain, its centre of mass as the
+  /// grain's centre; returns its members' numbers.
+  std::vector<std::uint32_t> add_clump(const std::vector<std::vector<double>>& members,
+                                       const std::string& material, const std::vector<double>& velocity) {
+    auto& s = sim();
+    const char* form = D == 2 ? "[x, y, r]" : "[x, y, z, r]";
+    if (members.empty())
+      throw py::value_error(fmt::format("add_clump: give members = [{}, ...] (m), at least one", form));
+    std::vector<Vec<D>> centres;
+    std::vector<double> radii;
+    Vec<D> lo = Vec<D>::Constant(std::numeric_limits<double>::infinity());
+    Vec<D> hi = -lo;
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      const auto& m = members[k];
+      const bool finite = std::all_of(m.begin(), m.end(), [](double e) { return std::isfinite(e); });
+      if (m.size() != D + 1 || !finite || !(m[D] > 0.0))
+        throw py::value_error(fmt::format("add_clump: member {} must be {}, finite, the radius > 0 m; got {}",
+                                          k, form, fmt::join(m, ", ")));
+      centres.push_back(Eigen::Map<const Vec<D>>(m.data()));
+      radii.push_back(m[D]);
+      lo = lo.cwiseMin(centres.back() - Vec<D>::Constant(m[D]));
+      hi = hi.cwiseMax(centres.back() + Vec<D>::Constant(m[D]));
+    }
+    const Vec<D> v = velocity.empty() ? Vec<D>::Zero() : as_vec<D>(velocity, "velocity");
+    if (!v.allFinite()) throw py::value_error("add_clump: velocity must be finite");
+    const std::uint16_t mat = grain_material(material, "add_clump");
+    ClumpShape<D> shape;
+    try {
+      shape = make_clump_shape<D>(centres, radii);
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(fmt::format("add_clump: {}", e.what()));
+    }
+    // Placed as it stands: turned by its principal axes, its centre of
+    // mass where its first member is put where it was given.
+    const double size = radii[0] / shape.radius[0];
+    const Vec<D> x = centres[0] - rotation_matrix(shape.principal) * Vec<D>(size * shape.centre[0]);
+    const double largest = *std::max_element(radii.begin(), radii.end());
+    check_place(x, lo, hi, std::max(2.0 * largest, size),
+                "the larger of 2 x its largest radius and its reach", "add_clump");
+    const Added before = added_so_far();
+    s.add_clump(shape, size, x, ClumpShape<D>::identity_orientation(), mat, v);
+    check_critical_step(before, true, "add_clump: the clump");
+    return {s.particles.id.begin() + static_cast<std::ptrdiff_t>(before.particles), s.particles.id.end()};
+  }
+
+ private:
+  /// A material the scene's grains use, by name: their contacts with
+  /// everything they can meet were checked when it loaded.
+  std::uint16_t grain_material(const std::string& material, const char* call) {
+    auto& s = sim();
     std::vector<bool> used(s.materials.size(), false);
     for (auto m : s.particles.material) used[m] = true;
     for (const auto& in : scene_.inlets) used[in.material] = true;
     std::string allowed;
-    std::size_t mat = s.materials.size();
     for (std::size_t m = 0; m < s.materials.size(); ++m) {
       if (!used[m]) continue;
       allowed += (allowed.empty() ? "'" : ", '") + s.materials[m].name + "'";
-      if (s.materials[m].name == material) mat = m;
+      if (s.materials[m].name == material) return static_cast<std::uint16_t>(m);
     }
-    if (mat == s.materials.size())
-      throw py::value_error(fmt::format("add_particle: material '{}' is not one the scene's grains use ({})",
-                                        material, allowed.empty() ? "none" : allowed));
-    for (int k = 0; k < D; ++k) {
-      if (s.has_domain && (x[k] < s.domain_lower[k] || x[k] > s.domain_upper[k]))
-        throw py::value_error(
-            fmt::format("add_particle: the centre is outside the [domain] along {}", "xyz"[k]));
-      const auto& cell = s.periodic;
-      if (cell.periodic[k] && (x[k] < cell.lower[k] || x[k] >= cell.lower[k] + cell.length[k]))
-        throw py::value_error(
-            fmt::format("add_particle: the centre is outside the period along {}", "xyz"[k]));
-      if (cell.periodic[k] && !(cell.length[k] > 2.0 * (2.0 * radius + s.skin)))
-        throw py::value_error(
-            fmt::format("add_particle: the period along {} must exceed 2 x (2 x radius + skin)", "xyz"[k]));
-    }
-    if (fluid() != nullptr) {
-      // As an inlet's box: outside the grid, or its water would be
-      // compressed at once by the grain's volume.
-      const Vec<D> reach = Vec<D>::Constant(radius);
-      if (!box_beside<D>(x - reach, x + reach, fluid()->grid.origin, fluid()->grid.upper(), s.periodic))
-        throw py::value_error(
-            "add_particle: the grain must lie outside the fluid grid (a grain that appeared in a cell would "
-            "compress its pore water at once); place it above the grid and let it fall in");
-    }
-    const std::size_t before = s.particles.size();
-    const double mass = ParticleData<D>::mass_of(s.materials[mat].density, radius);
-    s.add_particle(x, radius, static_cast<std::uint16_t>(mat), v);
-    const double critical = critical_step();
-    if (s.time_step > critical) {
-      std::vector<std::uint32_t> keep(before);
-      for (std::size_t i = 0; i < before; ++i) keep[i] = static_cast<std::uint32_t>(i);
-      s.particles.permute(keep);
-      --s.inserted_count;
-      s.inserted_mass -= mass;
-      throw py::value_error(
-          fmt::format("add_particle: a grain of radius {} m would need a time step of at most "
-                      "{:.4g} s; the scene's is {:.4g} s",
-                      radius, critical, s.time_step));
-    }
-    return s.particles.id.back();
+    throw py::value_error(fmt::format("{}: material '{}' is not one the scene's grains use ({})", call,
+                                      material, allowed.empty() ? "none" : allowed));
   }
 
- private:
+  /// A new grain's place: its centre x inside the [domain] and the period
+  /// (the period longer than 2 x (span + skin)), its box [lo, hi] outside
+  /// the fluid grid.
+  void check_place(const Vec<D>& x, const Vec<D>& lo, const Vec<D>& hi, double span, const char* span_text,
+                   const char* call) {
+    auto& s = sim();
+    for (int k = 0; k < D; ++k) {
+      if (s.has_domain && (x[k] < s.domain_lower[k] || x[k] > s.domain_upper[k]))
+        throw py::value_error(fmt::format("{}: the centre is outside the [domain] along {}", call, "xyz"[k]));
+      const auto& cell = s.periodic;
+      if (cell.periodic[k] && (x[k] < cell.lower[k] || x[k] >= cell.lower[k] + cell.length[k]))
+        throw py::value_error(fmt::format("{}: the centre is outside the period along {}", call, "xyz"[k]));
+      if (cell.periodic[k] && !(cell.length[k] > 2.0 * (span + s.skin)))
+        throw py::value_error(
+            fmt::format("{}: the period along {} must exceed 2 x ({} + skin)", call, "xyz"[k], span_text));
+    }
+    // As an inlet's box: outside the grid, or its water would be
+    // compressed at once by the grain's volume.
+    if (fluid() != nullptr && !box_beside<D>(lo, hi, fluid()->grid.origin, fluid()->grid.upper(), s.periodic))
+      throw py::value_error(fmt::format(
+          "{}: the grain must lie outside the fluid grid (a grain that appeared in a cell would compress its "
+          "pore water at once); place it above the grid and let it fall in",
+          call));
+  }
+
+  /// What the simulation had added before a grain or clump was added.
+  struct Added {
+    std::size_t particles;
+    std::uint64_t count;
+    double mass;
+    double kinetic;
+  };
+  Added added_so_far() {
+    const auto& s = sim();
+    return {s.particles.size(), s.inserted_count, s.inserted_mass, s.energy.inserted_kinetic};
+  }
+
+  /// Takes back what was added since `before` (a clump if `clump`: the
+  /// last one) if its critical step is below the time step.
+  void check_critical_step(const Added& before, bool clump, const std::string& what) {
+    auto& s = sim();
+    const double critical = critical_step();
+    if (s.time_step <= critical) return;
+    std::vector<std::uint32_t> keep(before.particles);
+    for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = static_cast<std::uint32_t>(i);
+    s.particles.permute(keep);
+    s.inserted_count = before.count;
+    s.inserted_mass = before.mass;
+    s.energy.inserted_kinetic = before.kinetic;
+    if (clump) {
+      std::vector<std::uint8_t> kept(s.clumps.size(), 1);
+      kept.back() = 0;
+      s.clumps.keep(kept);
+      s.clumps.refresh(s.particles);
+    }
+    throw py::value_error(
+        fmt::format("{} would need a time step of at most {:.4g} s; the scene's is {:.4g} s", what, critical,
+                    s.time_step));
+  }
+
   /// The inlets' insertions due now, as a run makes them; returns the
   /// steps to the next one (as many as there may be when none is coming).
   std::uint64_t insert_due_grains() {
@@ -1524,6 +1603,12 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
            "adds a free particle between steps (its weight as its force, the others' contact histories kept) "
            "and returns its id; the material one the scene's grains use, the centre inside the [domain] and "
            "period, the grain outside the fluid grid, its critical time step above the scene's")
+      .def("add_clump", &M::add_clump, py::arg("members"), py::arg("material"),
+           py::arg("velocity") = std::vector<double>{},
+           "adds a free clump between steps (YADE's appendClumped): members = [[x, y, (z,) r], ...] (m) "
+           "where they stand, touching or overlapping (then the mass and inertia of their union); moving at "
+           "velocity without spin; checked as add_particle's grain, its centre of mass as the grain's "
+           "centre; returns its members' numbers (model.ids), and model.clumps lists it last")
       .def("set_particle_velocity", &M::set_particle_velocity, py::arg("particle"),
            py::arg("velocity") = py::none(), py::arg("angular_velocity") = py::none(),
            "sets a particle's velocity (m/s, D numbers) and or angular velocity (rad/s: 2D a number, "

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 namespace darcydem {
@@ -39,6 +40,25 @@ Orientation<3> compose(const Orientation<3>& q1, const Orientation<3>& q0) {
       Eigen::Quaterniond(q1[0], q1[1], q1[2], q1[3]) * Eigen::Quaterniond(q0[0], q0[1], q0[2], q0[3]);
   q.normalize();
   return Orientation<3>(q.w(), q.x(), q.y(), q.z());
+}
+
+namespace {
+double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+}  // namespace
+
+template <>
+Orientation<2> random_orientation<2>(std::mt19937_64& rng) {
+  return Orientation<2>(2.0 * std::numbers::pi * unit(rng));
+}
+template <>
+Orientation<3> random_orientation<3>(std::mt19937_64& rng) {
+  // Shoemake's uniform quaternion.
+  const double u1 = unit(rng);
+  const double u2 = 2.0 * std::numbers::pi * unit(rng);
+  const double u3 = 2.0 * std::numbers::pi * unit(rng);
+  const double a = std::sqrt(1.0 - u1);
+  const double b = std::sqrt(u1);
+  return Orientation<3>(b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3));
 }
 
 namespace {

@@ -7,7 +7,9 @@ namespace darcydem {
 
 template <int D>
 double inlet_grain_mass(const Inlet<D>& inlet, const Simulation<D>& sim, double radius) {
-  return ParticleData<D>::mass_of(sim.materials[inlet.material].density, radius);
+  const double density = sim.materials[inlet.material].density;
+  if (inlet.clump) return density * inlet.clump->volume * std::pow(radius, D);
+  return ParticleData<D>::mass_of(density, radius);
 }
 
 template <int D>
@@ -47,6 +49,23 @@ InsertionResult insert_due(Inlet<D>& inlet, Simulation<D>& sim) {
     }
     return std::all_of(sim.walls.begin(), sim.walls.end(), [&](const Wall<D>& w) { return w.gap(x) >= r; });
   };
+  // A clump's members where it would stand: centre of mass x, size r, turned by q.
+  std::vector<Vec<D>> member_x;
+  std::vector<double> member_r;
+  auto members = [&](const Vec<D>& x, double r, const Orientation<D>& q) {
+    const auto rot = rotation_matrix(compose(q, inlet.clump->principal));
+    member_x.clear();
+    member_r.clear();
+    for (std::size_t k = 0; k < inlet.clump->centre.size(); ++k) {
+      member_x.push_back(x + rot * Vec<D>(r * inlet.clump->centre[k]));
+      member_r.push_back(r * inlet.clump->radius[k]);
+    }
+  };
+  auto clump_fits = [&] {
+    for (std::size_t k = 0; k < member_x.size(); ++k)
+      if (!fits(member_x[k], member_r[k])) return false;
+    return true;
+  };
   // Due: a whole grain (by count), or the next grain's mass (by mass), to
   // a relative 1e-9 (a rate x interval of 10 may sum to 9.999999999).
   constexpr double slack = 1e-9;
@@ -55,24 +74,39 @@ InsertionResult insert_due(Inlet<D>& inlet, Simulation<D>& sim) {
     const double m = inlet_grain_mass(inlet, sim, r);
     if (inlet.budget < (by_count ? 1.0 : m) * (1.0 - slack)) break;
     Vec<D> x = Vec<D>::Zero();
+    Orientation<D> q = ClumpShape<D>::identity_orientation();
     bool placed = false;
     for (std::int64_t a = 0; a < inlet.max_attempts && !placed; ++a) {
       for (int k = 0; k < D; ++k) {
         x[k] = inlet.lower[k] + r + unit_random(inlet.rng) * (inlet.upper[k] - inlet.lower[k] - 2.0 * r);
       }
-      placed = fits(x, r);
+      if (!inlet.clump) {
+        placed = fits(x, r);
+        continue;
+      }
+      if (!inlet.aligned) q = random_orientation<D>(inlet.rng);
+      members(x, r, q);
+      placed = clump_fits();
     }
     if (!placed) {
       result.short_of_room = true;
       ++inlet.short_events;
       break;
     }
-    sim.add_particle(x, r, inlet.material, inlet.velocity);
-    near_x.push_back(x);
-    near_r.push_back(r);
-    inlet.budget -= by_count ? 1.0 : m;
+    double added_mass = m;
+    if (inlet.clump) {
+      const std::size_t c = sim.add_clump(*inlet.clump, r, x, q, inlet.material, inlet.velocity);
+      added_mass = sim.clumps.mass[c];
+      near_x.insert(near_x.end(), member_x.begin(), member_x.end());
+      near_r.insert(near_r.end(), member_r.begin(), member_r.end());
+    } else {
+      sim.add_particle(x, r, inlet.material, inlet.velocity);
+      near_x.push_back(x);
+      near_r.push_back(r);
+    }
+    inlet.budget -= by_count ? 1.0 : added_mass;
     ++inlet.inserted;
-    inlet.inserted_mass += m;
+    inlet.inserted_mass += added_mass;
     ++result.added;
     inlet.next_radius = inlet.radii.sample(inlet.rng);
   }

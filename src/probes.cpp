@@ -155,8 +155,11 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
     case ProbeQuantity::removed_mass:
       return sim.removed_mass;
     case ProbeQuantity::inserted_particles:
-      if (inlets != nullptr && probe.inlet >= 0)
-        return static_cast<double>((*inlets)[static_cast<std::size_t>(probe.inlet)].inserted);
+      if (inlets != nullptr && probe.inlet >= 0) {
+        // An inlet of clumps: their members, as the total counts them.
+        const auto& in = (*inlets)[static_cast<std::size_t>(probe.inlet)];
+        return static_cast<double>(in.inserted * (in.clump ? in.clump->radius.size() : 1));
+      }
       return static_cast<double>(sim.inserted_count);
     case ProbeQuantity::inserted_mass:
       if (inlets != nullptr && probe.inlet >= 0)

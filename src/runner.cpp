@@ -202,9 +202,13 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
   if (!scene.inlets.empty()) {
     std::string inlets;
     for (const auto& in : scene.inlets) {
-      inlets += fmt::format("{}{{\"name\": {}, \"particles\": {}, \"mass\": {:.17g}, \"short_of_room\": {}}}",
-                            inlets.empty() ? "" : ", ", json_string(in.name), in.inserted, in.inserted_mass,
-                            in.short_events);
+      // An inlet of clumps: its clumps, and their members as particles.
+      const std::string clumps = in.clump ? fmt::format("\"clumps\": {}, ", in.inserted) : std::string();
+      const std::uint64_t particles = in.clump ? in.inserted * in.clump->radius.size() : in.inserted;
+      inlets +=
+          fmt::format("{}{{\"name\": {}, {}\"particles\": {}, \"mass\": {:.17g}, \"short_of_room\": {}}}",
+                      inlets.empty() ? "" : ", ", json_string(in.name), clumps, particles, in.inserted_mass,
+                      in.short_events);
     }
     json << fmt::format("  \"inserted\": {{\"particles\": {}, \"mass\": {:.17g}, \"inlets\": [{}]}},\n",
                         sim.inserted_count, sim.inserted_mass, inlets);
@@ -635,8 +639,11 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       if (seepage) seepage->stage_ended(scene, stage.name, !summary.interrupted);
       for (const auto& in : scene.inlets) {
         if (options.log == nullptr) break;
-        *options.log << fmt::format("inlet {}: {} grains added so far ({:.6g} kg{}){}{}\n", in.name,
-                                    in.inserted, in.inserted_mass, D == 2 ? " per metre" : "",
+        const std::string added = in.clump ? fmt::format("{} clumps ({} particles)", in.inserted,
+                                                         in.inserted * in.clump->radius.size())
+                                           : fmt::format("{} grains", in.inserted);
+        *options.log << fmt::format("inlet {}: {} added so far ({:.6g} kg{}){}{}\n", in.name, added,
+                                    in.inserted_mass, D == 2 ? " per metre" : "",
                                     in.exhausted() ? ", all it may add" : "",
                                     in.short_events > 0 ? fmt::format("; {} insertions found no room for all "
                                                                       "that was due",

@@ -1174,24 +1174,28 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     clump_names.push_back(name);
   });
 
+  // A table's `clump`: a [[clump_template]]'s shape (none without the key).
+  auto lookup_clump = [&](TableReader& r) -> const ClumpShape<D>* {
+    const auto name = r.optional_string("clump");
+    if (!name) return nullptr;
+    auto it = clump_shapes.find(*name);
+    if (it == clump_shapes.end()) {
+      std::string hint;
+      if (auto near = did_you_mean(*name, clump_names); !near.empty())
+        hint = fmt::format(" (did you mean \"{}\"?)", near);
+      r.fail("clump", fmt::format("\"{}\" is not a [[clump_template]]'s name{}{}", *name, hint,
+                                  clump_names.empty() ? ": the scene has none" : ""));
+    }
+    return &it->second;
+  };
+
   // [[particles]]
   std::vector<std::string> origin;
   for_each_table(top, "particles", "particles", [&](TableReader& r, int index) {
     const std::string gen = r.choice("generator", {"lattice", "column", "random", "csv"});
     const auto mat = materials.lookup(r, "material", r.string("material"));
     const bool fixed = r.boolean_or("fixed", false);
-    const ClumpShape<D>* clump = nullptr;
-    if (auto name = r.optional_string("clump")) {
-      auto it = clump_shapes.find(*name);
-      if (it == clump_shapes.end()) {
-        std::string hint;
-        if (auto near = did_you_mean(*name, clump_names); !near.empty())
-          hint = fmt::format(" (did you mean \"{}\"?)", near);
-        r.fail("clump", fmt::format("\"{}\" is not a [[clump_template]]'s name{}{}", *name, hint,
-                                    clump_names.empty() ? ": the scene has none" : ""));
-      }
-      clump = &it->second;
-    }
+    const ClumpShape<D>* clump = lookup_clump(r);
     Packing<D> pk;
     if (gen == "lattice") {
       const Vec<D> lo = to_vec<D>(r.numbers("min", D));
@@ -1404,7 +1408,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   std::vector<std::string> inlet_names;
   for_each_table(top, "inlet", "inlet", [&](TableReader& r, int) {
     const auto mat = materials.lookup(r, "material", r.string("material"));
-    scene.inlets.push_back(read_inlet<D>(r, mat, sim, scene.fluid.get(), inlet_names));
+    const ClumpShape<D>* clump = lookup_clump(r);
+    scene.inlets.push_back(read_inlet<D>(r, mat, sim, scene.fluid.get(), inlet_names, clump));
     inlet_names.push_back(scene.inlets.back().name);
     const auto& in = scene.inlets.back();
     std::string box;
@@ -1412,14 +1417,18 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       box += fmt::format("{}{} in [{:.6g}, {:.6g}]", k == 0 ? "" : ", ", "xyz"[k], in.lower[k], in.upper[k]);
     std::string limit;
     if (in.max_count != std::numeric_limits<std::uint64_t>::max())
-      limit += fmt::format(", at most {} grains", in.max_count);
+      limit += fmt::format(", at most {} {}", in.max_count, in.clump ? "clumps" : "grains");
     if (std::isfinite(in.max_mass))
       limit += fmt::format(", at most {:.6g} kg{}", in.max_mass, D == 2 ? " per metre" : "");
-    scene.notes.push_back(
-        fmt::format("[[inlet]] {}: {} every {:.6g} s into {} m{}{}", in.name,
-                    in.rate > 0.0 ? fmt::format("{:.6g} grains/s", in.rate)
-                                  : fmt::format("{:.6g} kg/s{}", in.mass_rate, D == 2 ? " per metre" : ""),
-                    in.interval, box, limit, in.active ? "" : "; inactive until a stage sets it active"));
+    scene.notes.push_back(fmt::format(
+        "[[inlet]] {}: {} every {:.6g} s into {} m{}{}{}", in.name,
+        in.rate > 0.0 ? fmt::format("{:.6g} {}/s", in.rate, in.clump ? "clumps" : "grains")
+                      : fmt::format("{:.6g} kg/s{}", in.mass_rate, D == 2 ? " per metre" : ""),
+        in.interval, box, limit,
+        in.clump ? fmt::format("; clumps \"{}\" of {} {}, {}", in.clump_name, in.clump->radius.size(),
+                               D == 2 ? "discs" : "spheres", in.aligned ? "aligned" : "turned at random")
+                 : "",
+        in.active ? "" : "; inactive until a stage sets it active"));
     // The new grains meet the particles, the walls and each other.
     std::vector<bool> meets(nm, false);
     for (auto m : sim.particles.material) meets[m] = true;
@@ -2074,12 +2083,20 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
 
   // Time step: the first stage's gravity does not matter for the critical
   // step; the pore fluid's undrained stiffness and drag do.
-  // An inlet's smallest grain counts too: added for this only (at its box's
-  // centre, outside any fluid grid), then taken out again.
+  // An inlet's smallest grain counts too (a clump: its members against its
+  // mass and inertia): added for this only (at its box's centre, outside
+  // any fluid grid), then taken out again.
   const std::size_t scene_particles = sim.particles.size();
+  const std::size_t scene_clumps = sim.clumps.size();
   for (const auto& in : scene.inlets) {
-    sim.particles.add(0.5 * (in.lower + in.upper), in.radii.smallest(), sim.materials[in.material].density,
-                      in.material, false);
+    const double density = sim.materials[in.material].density;
+    const Vec<D> centre = 0.5 * (in.lower + in.upper);
+    if (in.clump) {
+      sim.clumps.add(sim.particles, *in.clump, in.radii.smallest(), centre,
+                     ClumpShape<D>::identity_orientation(), density, in.material, false, Vec<D>::Zero());
+    } else {
+      sim.particles.add(centre, in.radii.smallest(), density, in.material, false);
+    }
   }
   // One cell never drained keeps a uniform pressure: no grain feels the
   // water's stiffness, so the critical step leaves it out.
@@ -2108,6 +2125,12 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     std::vector<std::uint32_t> keep(scene_particles);
     for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = static_cast<std::uint32_t>(i);
     sim.particles.permute(keep);
+  }
+  if (sim.clumps.size() > scene_clumps) {
+    std::vector<std::uint8_t> kept(sim.clumps.size(), 0);
+    std::fill(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(scene_clumps), 1);
+    sim.clumps.keep(kept);
+    sim.clumps.refresh(sim.particles);
   }
   // Refusals of [simulation] time_step, at the key.
   auto refuse_time_step = [&](const std::string& message) {

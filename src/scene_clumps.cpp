@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <numbers>
 #include <random>
 #include <stdexcept>
 
@@ -47,23 +46,6 @@ std::pair<std::string, ClumpShape<D>> read_clump_template(TableReader& r) {
   }
 }
 
-namespace {
-double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
-
-/// A uniformly random orientation (Shoemake's quaternion in 3D).
-Orientation<2> random_orientation(std::mt19937_64& rng, std::integral_constant<int, 2>) {
-  return Orientation<2>(2.0 * std::numbers::pi * unit(rng));
-}
-Orientation<3> random_orientation(std::mt19937_64& rng, std::integral_constant<int, 3>) {
-  const double u1 = unit(rng);
-  const double u2 = 2.0 * std::numbers::pi * unit(rng);
-  const double u3 = 2.0 * std::numbers::pi * unit(rng);
-  const double a = std::sqrt(1.0 - u1);
-  const double b = std::sqrt(u1);
-  return Orientation<3>(b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3));
-}
-}  // namespace
-
 template <int D>
 std::size_t add_clumps(TableReader& r, Simulation<D>& sim, const ClumpShape<D>& shape,
                        const Packing<D>& packing, std::uint16_t material, bool fixed,
@@ -78,7 +60,7 @@ std::size_t add_clumps(TableReader& r, Simulation<D>& sim, const ClumpShape<D>& 
   const std::size_t before = sim.particles.size();
   for (std::size_t k = 0; k < packing.position.size(); ++k) {
     Orientation<D> q = ClumpShape<D>::identity_orientation();
-    if (orientation == "random") q = random_orientation(rng, std::integral_constant<int, D>{});
+    if (orientation == "random") q = random_orientation<D>(rng);
     sim.clumps.add(sim.particles, shape, packing.radius[k], packing.position[k], q, density, material, fixed,
                    velocity);
   }

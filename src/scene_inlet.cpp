@@ -12,7 +12,8 @@ namespace darcydem {
 
 template <int D>
 Inlet<D> read_inlet(TableReader& r, std::uint16_t material, const Simulation<D>& sim,
-                    const PoreFluid<D>* fluid, const std::vector<std::string>& names_so_far) {
+                    const PoreFluid<D>* fluid, const std::vector<std::string>& names_so_far,
+                    const ClumpShape<D>* clump) {
   Inlet<D> in;
   in.material = material;
   in.name = r.string("name");
@@ -63,6 +64,13 @@ Inlet<D> read_inlet(TableReader& r, std::uint16_t material, const Simulation<D>&
   if (auto v = r.optional_numbers("velocity", D)) {
     for (int k = 0; k < D; ++k) in.velocity[k] = (*v)[k];
     if (!in.velocity.allFinite()) r.fail("velocity", "must be finite (m/s)");
+  }
+  if (clump != nullptr) {
+    in.clump = *clump;
+    in.clump_name = *r.optional_string("clump");
+    in.aligned = r.optional_choice("orientation", {"random", "aligned"}).value_or("random") == "aligned";
+  } else if (r.has("orientation")) {
+    r.fail("orientation", "orients an inlet's clumps: give 'clump' too (a [[clump_template]]'s name)");
   }
   in.radii = read_radius(r, D);
   const double largest = in.radii.largest();
@@ -144,16 +152,18 @@ std::pair<double, double> radius_range(const ParticleData<D>& particles,
     hi = std::max(hi, r);
   }
   for (const auto& in : inlets) {
-    lo = std::min(lo, in.radii.smallest());
+    double smallest_member = 1.0;  // of the bounding radius
+    if (in.clump) smallest_member = *std::min_element(in.clump->radius.begin(), in.clump->radius.end());
+    lo = std::min(lo, in.radii.smallest() * smallest_member);
     hi = std::max(hi, in.radii.largest());
   }
   return {lo, hi};
 }
 
 template Inlet<2> read_inlet<2>(TableReader&, std::uint16_t, const Simulation<2>&, const PoreFluid<2>*,
-                                const std::vector<std::string>&);
+                                const std::vector<std::string>&, const ClumpShape<2>*);
 template Inlet<3> read_inlet<3>(TableReader&, std::uint16_t, const Simulation<3>&, const PoreFluid<3>*,
-                                const std::vector<std::string>&);
+                                const std::vector<std::string>&, const ClumpShape<3>*);
 template std::pair<double, double> radius_range<2>(const ParticleData<2>&, const std::vector<Inlet<2>>&);
 template std::pair<double, double> radius_range<3>(const ParticleData<3>&, const std::vector<Inlet<3>>&);
 

@@ -111,6 +111,28 @@ std::size_t Simulation<D>::add_particle(const Vec<D>& x, double radius, std::uin
 }
 
 template <int D>
+std::size_t Simulation<D>::add_clump(const ClumpShape<D>& shape, double size, const Vec<D>& x,
+                                     const Orientation<D>& q, std::uint16_t material,
+                                     const Vec<D>& velocity) {
+  const std::size_t before = particles.size();
+  const auto next_id = static_cast<std::uint32_t>(before + removed_count);
+  const std::size_t c =
+      clumps.add(particles, shape, size, x, q, materials.at(material).density, material, false, velocity);
+  const std::uint32_t first = clumps.first[c];
+  for (std::size_t k = 0; before + k < particles.size(); ++k) {
+    const std::size_t i = before + k;
+    particles.id[i] = next_id + static_cast<std::uint32_t>(k);
+    clumps.member_id[first + k] = particles.id[i];
+    particles.force[i] = gravity / particles.inv_mass[i];
+  }
+  clumps.force[c] = clumps.mass[c] * gravity;
+  inserted_count += particles.size() - before;
+  inserted_mass += clumps.mass[c];
+  if (energy.started) energy.inserted_kinetic += 0.5 * clumps.mass[c] * velocity.squaredNorm();
+  return c;
+}
+
+template <int D>
 std::size_t Simulation<D>::make_bonds(double gap) {
   if (!prepared_) throw std::logic_error("Simulation: make_bonds before prepare");
   if (!(gap >= 0.0 && gap < skin)) {
@@ -1090,7 +1112,11 @@ double Simulation<D>::elastic_energy() const {
     return 0.5 * pp.rolling_stiffness(pp.normal_stiffness, r_eff) * theta.squaredNorm();
   };
   const auto& p = particles;
-  for (std::size_t i = 0; i < p.size(); ++i) {
+  // Particles added since the lists were built (an inlet's, placed where
+  // they touch nothing) are not in them yet: the rows that are.
+  const std::size_t rows = std::min({p.size(), list_.row_offset.empty() ? 0 : list_.row_offset.size() - 1,
+                                     wall_list_.offset.empty() ? 0 : wall_list_.offset.size() - 1});
+  for (std::size_t i = 0; i < rows; ++i) {
     for (std::uint32_t k = list_.row_offset[i]; k < list_.row_offset[i + 1]; ++k) {
       const std::uint32_t j = list_.neighbour[k];
       const double reach = p.radius[i] + p.radius[j];

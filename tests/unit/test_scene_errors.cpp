@@ -2428,5 +2428,54 @@ TEST(SceneErrors, ClumpsAreChecked) {
   expect_error(replace(good, "[[-1.0, 0.0, 1.0], [1.0, 0.0, 1.0]]", "[]"), "must be a non-empty array");
 }
 
+// An [[inlet]] with `clump` adds clumps of a [[clump_template]]: the name is
+// checked as a generator's is, `orientation` goes only with it, and the
+// automatic time step counts the inlet's smallest clump as it counts a
+// scene's clump of that size (a member's contact against the clump's mass
+// and inertia), not as a disc of the clump's size.
+TEST(SceneErrors, InletClumpsAreChecked) {
+  const std::string pair =
+      "[[clump_template]]\nname = \"pair\"\ncircles = [[-1.0, 0.0, 1.0], [1.0, 0.0, 1.0]]\n\n";
+  const std::string discs =
+      "\n[[inlet]]\nname = \"rain\"\nmaterial = \"sand\"\nmin = [-0.01, 0.01]\nmax = [0.01, 0.02]\n"
+      "radius_min = 0.0002\nradius_max = 0.0004\nrate = 100.0\n";
+  const std::string with_pair = replace(kGood, "[[particles]]", pair + "[[particles]]");
+  const std::string good =
+      with_pair + replace(discs, "material = \"sand\"", "material = \"sand\"\nclump = \"pair\"");
+  ASSERT_EQ(load_error(good), "");
+  const auto scene = built_scene<2>(good);
+  ASSERT_TRUE(scene.inlets.at(0).clump.has_value());
+  EXPECT_FALSE(scene.inlets.at(0).aligned);
+  EXPECT_EQ(scene.simulation.clumps.size(), 0u) << "the time step's clump is taken out again";
+  EXPECT_EQ(scene.simulation.particles.size(), 3u);
+  bool noted = false;
+  for (const auto& n : scene.notes)
+    noted = noted || n.find("clumps \"pair\" of 2 discs, turned at random") != std::string::npos;
+  EXPECT_TRUE(noted);
+  // The same clump, of the inlet's smallest size, made by a generator.
+  const std::string generated =
+      with_pair +
+      "\n[[particles]]\ngenerator = \"column\"\nmaterial = \"sand\"\nbase = [0.005, 0.0]\ncount = 1\n"
+      "radius = 0.0002\nclump = \"pair\"\n";
+  ASSERT_EQ(load_error(generated), "");
+  const double clump_step = built_scene<2>(generated).critical_time_step;
+  EXPECT_NEAR(scene.critical_time_step, clump_step, 1e-12 * clump_step);
+  const double disc_step = built_scene<2>(with_pair + discs).critical_time_step;
+  EXPECT_LT(scene.critical_time_step, 0.9 * disc_step)
+      << "a member is lighter than a disc of the clump's size";
+
+  auto msg = load_error(replace(good, "clump = \"pair\"", "clump = \"par\""));
+  EXPECT_NE(msg.find("key 'clump': \"par\" is not a [[clump_template]]'s name (did you mean \"pair\"?)"),
+            std::string::npos)
+      << msg;
+  msg = load_error(with_pair + discs + "orientation = \"aligned\"\n");
+  EXPECT_NE(msg.find("key 'orientation': orients an inlet's clumps: give 'clump' too"), std::string::npos)
+      << msg;
+  msg = load_error(good + "orientation = \"sideways\"\n");
+  EXPECT_NE(msg.find("key 'orientation'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("\"aligned\""), std::string::npos) << msg;
+  EXPECT_TRUE(built_scene<2>(good + "orientation = \"aligned\"\n").inlets.at(0).aligned);
+}
+
 }  // namespace
 }  // namespace darcydem

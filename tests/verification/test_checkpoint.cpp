@@ -425,6 +425,17 @@ TEST(Checkpoint, ResumedPluviationWritesTheSameFilesWhileGrainsAreAdded) {
   expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 20000, 0);
 }
 
+TEST(Checkpoint, ResumedClumpPluviationWritesTheSameFilesWhileClumpsAreAdded) {
+  // examples/dem_cases/clump_pluviation.toml, stopped at step 8000 (0.136 s,
+  // half the peanuts in): the clumps added so far must come back with
+  // their members' numbers, and the inlet's random numbers, which turn the
+  // clumps as well as place them, must go on as they would have.
+  const fs::path dir = fresh_dir("clump_pluviation");
+  fs::create_directories(dir);
+  const std::string scene = std::string(DARCYDEM_SOURCE_DIR) + "/examples/dem_cases/clump_pluviation.toml";
+  expect_resumed_run_writes_the_same_files<2>(scene, dir, 2, 8000, 0);
+}
+
 TEST(Checkpoint, ResumedSlidingSphereKeepsItsEnergyBudget) {
   // examples/dem_cases/slip_to_roll.toml, whose probes track the energy
   // budget, stopped at step 10 000 of 115 624, mid-slide: the works done so

@@ -6,15 +6,21 @@
 // adds what its rate has made due since (a count, or a mass: sizes drawn
 // ahead so that a grain goes in once the mass budget covers it), each at a
 // random place in the box where it touches no grain and no wall; what does
-// not fit waits for the next insertion.
+// not fit waits for the next insertion. With a clump template the inlet
+// adds clumps (PFC's clump generation in a cycle loop): each grain's size
+// is the sphere that holds the clump, the clump turned at random (or as the
+// template stands) and placed where none of its members touches a particle
+// or a wall.
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "darcydem/core/vec.hpp"
 #include "darcydem/generation/generators.hpp"
+#include "darcydem/particles/clumps.hpp"
 #include "darcydem/simulation/simulation.hpp"
 
 namespace darcydem {
@@ -35,6 +41,13 @@ struct Inlet {
   double interval = 0.0;                                                ///< s between insertions
   std::int64_t max_attempts = 1000;  ///< random places tried per grain at each insertion
   bool active = true;
+  /// The scene's `clump`: a clump of this shape in place of each grain,
+  /// scaled so that the sphere about its centre of mass that holds it is
+  /// the grain (the sizes, the box and the rates count clumps); none:
+  /// spheres (2D: discs).
+  std::optional<ClumpShape<D>> clump;
+  std::string clump_name;
+  bool aligned = false;  ///< each clump stands as its template does; else turned at random
 
   // State (checkpointed).
   std::mt19937_64 rng;
@@ -61,8 +74,9 @@ struct InsertionResult {
 };
 
 /// The inlet's insertion at the simulation's time: adds the grains due
-/// (Simulation::add_particle), each at the first of up to max_attempts
-/// random places in the box where it overlaps no particle (nearest image
+/// (Simulation::add_particle, or add_clump), each at the first of up to
+/// max_attempts random places in the box (a clump each time also turned at
+/// random, unless aligned) where it overlaps no particle (nearest image
 /// across periodic axes) and no wall, and moves next_time on by the
 /// interval. The grains' forces are their weight under the current gravity.
 template <int D>
@@ -85,7 +99,8 @@ template <int D>
 bool box_beside(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& grid_lo, const Vec<D>& grid_hi,
                 const PeriodicCell<D>& cell);
 
-/// The mass of a grain of the inlet's material, kg (2D: kg/m).
+/// The mass of a grain of the inlet's material and of this size (m), kg
+/// (2D: kg/m): a sphere's, or a clump's of that size.
 template <int D>
 double inlet_grain_mass(const Inlet<D>& inlet, const Simulation<D>& sim, double radius);
 

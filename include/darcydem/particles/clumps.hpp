@@ -20,6 +20,7 @@
 // Pairs of members of one clump are never in contact.
 #include <array>
 #include <cstdint>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -64,6 +65,15 @@ struct ClumpShape {
     return q;
   }
 };
+
+/// An orientation drawn uniformly over all orientations (3D: Shoemake's
+/// quaternion; 2D: an angle in [0, 2 pi)).
+template <int D>
+Orientation<D> random_orientation(std::mt19937_64& rng);
+template <>
+Orientation<2> random_orientation<2>(std::mt19937_64& rng);
+template <>
+Orientation<3> random_orientation<3>(std::mt19937_64& rng);
 
 /// The orientation q1 after q0: turned by q0, then by q1.
 Orientation<2> compose(const Orientation<2>& q1, const Orientation<2>& q0);

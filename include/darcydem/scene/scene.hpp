@@ -56,7 +56,7 @@ enum class ProbeQuantity {
   removed_mass,       ///< their mass, kg (2D: per metre)
   particle_fluid_force,  ///< the pore fluid's force on one particle, N (Simulation::field_forces)
   fluid_force,           ///< the pore fluid's force on the particles whose centres lie in a box, N
-  inserted_particles,    ///< how many grains an inlet (or all) has added so far
+  inserted_particles,    ///< how many particles an inlet (or all) has added so far (a clump: its members)
   inserted_mass,         ///< their mass, kg (2D: per metre)
   bonds,                 ///< contact bonds intact now
   broken_bonds,          ///< contact bonds broken so far

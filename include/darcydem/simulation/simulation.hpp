@@ -136,6 +136,16 @@ class Simulation {
   /// histories. Call between steps (not inside advance()).
   std::size_t add_particle(const Vec<D>& x, double radius, std::uint16_t material, const Vec<D>& velocity);
 
+  /// Adds a free clump during a run (an inlet's clump) as add_particle adds
+  /// a grain: `shape` scaled by `size` (m), its centre of mass at x, turned
+  /// by q, moving at `velocity` without spin; its members numbered after
+  /// every particle created so far, each one's force its weight, so the
+  /// clump's is its weight with no moment about its centre of mass. Counts
+  /// its members in inserted_count and its mass in inserted_mass; returns
+  /// its number. Call between steps.
+  std::size_t add_clump(const ClumpShape<D>& shape, double size, const Vec<D>& x, const Orientation<D>& q,
+                        std::uint16_t material, const Vec<D>& velocity);
+
   /// Bonds every pair of particles that touch or are less than `gap` apart
   /// (m, below the skin) whose materials' contact has a bond strength
   /// (PFC's `contact method bond gap`, YADE's setCohesionNow): from now on
