@@ -155,9 +155,8 @@ ClumpShape<D> make_clump_shape(const std::vector<Vec<D>>& centres, const std::ve
   bool overlapping = false;
   for (std::size_t i = 0; i < centres.size(); ++i) {
     for (std::size_t j = i + 1; j < centres.size(); ++j) {
-      const double gap = (centres[j] - centres[i]).norm() - radii[i] - radii[j];
-      overlapping = overlapping || gap < -1e-9 * std::min(radii[i], radii[j]);
       const double d = (centres[j] - centres[i]).norm();
+      overlapping = overlapping || d - radii[i] - radii[j] < -1e-9 * std::min(radii[i], radii[j]);
       if (d + std::min(radii[i], radii[j]) <= std::max(radii[i], radii[j])) {
         const bool i_inside = radii[i] <= radii[j];
         throw std::invalid_argument(

@@ -200,8 +200,7 @@ void Simulation<D>::check_periods() const {
     if (periodic.periodic[k] && !(periodic.length[k] > shortest_period())) {
       throw std::invalid_argument(
           fmt::format("periodic axis {}: the period {:.6g} m must exceed 2 x (the larger of 2 x the largest "
-                      "radius and the "
-                      "largest clump's reach, + skin) = {:.6g} m",
+                      "radius and the largest clump's reach, + skin) = {:.6g} m",
                       "xyz"[k], periodic.length[k], shortest_period()));
     }
   }

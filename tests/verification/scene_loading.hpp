@@ -47,18 +47,24 @@ inline std::string file_contents(const std::string& path) {
   return s.str();
 }
 
-/// The text of a scene file of the source tree (path relative to it) with
-/// each of `swaps` (a text, its replacement) made at its first place;
-/// throws std::logic_error naming a text the file lacks.
-inline std::string scene_variant(const std::string& relative,
-                                 const std::vector<std::pair<std::string, std::string>>& swaps) {
-  std::string text = file_contents(std::string(DARCYDEM_SOURCE_DIR) + "/" + relative);
+/// `text` with each of `swaps` (a text, its replacement) made at its first
+/// place; throws std::logic_error naming a text it lacks (`what`: whose).
+inline std::string text_variant(std::string text,
+                                const std::vector<std::pair<std::string, std::string>>& swaps,
+                                const std::string& what = "the scene") {
   for (const auto& [from, to] : swaps) {
     const auto at = text.find(from);
-    if (at == std::string::npos) throw std::logic_error(relative + " has no \"" + from + "\"");
+    if (at == std::string::npos) throw std::logic_error(what + " has no \"" + from + "\"");
     text.replace(at, from.size(), to);
   }
   return text;
+}
+
+/// The text of a scene file of the source tree (path relative to it) with
+/// each of `swaps` made at its first place (text_variant).
+inline std::string scene_variant(const std::string& relative,
+                                 const std::vector<std::pair<std::string, std::string>>& swaps) {
+  return text_variant(file_contents(std::string(DARCYDEM_SOURCE_DIR) + "/" + relative), swaps, relative);
 }
 
 /// Runs every stage without writing output (stop conditions honoured).
