@@ -213,6 +213,21 @@ class Model {
                                       allowed.empty() ? "none" : allowed));
   }
 
+  /// Starts (the first insertion at once) or stops an [[inlet]] between
+  /// steps, as a stage's `inlets.NAME = { active = ... }` does.
+  void set_inlet_active(const std::string& name, bool active) {
+    for (auto& in : scene_.inlets) {
+      if (in.name != name) continue;
+      if (active && !in.active) in.next_time = sim().time;
+      in.active = active;
+      return;
+    }
+    std::string allowed;
+    for (const auto& in : scene_.inlets) allowed += (allowed.empty() ? "'" : ", '") + in.name + "'";
+    throw py::value_error(fmt::format("set_inlet_active: no [[inlet]] '{}' (the scene's: {})", name,
+                                      allowed.empty() ? "none" : allowed));
+  }
+
   /// A wall's motion changed between steps, as a stage's `walls.NAME`
   /// entry does (YADE's state.vel and state.angVel, PFC's wall attribute
   /// velocity and spin): a velocity (which ends a servo) and, for a
@@ -1384,6 +1399,32 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "particles the [[inlet]]s have added so far")
       .def_property_readonly(
           "inserted_mass", [](const M& s) { return s.sim().inserted_mass; }, "their mass, kg (2D: per metre)")
+      .def_property_readonly(
+          "inlets",
+          [](const M& s) {
+            py::list out;
+            for (const auto& in : s.scene().inlets) {
+              py::dict d;
+              d["name"] = in.name;
+              d["active"] = in.active;
+              d["inserted"] = in.inserted;
+              d["particles"] = in.inserted * (in.clump ? in.clump->radius.size() : 1);
+              d["mass"] = in.inserted_mass;
+              d["exhausted"] = in.exhausted();
+              d["next_time"] = in.active && !in.exhausted() ? py::cast(in.next_time) : py::none();
+              d["short_of_room"] = in.short_events;
+              d["clump"] = in.clump ? py::cast(in.clump_name) : py::none();
+              out.append(d);
+            }
+            return out;
+          },
+          "the [[inlet]]s, a dict each: name, active, inserted (grains, or clumps), particles (a clump's "
+          "members each), mass (kg; 2D per metre), exhausted (it has added all it may), next_time (s, its "
+          "next insertion; None when inactive or exhausted), short_of_room (insertions that found no room "
+          "for all that was due), clump (its template's name, or None)")
+      .def("set_inlet_active", &M::set_inlet_active, py::arg("name"), py::arg("active"),
+           "starts an [[inlet]] (its first insertion at once) or stops it, between steps, as a stage's "
+           "inlets.NAME = { active = ... }")
       .def(
           "make_bonds", [](M& s, double gap) { return s.sim().make_bonds(gap); }, py::arg("gap") = 0.0,
           "bonds every pair that touches or is less than gap (m, below the skin) apart whose [[contact]] has "

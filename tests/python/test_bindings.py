@@ -938,6 +938,44 @@ class Pluviation(unittest.TestCase):
         np.testing.assert_array_equal(model.positions, final[:, :2])
         np.testing.assert_array_equal(model.radii, final[:, 2])
 
+    def test_an_inlet_of_clumps_stopped_and_started_from_python(self):
+        # examples/dem_cases/clump_pluviation.toml: the hopper rains peanuts
+        # every 10 ms from t = 0 (time step 1.697e-5 s). After 2700 steps
+        # (45.8 ms) five insertions have made 0.15 kg/m due, and it has added
+        # less than that by less than a peanut. Stopped, it adds nothing
+        # more; started again, it inserts at once: 0.18 kg/m due in all.
+        model = darcydem.load(os.path.join(SOURCE, "examples", "dem_cases", "clump_pluviation.toml"))
+        (hopper,) = model.inlets
+        self.assertEqual(hopper["name"], "hopper")
+        self.assertEqual(hopper["clump"], "peanut")
+        self.assertTrue(hopper["active"])
+        self.assertEqual(hopper["next_time"], 0.0)
+        # The largest peanut: holding radius 1.2 mm, its union two discs of
+        # 0.8 (template units) 1.2 apart less their lens.
+        lens = 2.0 * 0.64 * math.acos(0.75) - 0.6 * math.sqrt(1.12)
+        heaviest = 2650.0 * (2.0 * math.pi * 0.64 - lens) * (0.0012 / 1.4) ** 2
+        model.step(2700)
+        hopper = model.inlets[0]
+        self.assertEqual(hopper["inserted"], len(model.clumps))
+        self.assertEqual(hopper["particles"], 2 * hopper["inserted"])
+        self.assertEqual(hopper["particles"], model.inserted_count)
+        self.assertEqual(hopper["mass"], model.inserted_mass)
+        self.assertAlmostEqual(hopper["mass"], sum(c["mass"] for c in model.clumps), delta=1e-12)
+        self.assertLessEqual(hopper["mass"], 0.15 * (1 + 1e-9))
+        self.assertGreater(hopper["mass"], 0.15 - heaviest)
+        model.set_inlet_active("hopper", False)
+        self.assertFalse(model.inlets[0]["active"])
+        self.assertIsNone(model.inlets[0]["next_time"])
+        model.step(2000)
+        self.assertEqual(model.inlets[0]["inserted"], hopper["inserted"])
+        model.set_inlet_active("hopper", True)
+        self.assertEqual(model.inlets[0]["next_time"], model.time)
+        model.step(1)
+        self.assertLessEqual(model.inlets[0]["mass"], 0.18 * (1 + 1e-9))
+        self.assertGreater(model.inlets[0]["mass"], 0.18 - heaviest)
+        with self.assertRaisesRegex(ValueError, "no \\[\\[inlet\\]\\] 'hoper' \\(the scene's: 'hopper'\\)"):
+            model.set_inlet_active("hoper", False)
+
 
 class CementedChain(unittest.TestCase):
     """examples/dem_cases/cemented_chain.toml stepped from Python: the first
