@@ -1031,8 +1031,8 @@ class Model {
   /// position (the stage applied last, the steps since, the DEM steps
   /// since the last fluid step) in `position`.
   RunState<D> run_state(RunPosition& position) {
-    return RunState<D>{position,   sim(),      scene_.inlets, fluid(),   analysis_ ? &*analysis_ : nullptr,
-                       series_[0], series_[1], series_[2],    series_[3]};
+    return RunState<D>{position,   sim(),      scene_.inlets, fluid(),    analysis_ ? &*analysis_ : nullptr,
+                       series_[0], series_[1], series_[2],    series_[3], series_[4]};
   }
 
  public:
@@ -1077,7 +1077,7 @@ class Model {
       scene_.seepage_column
           ? std::optional<SeepageColumnAnalysis<D>>(std::in_place, *scene_.seepage_column, scene_)
           : std::nullopt;
-  std::array<PvdSeries, 4> series_{PvdSeries(""), PvdSeries(""), PvdSeries(""), PvdSeries("")};
+  std::array<PvdSeries, 5> series_{PvdSeries(""), PvdSeries(""), PvdSeries(""), PvdSeries(""), PvdSeries("")};
 };
 
 /// The pore fluid of a model, read through it (it lives as long as the model).

@@ -333,13 +333,14 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   PvdSeries fluid_series((out / "fluid.pvd").string());
   PvdSeries wall_series((out / "walls.pvd").string());
   PvdSeries contact_series((out / "contacts.pvd").string());
+  PvdSeries source_series((out / "sources.pvd").string());
   PoreFluid<D>* fluid = scene.fluid.get();
   std::optional<SeepageColumnAnalysis<D>> seepage;
   if (scene.seepage_column) seepage.emplace(*scene.seepage_column, scene);
   // Where the run stands; a checkpoint stores it with the state.
   RunPosition pos;
-  const RunState<D> state{pos,    sim,          scene.inlets, fluid,         seepage ? &*seepage : nullptr,
-                          series, fluid_series, wall_series,  contact_series};
+  const RunState<D> state{pos,    sim,          scene.inlets, fluid,          seepage ? &*seepage : nullptr,
+                          series, fluid_series, wall_series,  contact_series, source_series};
   auto write_probes = [&] {
     probes << fmt::format("{:.10g}", sim.time);
     for (const auto& p : scene.output.probes)
@@ -384,6 +385,11 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       const auto stress = cell_contact_stress<D>(sim, fluid->grid);
       write_fluid_vti<D>((out / fname).string(), *fluid, &stress);
       fluid_series.add(sim.time, fname);
+      if (!fluid->sources.empty()) {
+        const std::string sname = fmt::format("sources_{:05d}.vtu", pos.snapshot_index);
+        write_sources_vtu<D>((out / sname).string(), *fluid);
+        source_series.add(sim.time, sname);
+      }
     }
     ++pos.snapshot_index;
   };

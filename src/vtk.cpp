@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <type_traits>
+#include <vector>
 
 #include <fmt/format.h>
 #include <fmt/os.h>
@@ -34,6 +35,35 @@ void write_scalar_array(fmt::ostream& out, const char* type, const char* name, s
     }
   }
   out.print("        </DataArray>\n");
+}
+
+/// An unstructured grid's head: its points and the start of its cell data
+/// (`scalars`: the array ParaView colours by at first).
+void write_points_and_open_cells(fmt::ostream& out, const std::vector<Vec<3>>& points, std::size_t cells,
+                                 const char* scalars) {
+  out.print(
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+      "byte_order=\"LittleEndian\">\n");
+  out.print("  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", points.size(),
+            cells);
+  out.print("      <Points>\n");
+  write_vector_array<3>(out, "position", points.size(), [&](std::size_t i) { return points[i]; });
+  out.print("      </Points>\n      <CellData Scalars=\"{}\">\n", scalars);
+}
+
+/// The end of an unstructured grid's cell data, its cells (the points in
+/// order, cell by cell: `offsets` the end of each, `types` its VTK type)
+/// and the file's closing tags.
+void write_cells_and_close(fmt::ostream& out, std::size_t points, const std::vector<int>& offsets,
+                           const std::vector<int>& types) {
+  out.print("      </CellData>\n      <Cells>\n");
+  out.print("        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n");
+  for (std::size_t i = 0; i < points; ++i) out.print("{}\n", i);
+  out.print("        </DataArray>\n        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n");
+  for (int o : offsets) out.print("{}\n", o);
+  out.print("        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+  for (int t : types) out.print("{}\n", t);
+  out.print("        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
 }
 
 }  // namespace
@@ -187,14 +217,7 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
   }
   try {
     auto out = fmt::output_file(path);
-    out.print(
-        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
-        "byte_order=\"LittleEndian\">\n");
-    out.print("  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", points.size(),
-              cell_wall.size());
-    out.print("      <Points>\n");
-    write_vector_array<3>(out, "position", points.size(), [&](std::size_t i) { return points[i]; });
-    out.print("      </Points>\n      <CellData Scalars=\"wall_id\">\n");
+    write_points_and_open_cells(out, points, cell_wall.size(), "wall_id");
     out.print("        <DataArray type=\"Int32\" Name=\"wall_id\" format=\"ascii\">\n");
     for (std::size_t w : cell_wall) out.print("{}\n", w);
     out.print("        </DataArray>\n");
@@ -204,14 +227,7 @@ void write_walls_vtu(const std::string& path, const std::vector<Wall<D>>& walls,
     out.print("        </DataArray>\n");
     write_vector_array<D>(out, "velocity", cell_wall.size(),
                           [&](std::size_t c) { return walls[cell_wall[c]].translation_velocity(); });
-    out.print("      </CellData>\n      <Cells>\n");
-    out.print("        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n");
-    for (std::size_t i = 0; i < points.size(); ++i) out.print("{}\n", i);
-    out.print("        </DataArray>\n        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n");
-    for (int o : offsets) out.print("{}\n", o);
-    out.print("        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    for (int t : types) out.print("{}\n", t);
-    out.print("        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+    write_cells_and_close(out, points.size(), offsets, types);
     out.close();
   } catch (const std::system_error& e) {
     throw std::runtime_error(fmt::format("{}: cannot write the walls: {}", path, e.what()));
@@ -356,6 +372,49 @@ void write_contacts_vtu(const std::string& path, const ParticleData<D>& p,
   }
 }
 
+template <int D>
+void write_sources_vtu(const std::string& path, const PoreFluid<D>& f) {
+  std::vector<Vec<3>> points;
+  std::vector<int> offsets;
+  std::vector<int> types;
+  for (const auto& source : f.sources) {
+    Vec<3> x = Vec<3>::Zero();
+    for (int k = 0; k < D; ++k) x[k] = source.position[k];
+    if (source.screened()) {
+      // From the screen's one end to its other, through the position.
+      Vec<3> y = x;
+      x[source.screen_axis] = source.screen[0];
+      y[source.screen_axis] = source.screen[1];
+      points.push_back(x);
+      points.push_back(y);
+      types.push_back(3);  // VTK_LINE
+    } else {
+      points.push_back(x);
+      types.push_back(1);  // VTK_VERTEX
+    }
+    offsets.push_back(static_cast<int>(points.size()));
+  }
+  const std::size_t n = f.sources.size();
+  try {
+    auto out = fmt::output_file(path);
+    write_points_and_open_cells(out, points, n, "inflow");
+    write_scalar_array(out, "Int32", "source_id", n, [](std::size_t i) { return static_cast<int>(i); });
+    write_scalar_array(out, "Float64", "inflow", n, [&](std::size_t i) { return f.source_inflow(i); });
+    write_scalar_array(out, "Float64", "pressure", n, [&](std::size_t i) { return f.well_pressure(i); });
+    write_scalar_array(out, "Float64", "radius", n, [&](std::size_t i) { return f.sources[i].radius; });
+    write_scalar_array(out, "Int32", "held", n,
+                       [&](std::size_t i) { return f.sources[i].type == FluidSourceType::pressure ? 1 : 0; });
+    write_scalar_array(out, "Int32", "open", n,
+                       [&](std::size_t i) { return !f.sources[i].drains() || f.drain_open(i) ? 1 : 0; });
+    write_cells_and_close(out, points.size(), offsets, types);
+    out.close();
+  } catch (const std::system_error& e) {
+    throw std::runtime_error(fmt::format("{}: cannot write the sources: {}", path, e.what()));
+  }
+}
+
+template void write_sources_vtu<2>(const std::string&, const PoreFluid<2>&);
+template void write_sources_vtu<3>(const std::string&, const PoreFluid<3>&);
 template void write_particles_vtu<2>(const std::string&, const ParticleData<2>&, const std::vector<Vec<2>>*,
                                      const std::vector<std::int32_t>*);
 template void write_particles_vtu<3>(const std::string&, const ParticleData<3>&, const std::vector<Vec<3>>*,

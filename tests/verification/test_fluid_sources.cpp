@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "../common/vtk_text.hpp"
 #include "darcydem/fluid/pore_fluid.hpp"
 #include "run_output.hpp"
 #include "scene_loading.hpp"
@@ -317,6 +319,62 @@ TEST(FluidSources, APumpingTestDrawsDownAndRecoversAsTheisSays) {
   std::printf("pumping test: the well's cell %.5f Pa, Theis at Peaceman's radius %.5f Pa\n",
               probes.at("well_pressure")[end_pump], well_expected);
   EXPECT_NEAR(probes.at("well_pressure")[end_pump] / well_expected, 1.0, 1e-2);
+  // The snapshots at the stages' ends draw the well as a point with what it
+  // gave and its pressure, the probes' at those times (their 10 digits).
+  using darcydem::testing::vtk_array;
+  const std::string pumped = darcydem::testing::file_contents(out + "/sources_00001.vtu");
+  EXPECT_EQ(vtk_array(pumped, "position"), (std::vector<double>{0.205, 0.205, 0.0}));
+  EXPECT_EQ(vtk_array(pumped, "types"), std::vector<double>{1.0}) << "a vertex";
+  EXPECT_EQ(vtk_array(pumped, "inflow"), std::vector<double>{-q});
+  ASSERT_EQ(vtk_array(pumped, "pressure").size(), 1U);
+  EXPECT_NEAR(vtk_array(pumped, "pressure")[0], probes.at("well_pressure")[end_pump],
+              1e-9 * std::abs(probes.at("well_pressure")[end_pump]));
+  const std::string recovered = darcydem::testing::file_contents(out + "/sources_00002.vtu");
+  EXPECT_EQ(vtk_array(recovered, "inflow"), std::vector<double>{0.0});
+  EXPECT_NEAR(vtk_array(recovered, "pressure").at(0), probes.at("well_pressure").back(),
+              1e-9 * std::abs(probes.at("well_pressure").back()));
+  EXPECT_NE(darcydem::testing::file_contents(out + "/sources.pvd").find("file=\"sources_00002.vtu\""),
+            std::string::npos);
+}
+
+TEST(FluidSources, SnapshotsDrawAScreenedWellAlongItsScreen) {
+  // examples/fluid_cases/screened_well.toml, 0.03 s of pumping and of
+  // recovery: the well a line from the screen's bottom to its top through
+  // its axis, with its inflow and its bore's pressure (the probes' at the
+  // stages' ends, to their 10 digits), its radius; it gives an inflow
+  // (held 0) and is no drain (open 1).
+  const std::string out = darcydem::testing::temp_dir("screened_well_vtk");
+  Scene<3> scene = darcydem::testing::scene_from_text<3>(
+      out, "well.toml",
+      darcydem::testing::scene_variant(
+          "examples/fluid_cases/screened_well.toml",
+          {{"name = \"pump\"\nduration = 0.1", "name = \"pump\"\nduration = 0.03"},
+           {"name = \"recover\"\nduration = 0.1", "name = \"recover\"\nduration = 0.03"}}));
+  RunOptions options;
+  options.out_dir = out + "/out";
+  ASSERT_FALSE(run_scene<3>(scene, options).interrupted);
+  const auto probes = darcydem::testing::read_probes(out + "/out/probes.csv");
+  const auto& t = probes.at("time");
+  std::size_t end_pump = 0;
+  while (t[end_pump + 1] <= 0.03 + 1e-9) ++end_pump;
+  using darcydem::testing::vtk_array;
+  const std::string pumped = darcydem::testing::file_contents(out + "/out/sources_00001.vtu");
+  EXPECT_EQ(vtk_array(pumped, "position"), (std::vector<double>{0.155, 0.155, 0.0, 0.155, 0.155, 0.04}));
+  EXPECT_EQ(vtk_array(pumped, "types"), std::vector<double>{3.0}) << "a line";
+  EXPECT_EQ(vtk_array(pumped, "connectivity"), (std::vector<double>{0.0, 1.0}));
+  EXPECT_EQ(vtk_array(pumped, "inflow"), std::vector<double>{-4e-6});
+  EXPECT_NEAR(vtk_array(pumped, "inflow").at(0), probes.at("well_flow")[end_pump], 1e-9 * 4e-6);
+  const double bore = probes.at("bore_pressure")[end_pump];
+  EXPECT_LT(bore, 0.0);
+  EXPECT_NEAR(vtk_array(pumped, "pressure").at(0), bore, 1e-9 * std::abs(bore));
+  EXPECT_EQ(vtk_array(pumped, "radius"), std::vector<double>{0.001});
+  EXPECT_EQ(vtk_array(pumped, "held"), std::vector<double>{0.0});
+  EXPECT_EQ(vtk_array(pumped, "open"), std::vector<double>{1.0});
+  const std::string recovered = darcydem::testing::file_contents(out + "/out/sources_00002.vtu");
+  EXPECT_EQ(vtk_array(recovered, "inflow"), std::vector<double>{0.0});
+  EXPECT_NEAR(vtk_array(recovered, "pressure").at(0), probes.at("bore_pressure").back(),
+              1e-9 * std::abs(probes.at("bore_pressure").back()));
+  std::filesystem::remove_all(out);
 }
 
 TEST(FluidSources, APointSourceIn3DSpreadsAsTheContinuousSource) {

@@ -57,6 +57,17 @@ template <int D>
 void write_fluid_vti(const std::string& path, const PoreFluid<D>& fluid,
                      const std::vector<Eigen::Matrix<double, D, D>>* effective_stress = nullptr);
 
+/// The pore fluid's sources and wells (`[[fluid.source]]`) as VTK cells
+/// (.vtu): a point source a vertex at its position, a screened well a line
+/// along its screen. Cell data: source_id (its index in the scene),
+/// inflow (what it gave in the last fluid step, m^3/s; 2D per metre,
+/// negative: pumped out), pressure (at its bore, or in its cell without a
+/// radius, Pa), radius (m, 0: none), held (1 while it holds a pressure, 0
+/// while it gives an inflow), open (a drain's state in the last fluid
+/// step: 1 open, 0 shut; 1 for other sources).
+template <int D>
+void write_sources_vtu(const std::string& path, const PoreFluid<D>& fluid);
+
 class PvdSeries {
  public:
   explicit PvdSeries(std::string path) : path_(std::move(path)) {}

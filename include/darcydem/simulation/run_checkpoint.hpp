@@ -55,6 +55,7 @@ struct RunState {
   PvdSeries& fluid_series;
   PvdSeries& wall_series;
   PvdSeries& contact_series;
+  PvdSeries& source_series;
 };
 
 /// Writes the checkpoint to `path` (through a temporary file renamed over
