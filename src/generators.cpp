@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -249,7 +250,8 @@ namespace {
 template <int D, class NextRadius>
 Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, const std::array<bool, D>& wrap,
                           std::int64_t count, double r_max, NextRadius&& next_radius, std::mt19937_64& rng,
-                          std::int64_t max_attempts, std::string_view what_to_change) {
+                          std::int64_t max_attempts, std::string_view what_to_change,
+                          const Cylinder<D>* cylinder) {
   Packing<D> out;
   // Search cells at least 2 r_max wide; along a period a whole number of
   // them fills it, so that the cells wrap.
@@ -279,9 +281,13 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, const std::array<b
     bool placed = false;
     for (std::int64_t attempt = 0; attempt < max_attempts && !placed; ++attempt) {
       Vec<D> x;
-      for (int k = 0; k < D; ++k) {
-        x[k] = wrap[k] ? lo[k] + length[k] * unit_random(rng)
-                       : lo[k] + r + (length[k] - 2.0 * r) * unit_random(rng);
+      if (cylinder != nullptr) {
+        x = cylinder->sample(r, rng);
+      } else {
+        for (int k = 0; k < D; ++k) {
+          x[k] = wrap[k] ? lo[k] + length[k] * unit_random(rng)
+                         : lo[k] + r + (length[k] - 2.0 * r) * unit_random(rng);
+        }
       }
       x = period.wrap(x);  // a centre rounded up to the period's end
       std::array<std::int64_t, D> c{};
@@ -317,10 +323,10 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, const std::array<b
       }
     }
     if (!placed) {
-      throw std::runtime_error(
-          fmt::format("random packing: no room for particle {} of {} after {} attempts (the box is too full; "
-                      "{})",
-                      made + 1, count, max_attempts, what_to_change));
+      throw std::runtime_error(fmt::format(
+          "random packing: no room for particle {} of {} after {} attempts (the {} is too full; "
+          "{})",
+          made + 1, count, max_attempts, cylinder != nullptr ? "cylinder" : "box", what_to_change));
     }
   }
   return out;
@@ -331,13 +337,14 @@ Packing<D> place_randomly(const Vec<D>& lo, const Vec<D>& hi, const std::array<b
 template <int D>
 Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count,
                           const RadiusDistribution& radii, std::uint64_t seed, std::int64_t max_attempts,
-                          const std::array<bool, D>& wrap) {
+                          const std::array<bool, D>& wrap, const Cylinder<D>* cylinder) {
   std::mt19937_64 rng(seed);
   const std::string_view change = "enlarge it, reduce the count, or raise max_attempts";
   if (radii.kind != RadiusDistribution::Kind::grading) {
     // Each size drawn just before its place, as always (the same packings).
     return place_randomly<D>(
-        lo, hi, wrap, count, radii.largest(), [&] { return radii.sample(rng); }, rng, max_attempts, change);
+        lo, hi, wrap, count, radii.largest(), [&] { return radii.sample(rng); }, rng, max_attempts, change,
+        cylinder);
   }
   // A grading's sizes are drawn first and placed largest first.
   std::vector<double> drawn(static_cast<std::size_t>(count));
@@ -345,16 +352,19 @@ Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
   std::sort(drawn.begin(), drawn.end(), std::greater<>());
   std::size_t next = 0;
   return place_randomly<D>(
-      lo, hi, wrap, count, radii.largest(), [&] { return drawn[next++]; }, rng, max_attempts, change);
+      lo, hi, wrap, count, radii.largest(), [&] { return drawn[next++]; }, rng, max_attempts, change,
+      cylinder);
 }
 
 template <int D>
 Packing<D> random_packing_to_porosity(const Vec<D>& lo, const Vec<D>& hi, double porosity,
                                       const RadiusDistribution& radii, std::uint64_t seed,
-                                      std::int64_t max_attempts, const std::array<bool, D>& wrap) {
+                                      std::int64_t max_attempts, const std::array<bool, D>& wrap,
+                                      const Cylinder<D>* cylinder) {
   std::mt19937_64 rng(seed);
   double box = 1.0;
   for (int k = 0; k < D; ++k) box *= hi[k] - lo[k];
+  if (cylinder != nullptr) box = cylinder->volume();
   const double target = (1.0 - porosity) * box;
   // Draw until the grains' volume reaches the target; keep the last one
   // only if that brings the volume nearer to it.
@@ -382,8 +392,51 @@ Packing<D> random_packing_to_porosity(const Vec<D>& lo, const Vec<D>& hi, double
       D == 3 ? 38 : 54);
   return place_randomly<D>(
       lo, hi, wrap, static_cast<std::int64_t>(drawn.size()), radii.largest(), [&] { return drawn[next++]; },
-      rng, max_attempts, change);
+      rng, max_attempts, change, cylinder);
 }
+
+template <int D>
+Vec<D> Cylinder<D>::lower() const {
+  Vec<D> lo = centre - Vec<D>::Constant(radius);
+  if constexpr (D == 3) lo[axis] = centre[axis] - 0.5 * length;
+  return lo;
+}
+
+template <int D>
+Vec<D> Cylinder<D>::upper() const {
+  Vec<D> hi = centre + Vec<D>::Constant(radius);
+  if constexpr (D == 3) hi[axis] = centre[axis] + 0.5 * length;
+  return hi;
+}
+
+template <int D>
+double Cylinder<D>::volume() const {
+  const double area = std::numbers::pi * radius * radius;
+  return D == 3 ? area * length : area;
+}
+
+template <int D>
+Vec<D> Cylinder<D>::sample(double r, std::mt19937_64& rng) const {
+  // Across: uniform over the disc of radius R - r (the square root of a
+  // uniform number for the distance); along (3D): uniform.
+  const double rho = (radius - r) * std::sqrt(unit_random(rng));
+  const double theta = 2.0 * std::numbers::pi * unit_random(rng);
+  Vec<D> x = centre;
+  if constexpr (D == 2) {
+    x[0] += rho * std::cos(theta);
+    x[1] += rho * std::sin(theta);
+  } else {
+    const int a = (axis + 1) % 3;
+    const int b = (axis + 2) % 3;
+    x[a] += rho * std::cos(theta);
+    x[b] += rho * std::sin(theta);
+    x[axis] += (unit_random(rng) - 0.5) * (length - 2.0 * r);
+  }
+  return x;
+}
+
+template struct Cylinder<2>;
+template struct Cylinder<3>;
 
 template <int D>
 Packing<D> read_packing_csv(const std::string& path) {
@@ -499,10 +552,10 @@ void write_packing_csv(const std::string& path, const ParticleData<D>& p, const 
   template Packing<D> column_packing<D>(const Vec<D>&, const Vec<D>&, int, double, double);                 \
   template Packing<D> random_packing<D>(const Vec<D>&, const Vec<D>&, std::int64_t,                         \
                                         const RadiusDistribution&, std::uint64_t, std::int64_t,             \
-                                        const std::array<bool, D>&);                                        \
+                                        const std::array<bool, D>&, const Cylinder<D>*);                    \
   template Packing<D> random_packing_to_porosity<D>(const Vec<D>&, const Vec<D>&, double,                   \
                                                     const RadiusDistribution&, std::uint64_t, std::int64_t, \
-                                                    const std::array<bool, D>&);                            \
+                                                    const std::array<bool, D>&, const Cylinder<D>*);        \
   template Packing<D> read_packing_csv<D>(const std::string&);                                              \
   template void write_packing_csv<D>(const std::string&, const ParticleData<D>&, const std::string&,        \
                                      const std::vector<std::int32_t>*);

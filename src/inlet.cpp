@@ -77,8 +77,12 @@ InsertionResult insert_due(Inlet<D>& inlet, Simulation<D>& sim) {
     Orientation<D> q = ClumpShape<D>::identity_orientation();
     bool placed = false;
     for (std::int64_t a = 0; a < inlet.max_attempts && !placed; ++a) {
-      for (int k = 0; k < D; ++k) {
-        x[k] = inlet.lower[k] + r + unit_random(inlet.rng) * (inlet.upper[k] - inlet.lower[k] - 2.0 * r);
+      if (inlet.cylinder) {
+        x = inlet.cylinder->sample(r, inlet.rng);
+      } else {
+        for (int k = 0; k < D; ++k) {
+          x[k] = inlet.lower[k] + r + unit_random(inlet.rng) * (inlet.upper[k] - inlet.lower[k] - 2.0 * r);
+        }
       }
       if (!inlet.clump) {
         placed = fits(x, r);

@@ -20,6 +20,7 @@
 #include "darcydem/scene/scene_clumps.hpp"
 #include "darcydem/scene/scene_fluid.hpp"
 #include "darcydem/scene/scene_inlet.hpp"
+#include "darcydem/scene/scene_region.hpp"
 #include "darcydem/scene/scene_sizes.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/walls/loaded_area.hpp"
@@ -1228,8 +1229,11 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       const double gap = r.check("gap", r.number_or("gap", 0.0), is_non_negative, ">= 0 m");
       pk = column_packing<D>(base, axis, static_cast<int>(count), radius, gap);
     } else if (gen == "random") {
-      const Vec<D> lo = to_vec<D>(r.numbers("min", D));
-      const Vec<D> hi = to_vec<D>(r.numbers("max", D));
+      // A box, or a cylinder (its box the one that holds it).
+      const std::optional<Cylinder<D>> cylinder = read_cylinder<D>(r);
+      const Cylinder<D>* in_cylinder = cylinder ? &*cylinder : nullptr;
+      const Vec<D> lo = cylinder ? cylinder->lower() : to_vec<D>(r.numbers("min", D));
+      const Vec<D> hi = cylinder ? cylinder->upper() : to_vec<D>(r.numbers("max", D));
       // How many: a count, or as many as make the box's porosity.
       if (r.has("count") && r.has("porosity")) r.fail("porosity", "give 'count' or 'porosity', not both");
       if (!r.has("count") && !r.has("porosity")) {
@@ -1251,12 +1255,15 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       const RadiusDistribution dist = read_radius(r, D);
       for (int k = 0; k < D; ++k) {
         if (hi[k] - lo[k] < 2.0 * dist.largest())
-          r.fail("max", "the box must be wider than the largest particle in every direction");
+          r.fail(cylinder ? "cylinder" : "max",
+                 fmt::format("the {} must be wider than the largest particle in every direction",
+                             cylinder ? "cylinder" : "box"));
       }
       if (r.has("porosity")) {
         // At most this many of the smallest grains.
         double box = 1.0;
         for (int k = 0; k < D; ++k) box *= hi[k] - lo[k];
+        if (cylinder) box = cylinder->volume();
         check_count_fits(r, "porosity", (1.0 - porosity) * box / particle_volume<D>(dist.smallest()));
       }
       const auto seed = r.optional_integer("seed").value_or(1);
@@ -1267,14 +1274,15 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       for (int k = 0; k < D; ++k) {
         const auto& cell = sim.periodic;
         const double tol = 1e-9 * cell.length[k];
-        wrap[k] = cell.periodic[k] && std::abs(lo[k] - cell.lower[k]) <= tol &&
+        wrap[k] = !cylinder && cell.periodic[k] && std::abs(lo[k] - cell.lower[k]) <= tol &&
                   std::abs(hi[k] - (cell.lower[k] + cell.length[k])) <= tol;
       }
       try {
         pk = r.has("count")
-                 ? random_packing<D>(lo, hi, count, dist, static_cast<std::uint64_t>(seed), attempts, wrap)
+                 ? random_packing<D>(lo, hi, count, dist, static_cast<std::uint64_t>(seed), attempts, wrap,
+                                     in_cylinder)
                  : random_packing_to_porosity<D>(lo, hi, porosity, dist, static_cast<std::uint64_t>(seed),
-                                                 attempts, wrap);
+                                                 attempts, wrap, in_cylinder);
       } catch (const std::runtime_error& e) {
         r.fail(r.has("count") ? "count" : "porosity", e.what());
       }

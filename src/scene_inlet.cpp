@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "darcydem/scene/scene_region.hpp"
 #include "darcydem/scene/scene_sizes.hpp"
 
 namespace darcydem {
@@ -21,11 +22,23 @@ Inlet<D> read_inlet(TableReader& r, std::uint16_t material, const Simulation<D>&
     r.fail("name", "must be a non-empty name without commas or quotes");
   if (std::find(names_so_far.begin(), names_so_far.end(), in.name) != names_so_far.end())
     r.fail("name", fmt::format("inlet \"{}\" is defined twice", in.name));
-  const auto lo = r.numbers("min", D);
-  const auto hi = r.numbers("max", D);
+  // A box, or a cylinder (its box the one that holds it).
+  in.cylinder = read_cylinder<D>(r);
+  std::vector<double> lo(D);
+  std::vector<double> hi(D);
+  for (int k = 0; k < D && in.cylinder; ++k) {
+    lo[k] = in.cylinder->lower()[k];
+    hi[k] = in.cylinder->upper()[k];
+  }
+  if (!in.cylinder) {
+    lo = r.numbers("min", D);
+    hi = r.numbers("max", D);
+  }
+  // A cylinder's refusals name its key.
+  auto key = [&](const char* box_key) { return in.cylinder ? "cylinder" : box_key; };
   for (int k = 0; k < D; ++k) {
     if (!(std::isfinite(lo[k]) && std::isfinite(hi[k]) && hi[k] > lo[k])) {
-      r.fail("max",
+      r.fail(key("max"),
              fmt::format("must be greater than 'min' along every axis (m); along {} min = {} and max = {}",
                          "xyz"[k], TableReader::format_number(lo[k]), TableReader::format_number(hi[k])));
     }
@@ -76,9 +89,10 @@ Inlet<D> read_inlet(TableReader& r, std::uint16_t material, const Simulation<D>&
   const double largest = in.radii.largest();
   for (int k = 0; k < D; ++k) {
     if (hi[k] - lo[k] <= 2.0 * largest) {
-      r.fail("max", fmt::format("the box must be wider than the largest grain ({:.6g} m across) along every "
-                                "axis; along {} it is {:.6g} m",
-                                2.0 * largest, "xyz"[k], hi[k] - lo[k]));
+      r.fail(key("max"),
+             fmt::format("the {} must be wider than the largest grain ({:.6g} m across) along every "
+                         "axis; along {} it is {:.6g} m",
+                         in.cylinder ? "cylinder" : "box", 2.0 * largest, "xyz"[k], hi[k] - lo[k]));
     }
   }
   r.finish();
@@ -87,7 +101,7 @@ Inlet<D> read_inlet(TableReader& r, std::uint16_t material, const Simulation<D>&
     if (!cell.periodic[k]) continue;
     const double end = cell.lower[k] + cell.length[k];
     if (lo[k] < cell.lower[k] || hi[k] > end) {
-      r.fail(lo[k] < cell.lower[k] ? "min" : "max",
+      r.fail(key(lo[k] < cell.lower[k] ? "min" : "max"),
              fmt::format("along the periodic axis {} the box must lie in the period [{}, {}]", "xyz"[k],
                          TableReader::format_number(cell.lower[k]), TableReader::format_number(end)));
     }
@@ -96,7 +110,7 @@ Inlet<D> read_inlet(TableReader& r, std::uint16_t material, const Simulation<D>&
     for (int k = 0; k < D; ++k) {
       if (lo[k] < sim.domain_lower[k] || hi[k] > sim.domain_upper[k]) {
         const bool low = lo[k] < sim.domain_lower[k];
-        r.fail(low ? "min" : "max",
+        r.fail(key(low ? "min" : "max"),
                fmt::format("the box must lie in the [domain] (allowed: {} {} {}): a grain placed outside it "
                            "would be removed at once",
                            low ? "min >=" : "max <=",
@@ -132,11 +146,12 @@ Inlet<D> read_inlet(TableReader& r, std::uint16_t material, const Simulation<D>&
       std::string grid;
       for (int k = 0; k < D; ++k)
         grid += fmt::format("{}{} in [{:.6g}, {:.6g}]", k == 0 ? "" : ", ", "xyz"[k], g_lo[k], g_hi[k]);
-      r.fail("min", fmt::format("the box must lie outside the fluid grid ({} m; beside it along an axis "
-                                "that is not periodic): a grain that appeared in a cell would compress its "
-                                "pore water at once, by K_f/n times its volume fraction; place the box above "
-                                "the grid and let the grains fall in",
-                                grid));
+      r.fail(key("min"),
+             fmt::format("the box must lie outside the fluid grid ({} m; beside it along an axis "
+                         "that is not periodic): a grain that appeared in a cell would compress its "
+                         "pore water at once, by K_f/n times its volume fraction; place the box above "
+                         "the grid and let the grains fall in",
+                         grid));
     }
   }
   return in;

@@ -2477,5 +2477,55 @@ TEST(SceneErrors, InletClumpsAreChecked) {
   EXPECT_TRUE(built_scene<2>(good + "orientation = \"aligned\"\n").inlets.at(0).aligned);
 }
 
+// A random cloud in a cylinder instead of a box (2D a circle): loaded, each
+// grain inside; refused at the key: a cylinder with 'min', not a table, a
+// radius <= 0, one narrower than the largest grain, in 3D without its
+// length or with an axis not x, y or z; an inlet's cylinder alike.
+TEST(SceneErrors, CylindersAreChecked) {
+  const std::string column =
+      "generator = \"column\"\nmaterial = \"sand\"\nbase = [0.0, 0.0]\ncount = 3\nradius = 0.0005";
+  const std::string good =
+      replace(kGood, column,
+              "generator = \"random\"\nmaterial = \"sand\"\n"
+              "cylinder = { centre = [0.0, 0.005], radius = 0.004 }\ncount = 10\nradius = 0.0005");
+  ASSERT_EQ(load_error(good), "");
+  const auto scene = built_scene<2>(good);
+  ASSERT_EQ(scene.simulation.particles.size(), 10u);
+  for (const auto& x : scene.simulation.particles.position)
+    EXPECT_LE((x - Vec<2>(0.0, 0.005)).norm(), 0.0035 * (1 + 1e-12));
+  auto msg = load_error(replace(good, "count = 10", "count = 10\nmin = [0.0, 0.0]"));
+  EXPECT_NE(msg.find("key 'min': the grains go in the 'cylinder'; give it or 'min' and 'max'"),
+            std::string::npos)
+      << msg;
+  msg = load_error(replace(good, "cylinder = { centre = [0.0, 0.005], radius = 0.004 }", "cylinder = 3"));
+  EXPECT_NE(msg.find("key 'cylinder': must be a table"), std::string::npos) << msg;
+  msg = load_error(replace(good, "radius = 0.004", "radius = -0.004"));
+  EXPECT_NE(msg.find("cylinder key 'radius'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("> 0 m"), std::string::npos) << msg;
+  msg = load_error(replace(good, "radius = 0.004", "radius = 0.0004"));
+  EXPECT_NE(msg.find("key 'cylinder': the cylinder must be wider than the largest particle"),
+            std::string::npos)
+      << msg;
+  std::string good3 = replace(good, "dimension = 2", "dimension = 3");
+  good3 = replace(good3, "point = [0.0, 0.0]", "point = [0.0, 0.0, 0.0]");
+  good3 = replace(good3, "normal = [0.0, 1.0]", "normal = [0.0, 0.0, 1.0]");
+  good3 = replace(good3, "gravity = [0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]");
+  good3 = replace(good3, "centre = [0.0, 0.005]", "centre = [0.0, 0.0, 0.005], axis = \"z\", length = 0.008");
+  ASSERT_EQ(load_error(good3), "");
+  msg = load_error(replace(good3, ", length = 0.008", ""));
+  EXPECT_NE(msg.find("'length'"), std::string::npos) << msg;
+  msg = load_error(replace(good3, "axis = \"z\"", "axis = \"w\""));
+  EXPECT_NE(msg.find("cylinder key 'axis'"), std::string::npos) << msg;
+  // An inlet's cylinder: its refusals name the key 'cylinder'.
+  const std::string inlet =
+      "\n[[inlet]]\nname = \"rain\"\nmaterial = \"sand\"\ncylinder = { centre = [0.0, 0.02], radius = 0.004 "
+      "}\n"
+      "radius = 0.0005\nrate = 100.0\n";
+  ASSERT_EQ(load_error(good + inlet), "");
+  msg = load_error(good + replace(inlet, "radius = 0.004", "radius = 0.0004"));
+  EXPECT_NE(msg.find("key 'cylinder': the cylinder must be wider than the largest grain"), std::string::npos)
+      << msg;
+}
+
 }  // namespace
 }  // namespace darcydem

@@ -79,6 +79,26 @@ Packing<D> dense_lattice_packing(const Vec<D>& lo, const Vec<D>& hi, double spac
 template <int D>
 Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, double radius, double gap);
 
+/// A cylinder that a random cloud or an inlet fills instead of a box
+/// (3D: standing along `axis`, `length` long; 2D: a circle, `axis` and
+/// `length` unused): a mould, a triaxial cell, a drum.
+template <int D>
+struct Cylinder {
+  Vec<D> centre = Vec<D>::Zero();  ///< m, its middle
+  double radius = 0.0;             ///< m
+  int axis = D - 1;
+  double length = 0.0;  ///< m (3D)
+
+  /// The box that holds it.
+  [[nodiscard]] Vec<D> lower() const;
+  [[nodiscard]] Vec<D> upper() const;
+  /// m^3 (2D: its area times 1 m).
+  [[nodiscard]] double volume() const;
+  /// A centre drawn uniformly among those of a ball of radius r wholly
+  /// inside it (r below its radius and, 3D, half its length).
+  [[nodiscard]] Vec<D> sample(double r, std::mt19937_64& rng) const;
+};
+
 /// Random sequential addition of `count` non-overlapping particles inside the
 /// box [lo, hi]. Throws std::runtime_error when `max_attempts` tries per
 /// particle do not find room. With a grading curve every size is drawn
@@ -87,10 +107,12 @@ Packing<D> column_packing(const Vec<D>& base, const Vec<D>& axis, int count, dou
 /// Along an axis that `wrap` marks, [lo, hi) is a period: the centres lie
 /// anywhere in it and grains may straddle its ends, kept apart from each
 /// other's nearest image (a cloud filling a [periodic] cell).
+/// With `cylinder` the particles fill it instead ([lo, hi] its box, no
+/// axis wrapped).
 template <int D>
 Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count,
                           const RadiusDistribution& radii, std::uint64_t seed, std::int64_t max_attempts,
-                          const std::array<bool, D>& wrap = {});
+                          const std::array<bool, D>& wrap = {}, const Cylinder<D>* cylinder = nullptr);
 
 /// The same, with as many particles as bring the grains' volume nearest to
 /// (1 - porosity) of the box's (spheres; in 2D discs of unit thickness over
@@ -99,10 +121,12 @@ Packing<D> random_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t count
 /// grain; then placed largest first. Random sequential addition jams at a
 /// solid fraction of about 0.38 (spheres) or 0.55 (discs) of equal grains,
 /// so a lower porosity throws std::runtime_error. `wrap` as above.
+/// With `cylinder`, of the cylinder's volume.
 template <int D>
 Packing<D> random_packing_to_porosity(const Vec<D>& lo, const Vec<D>& hi, double porosity,
                                       const RadiusDistribution& radii, std::uint64_t seed,
-                                      std::int64_t max_attempts, const std::array<bool, D>& wrap = {});
+                                      std::int64_t max_attempts, const std::array<bool, D>& wrap = {},
+                                      const Cylinder<D>* cylinder = nullptr);
 
 /// Reads `x,y[,z],radius` rows (a header line naming the columns first),
 /// or `x,y[,z],radius,clump`: the clump (an integer >= 0) each particle is

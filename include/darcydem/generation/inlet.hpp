@@ -32,6 +32,9 @@ struct Inlet {
   std::uint16_t material = 0;
   Vec<D> lower = Vec<D>::Zero();  ///< m: the box the grains are placed in, whole
   Vec<D> upper = Vec<D>::Zero();  ///< m
+  /// The cylinder they are placed in instead, whole ([lower, upper] the
+  /// box that holds it); none: the box.
+  std::optional<Cylinder<D>> cylinder;
   RadiusDistribution radii;
   Vec<D> velocity = Vec<D>::Zero();  ///< m/s, each new grain's
   double rate = 0.0;                 ///< grains per second (0: by mass)
