@@ -1423,6 +1423,14 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
     std::string box;
     for (int k = 0; k < D; ++k)
       box += fmt::format("{}{} in [{:.6g}, {:.6g}]", k == 0 ? "" : ", ", "xyz"[k], in.lower[k], in.upper[k]);
+    if (in.cylinder) {
+      // The cylinder, by its axis and radius (2D: a circle).
+      const auto& c = *in.cylinder;
+      box = D == 3 ? fmt::format("a cylinder of radius {:.6g} along {} (within {})", c.radius, "xyz"[c.axis],
+                                 box)
+                   : fmt::format("a circle of radius {:.6g} about ({:.6g}, {:.6g})", c.radius, c.centre[0],
+                                 c.centre[1]);
+    }
     std::string limit;
     if (in.max_count != std::numeric_limits<std::uint64_t>::max())
       limit += fmt::format(", at most {} {}", in.max_count, in.clump ? "clumps" : "grains");
