@@ -1113,10 +1113,13 @@ double Simulation<D>::elastic_energy() const {
   const auto& p = particles;
   // Particles added since the lists were built (an inlet's, placed where
   // they touch nothing) are not in them yet: the rows that are.
-  const std::size_t rows = std::min({p.size(), list_.row_offset.empty() ? 0 : list_.row_offset.size() - 1,
-                                     wall_list_.offset.empty() ? 0 : wall_list_.offset.size() - 1});
-  for (std::size_t i = 0; i < rows; ++i) {
-    for (std::uint32_t k = list_.row_offset[i]; k < list_.row_offset[i + 1]; ++k) {
+  const std::size_t pair_rows =
+      std::min(p.size(), list_.row_offset.empty() ? 0 : list_.row_offset.size() - 1);
+  const std::size_t wall_rows =
+      std::min(p.size(), wall_list_.offset.empty() ? 0 : wall_list_.offset.size() - 1);
+  for (std::size_t i = 0; i < std::max(pair_rows, wall_rows); ++i) {
+    const std::uint32_t pairs_end = i < pair_rows ? list_.row_offset[i + 1] : 0;
+    for (std::uint32_t k = i < pair_rows ? list_.row_offset[i] : 0; k < pairs_end; ++k) {
       const std::uint32_t j = list_.neighbour[k];
       const double reach = p.radius[i] + p.radius[j];
       const double overlap = reach - periodic.shortest(p.position[j] - p.position[i]).norm();
@@ -1137,6 +1140,7 @@ double Simulation<D>::elastic_energy() const {
                     pp.bond_twisting_stiffness(r_eff) * rot.twist * rot.twist);
       }
     }
+    if (i >= wall_rows) continue;
     for_each_wall_touch<D>(walls, wall_list_, i, p.position[i], p.radius[i],
                            [&](std::uint32_t k, const auto& touch, bool counts) {
                              const auto& w = walls[wall_list_.wall[k]];
