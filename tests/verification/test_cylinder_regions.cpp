@@ -138,8 +138,9 @@ TEST(CylinderRegions, ASceneFillsACylinderWallAndRainsIntoIt) {
   EXPECT_GT(widest, 0.0028 * std::sqrt(2.0)) << "beyond the inscribed box's corners";
   bool noted = false;
   for (const auto& note : scene.notes)
-    noted = noted || note.find("into a cylinder of radius 0.004 along z (within x in [-0.004, 0.004], y in "
-                               "[-0.004, 0.004], z in [0.035, 0.045]) m") != std::string::npos;
+    noted = noted || note.find(
+                         "into a cylinder of radius 0.004 along z (within x in [-0.004, 0.004], y in "
+                         "[-0.004, 0.004], z in [0.035, 0.045]) m") != std::string::npos;
   EXPECT_TRUE(noted) << "the run log says where the inlet rains";
   sim.prepare();
   auto& rain = scene.inlets.at(0);
