@@ -46,6 +46,7 @@
 #include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/particles/grading.hpp"
 #include "darcydem/scene/scene.hpp"
+#include "darcydem/scene/scene_clumps.hpp"
 #include "darcydem/scene/scene_overrides.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/run_checkpoint.hpp"
@@ -919,10 +920,8 @@ class Model {
     } catch (const std::invalid_argument& e) {
       throw py::value_error(fmt::format("add_clump: {}", e.what()));
     }
-    // Placed as it stands: turned by its principal axes, its centre of
-    // mass where its first member is put where it was given.
-    const double size = radii[0] / shape.radius[0];
-    const Vec<D> x = centres[0] - rotation_matrix(shape.principal) * Vec<D>(size * shape.centre[0]);
+    // Placed as it stands, its members where they were given.
+    const auto [size, x] = clump_as_given<D>(shape, centres[0], radii[0]);
     const double largest = *std::max_element(radii.begin(), radii.end());
     check_place(x, lo, hi, std::max(2.0 * largest, size),
                 "the larger of 2 x its largest radius and its reach", "add_clump");
@@ -1408,7 +1407,7 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
               d["name"] = in.name;
               d["active"] = in.active;
               d["inserted"] = in.inserted;
-              d["particles"] = in.inserted * (in.clump ? in.clump->radius.size() : 1);
+              d["particles"] = in.inserted_particles();
               d["mass"] = in.inserted_mass;
               d["exhausted"] = in.exhausted();
               d["next_time"] = in.active && !in.exhausted() ? py::cast(in.next_time) : py::none();

@@ -158,7 +158,7 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       if (inlets != nullptr && probe.inlet >= 0) {
         // An inlet of clumps: their members, as the total counts them.
         const auto& in = (*inlets)[static_cast<std::size_t>(probe.inlet)];
-        return static_cast<double>(in.inserted * (in.clump ? in.clump->radius.size() : 1));
+        return static_cast<double>(in.inserted_particles());
       }
       return static_cast<double>(sim.inserted_count);
     case ProbeQuantity::inserted_mass:

@@ -204,11 +204,10 @@ void write_run_json(const fs::path& path, const Scene<D>& scene, const RunSummar
     for (const auto& in : scene.inlets) {
       // An inlet of clumps: its clumps, and their members as particles.
       const std::string clumps = in.clump ? fmt::format("\"clumps\": {}, ", in.inserted) : std::string();
-      const std::uint64_t particles = in.clump ? in.inserted * in.clump->radius.size() : in.inserted;
       inlets +=
           fmt::format("{}{{\"name\": {}, {}\"particles\": {}, \"mass\": {:.17g}, \"short_of_room\": {}}}",
-                      inlets.empty() ? "" : ", ", json_string(in.name), clumps, particles, in.inserted_mass,
-                      in.short_events);
+                      inlets.empty() ? "" : ", ", json_string(in.name), clumps, in.inserted_particles(),
+                      in.inserted_mass, in.short_events);
     }
     json << fmt::format("  \"inserted\": {{\"particles\": {}, \"mass\": {:.17g}, \"inlets\": [{}]}},\n",
                         sim.inserted_count, sim.inserted_mass, inlets);
@@ -645,9 +644,9 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       if (seepage) seepage->stage_ended(scene, stage.name, !summary.interrupted);
       for (const auto& in : scene.inlets) {
         if (options.log == nullptr) break;
-        const std::string added = in.clump ? fmt::format("{} clumps ({} particles)", in.inserted,
-                                                         in.inserted * in.clump->radius.size())
-                                           : fmt::format("{} grains", in.inserted);
+        const std::string added =
+            in.clump ? fmt::format("{} clumps ({} particles)", in.inserted, in.inserted_particles())
+                     : fmt::format("{} grains", in.inserted);
         *options.log << fmt::format("inlet {}: {} added so far ({:.6g} kg{}){}{}\n", in.name, added,
                                     in.inserted_mass, D == 2 ? " per metre" : "",
                                     in.exhausted() ? ", all it may add" : "",

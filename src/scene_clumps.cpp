@@ -88,10 +88,8 @@ std::size_t add_clumps_from_file(TableReader& r, Simulation<D>& sim, const Packi
                                     packing.radius.begin() + static_cast<std::ptrdiff_t>(end));
     try {
       const ClumpShape<D> shape = make_clump_shape<D>(centres, radii);
-      // Placed as it stands: turned by its principal axes, at the centre
-      // of mass that puts its first member where the file has it.
-      const double size = radii[0] / shape.radius[0];
-      const Vec<D> x = centres[0] - rotation_matrix(shape.principal) * Vec<D>(size * shape.centre[0]);
+      // Placed as it stands, its members where the file has them.
+      const auto [size, x] = clump_as_given<D>(shape, centres[0], radii[0]);
       sim.clumps.add(sim.particles, shape, size, x, ClumpShape<D>::identity_orientation(), density, material,
                      fixed, velocity);
     } catch (const std::invalid_argument& e) {

@@ -63,6 +63,10 @@ struct Inlet {
 
   /// Whether it has added all it may.
   [[nodiscard]] bool exhausted() const { return inserted >= max_count || inserted_mass >= max_mass; }
+  /// The particles it has added: its grains, or its clumps' members.
+  [[nodiscard]] std::uint64_t inserted_particles() const {
+    return inserted * (clump ? clump->radius.size() : 1);
+  }
 
   template <class Archive>
   void checkpoint(Archive& ar) {

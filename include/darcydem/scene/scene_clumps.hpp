@@ -28,6 +28,17 @@ template <int D>
 std::size_t add_clumps(TableReader& r, Simulation<D>& sim, const ClumpShape<D>& shape,
                        const Packing<D>& packing, std::uint16_t material, bool fixed, const Vec<D>& velocity);
 
+/// Where a clump of `shape`, made by make_clump_shape from members whose
+/// first has centre `first_centre` and radius `first_radius`, stands with
+/// its members where they were given: its size (m) and centre of mass, at
+/// the identity orientation (its principal axes turned back).
+template <int D>
+std::pair<double, Vec<D>> clump_as_given(const ClumpShape<D>& shape, const Vec<D>& first_centre,
+                                         double first_radius) {
+  const double size = first_radius / shape.radius[0];
+  return {size, first_centre - rotation_matrix(shape.principal) * Vec<D>(size * shape.centre[0])};
+}
+
 /// A csv packing with a `clump` column (read_packing_csv): adds its rows
 /// in order, loose particles as such and each clump's members as a clump of
 /// those members where they stand (its shape, mass and inertia from them,
