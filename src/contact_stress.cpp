@@ -65,7 +65,8 @@ void Simulation<D>::for_each_contact_force(Select&& selected, Visit&& visit) con
       const Vec<D> v_rel = p.velocity[i] - p.velocity[j] +
                            cross(AngVec<D>(p.angular_velocity[i] * record.arm_first +
                                            p.angular_velocity[j] * record.arm_second),
-                                 nrm);
+                                 nrm) -
+                           cell_motion.strain_rate.cwiseProduct(record.branch);
       const double vn = v_rel.dot(nrm);
       const double sqrt_m = std::sqrt(1.0 / (p.inv_mass[i] + p.inv_mass[j]));
       const NormalResponse nr =
@@ -134,6 +135,11 @@ typename Simulation<D>::Moment Simulation<D>::contact_stress(const Vec<D>& lo, c
 }
 
 template <int D>
+typename Simulation<D>::Moment Simulation<D>::cell_stress() const {
+  return contact_stress(periodic.lower, periodic.lower + periodic.length);
+}
+
+template <int D>
 typename Simulation<D>::Moment Simulation<D>::contact_fabric(const Vec<D>& lo, const Vec<D>& hi) const {
   const auto& x = particles.position;
   Moment sum = Moment::Zero();
@@ -158,6 +164,8 @@ std::vector<typename Simulation<D>::Moment> Simulation<D>::contact_moments() con
 
 template Simulation<2>::Moment Simulation<2>::contact_stress(const Vec<2>&, const Vec<2>&) const;
 template Simulation<3>::Moment Simulation<3>::contact_stress(const Vec<3>&, const Vec<3>&) const;
+template Simulation<2>::Moment Simulation<2>::cell_stress() const;
+template Simulation<3>::Moment Simulation<3>::cell_stress() const;
 template Simulation<2>::Moment Simulation<2>::contact_fabric(const Vec<2>&, const Vec<2>&) const;
 template Simulation<3>::Moment Simulation<3>::contact_fabric(const Vec<3>&, const Vec<3>&) const;
 template std::vector<Simulation<2>::Moment> Simulation<2>::contact_moments() const;

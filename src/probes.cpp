@@ -169,6 +169,14 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       return static_cast<double>(sim.bond_count());
     case ProbeQuantity::broken_bonds:
       return static_cast<double>(sim.broken_bonds);
+    case ProbeQuantity::cell_length:
+      return sim.periodic.length[probe.component];
+    case ProbeQuantity::cell_strain_rate:
+      return sim.cell_motion.strain_rate[probe.component];
+    case ProbeQuantity::cell_stress: {
+      const auto s = sim.cell_stress();
+      return probe.tensor[0] < 0 ? s.trace() / D : s(probe.tensor[0], probe.tensor[1]);
+    }
     case ProbeQuantity::contact_count:
       return static_cast<double>(sim.contact_count());
     case ProbeQuantity::coordination:

@@ -280,6 +280,7 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
   if (stage.local_damping) sim.damping.local = *stage.local_damping;
   if (stage.viscous_damping) sim.damping.viscous = *stage.viscous_damping;
   for (const auto& c : stage.frictions) sim.contact_table.set_friction(c.first, c.second, c.friction);
+  if (stage.cell) stage.cell->apply(sim.cell_motion);
   for (const auto& c : stage.walls) {
     auto& w = sim.walls[c.wall];
     w.motion = c.motion;
@@ -548,8 +549,9 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
   // Whether time t has reached an output time (within half a step).
   auto reached = [&](double t, double event) { return t >= event - 0.5 * dt; };
   const bool stress_probes =
-      std::any_of(scene.output.probes.begin(), scene.output.probes.end(),
-                  [](const ProbeSpec& p) { return p.quantity == ProbeQuantity::stress; });
+      std::any_of(scene.output.probes.begin(), scene.output.probes.end(), [](const ProbeSpec& p) {
+        return p.quantity == ProbeQuantity::stress || p.quantity == ProbeQuantity::cell_stress;
+      });
   std::string failure;
   try {
     const std::size_t first_stage = options.resume ? pos.stage : 0;

@@ -17,6 +17,7 @@
 #include "darcydem/generation/generators.hpp"
 #include "darcydem/neighbour/linked_cells.hpp"
 #include "darcydem/particles/grading.hpp"
+#include "darcydem/scene/scene_cell.hpp"
 #include "darcydem/scene/scene_clumps.hpp"
 #include "darcydem/scene/scene_fluid.hpp"
 #include "darcydem/scene/scene_inlet.hpp"
@@ -1579,7 +1580,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "inserted_particles",
                                                 "inserted_mass",
                                                 "bonds",
-                                                "broken_bonds"});
+                                                "broken_bonds",
+                                                "cell_length",
+                                                "cell_strain_rate",
+                                                "cell_stress"});
     r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points", "min", "max"});
     if (q == "inserted_particles" || q == "inserted_mass") {
       if (scene.inlets.empty()) {
@@ -1607,6 +1611,29 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       return;
     }
     if (r.has("inlet")) r.fail("inlet", fmt::format("does not apply to quantity \"{}\"", q));
+    if (q == "cell_length" || q == "cell_strain_rate" || q == "cell_stress") {
+      for (int k = 0; k < D; ++k) {
+        if (!sim.periodic.periodic[k]) {
+          r.fail("quantity",
+                 fmt::format("\"{}\" reads the periodic cell, which must repeat along every axis: "
+                             "[periodic] has no '{}'",
+                             q, "xyz"[k]));
+        }
+      }
+      for (auto k : {"particle", "wall", "position", "side", "from", "to", "points", "min", "max"}) {
+        if (r.has(k)) r.fail(k, fmt::format("does not apply to quantity \"{}\"", q));
+      }
+      if (q == "cell_stress") {
+        p.quantity = ProbeQuantity::cell_stress;
+        p.tensor = tensor_component<D>(r, "component", true);
+      } else {
+        p.quantity = q == "cell_length" ? ProbeQuantity::cell_length : ProbeQuantity::cell_strain_rate;
+        p.component = static_cast<int>(axis_component<D>(r, "component", false));
+      }
+      r.finish();
+      scene.output.probes.push_back(p);
+      return;
+    }
     const bool fluid_probe = q == "pore_pressure" || q == "pore_pressure_profile" || q == "fluid_inflow" ||
                              q == "side_pressure" || q == "fluid_balance" || q == "fluid_iterations" ||
                              q == "screen_inflow_profile" || q == "wall_fluid_force" ||
@@ -1857,6 +1884,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
   });
 
   // [[stage]]
+  CellMotion<D> planned_cell;  // the periodic cell's motion as the stages read so far leave it
   for_each_table(top, "stage", "stage", [&](TableReader& r, int index) {
     Stage<D> s;
     s.name = r.optional_string("name").value_or(fmt::format("stage{}", index));
@@ -2000,6 +2028,10 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
           "bond_gap", *gap, [skin](double v) { return v >= 0.0 && v < skin; },
           fmt::format(">= 0 m and below the neighbour lists' skin ({} m; [simulation] skin)",
                       TableReader::format_number(skin)));
+    }
+    if (r.has("periodic_cell")) {
+      s.cell = read_cell_change<D>(r, sim, CellNeighbours{scene.fluid != nullptr, !scene.inlets.empty()},
+                                   planned_cell);
     }
     if (const toml::table* it = r.optional_table("inlets")) {
       for (const auto& [name, node] : *it) {
@@ -2196,6 +2228,8 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       }
     }
   }
+  if (const toml::array* stages = root["stage"].as_array())
+    check_cell_rates<D>(*stages, scene.stages, sim.time_step, file);
   return scene;
 }
 

@@ -59,8 +59,11 @@ void Simulation<D>::advance(std::uint64_t count) {
     energy.kinetic_start = kinetic_energy();
     energy.started = true;
   }
-  // With tracking the same operations, in separate sweeps.
-  double moved = tracked ? tracked_kick(true) : kick_drift();
+  // With tracking the same operations, in separate sweeps; and with a
+  // deforming cell, whose servo reads the stress between the force
+  // evaluation and the drift.
+  const bool deforming = cell_motion.active();
+  double moved = tracked ? tracked_kick(true) : deforming ? deforming_kick(true) : kick_drift();
   std::vector<Wall<D>> walls_before;
   for (std::uint64_t s = 0; s < count; ++s) {
     if (tracked) walls_before = walls;
@@ -76,20 +79,26 @@ void Simulation<D>::advance(std::uint64_t count) {
     }
     time += time_step;
     rebuild_if_needed(moved);
-    recording_ = record_contact_forces && s + 1 == count;
+    const bool servo = deforming && cell_motion.any_by_stress();
+    recording_ = (record_contact_forces && s + 1 == count) || servo;
     if (recording_) pair_force_.assign(list_.pair_count(), Vec<D>::Zero());
     if (tracked) {
       compute_forces(Finish::none);
       account_walls(walls_before);
       tracked_kick(false);
       moved = s + 1 < count ? tracked_kick(true) : 0.0;
+    } else if (deforming) {
+      compute_forces(Finish::none);
+      if (servo) cell_motion.servo(recorded_cell_stress().diagonal());
+      deforming_kick(false);
+      moved = s + 1 < count ? deforming_kick(true) : 0.0;
     } else {
       moved = compute_forces(s + 1 < count ? Finish::kick_kick_drift : Finish::kick);
     }
     ++steps;
     if (recording_) {
       pair_force_step_ = steps;
-      record_contact_forces = false;
+      if (s + 1 == count) record_contact_forces = false;
       recording_ = false;
     }
   }
@@ -213,6 +222,17 @@ void Simulation<D>::rebuild() {
     for (auto& x : clumps.position) x = periodic.wrap(x);
   }
   clumps.period = periodic;
+  if (cell_motion.active()) {
+    for (int k = 0; k < D; ++k) {
+      if (periodic.length[k] > shortest_period()) continue;
+      throw std::runtime_error(fmt::format(
+          "the periodic cell has shrunk along {} to {:.6g} m at t = {} s, below 2 x (2 x the largest radius "
+          "+ skin) = {:.6g} m, where a grain would meet two images of a neighbour: use more grains across "
+          "the cell or stop the compression sooner",
+          "xyz"[k], periodic.length[k], time, shortest_period()));
+    }
+  }
+  built_length_ = periodic.length;
   // Each particle's index at the last build, for the lists' histories
   // (empty: the same index); no_old_index for a particle added since.
   std::vector<std::uint32_t> old;
@@ -334,7 +354,10 @@ void Simulation<D>::rebuild_if_needed(double moved) {
   for (const auto& w : walls) {
     wall_moved = std::max(wall_moved, w.moved_since_build());
   }
-  if (2.0 * moved > skin || moved + wall_moved > skin) rebuild();
+  // Across a deforming cell's ends a pair's images also move apart by the
+  // change of the period.
+  const double cell_moved = (periodic.length - built_length_).norm();
+  if (2.0 * moved > skin || moved + wall_moved > skin || 2.0 * moved + cell_moved > skin) rebuild();
 }
 
 namespace {
@@ -386,6 +409,50 @@ double Simulation<D>::kick_drift() {
                                              list_.reference()));
   }
   return std::sqrt(moved2);
+}
+
+template <int D>
+double Simulation<D>::deforming_kick(bool drift) {
+  auto& p = particles;
+  const double half_dt = 0.5 * time_step;
+  const double dt = time_step;
+  const bool referenced = list_.reference().size() == p.size();
+  const Vec<D> rate = cell_motion.strain_rate;
+  const Vec<D> centre = periodic.lower + 0.5 * periodic.length;
+  const auto groups = static_cast<std::int64_t>((p.size() + 3) / 4);
+  auto one = [&](std::int64_t g) {
+    const auto first = static_cast<std::size_t>(4 * g);
+    kick_group(first, half_dt);
+    if (!drift) return 0.0;
+    const std::size_t last = std::min<std::size_t>(first + 4, p.size());
+    double moved2 = 0.0;
+    for (std::size_t i = first; i < last; ++i) {
+      // Its own velocity and the field's at its place.
+      p.position[i] += (p.velocity[i] + rate.cwiseProduct(p.position[i] - centre)) * dt;
+      moved2 =
+          std::max(moved2, referenced ? finite_or_inf((p.position[i] - list_.reference()[i]).squaredNorm())
+                                      : std::numeric_limits<double>::infinity());
+    }
+    return moved2;
+  };
+  const double moved2 = max_over_index(groups, parallel_threshold / 4, one);
+  if (drift) cell_motion.stretch(periodic, dt);
+  return std::sqrt(moved2);
+}
+
+template <int D>
+typename Simulation<D>::Moment Simulation<D>::recorded_cell_stress() const {
+  const auto& p = particles;
+  const auto& L = list_;
+  Moment sum = Moment::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
+      const Vec<D>& f = pair_force_[k];
+      if (f == Vec<D>::Zero()) continue;
+      sum += periodic.shortest(p.position[L.neighbour[k]] - p.position[i]) * f.transpose();
+    }
+  }
+  return -0.5 * (sum + sum.transpose()) / periodic.length.prod();
 }
 
 template <int D>
@@ -479,6 +546,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
   const PairParameters* uniform = materials.size() == 1 ? &contact_table(0, 0) : nullptr;
   // x_j - x_i, at j's nearest image across periodic boundaries.
   const PeriodicCell<D> cell = periodic;
+  const Vec<D> rate = cell_motion.strain_rate;  // zero unless the cell deforms
   auto separation = [&cell](const Vec<D>& xj, const Vec<D>& xi) -> Vec<D> {
     if constexpr (Periodic) {
       return cell.shortest(xj - xi);
@@ -580,7 +648,9 @@ double Simulation<D>::compute_forces_with(Finish finish) {
           const double arm_i = ri - 0.5 * overlap;
           const double arm_j = rj - 0.5 * overlap;
           const AngVec<D> wj = p.angular_velocity[j];
-          const Vec<D> v_rel = vi - p.velocity[j] + cross(AngVec<D>(wi * arm_i + wj * arm_j), nrm);
+          Vec<D> v_rel = vi - p.velocity[j] + cross(AngVec<D>(wi * arm_i + wj * arm_j), nrm);
+          // A deforming cell's field: j's image moves at rate (x) d more than i.
+          if constexpr (Periodic) v_rel -= rate.cwiseProduct(d);
           return std::tuple{nrm, overlap, arm_i, arm_j, v_rel, wj};
         };
         if (bonds && L.bonded[k] != 0 && inv_m != 0.0) {
@@ -718,7 +788,8 @@ double Simulation<D>::compute_forces_with(Finish finish) {
         pair_k[q] = k;
         pair_slot[q] = pair_slot_k;
         const Vec<D> d = separation(x[j], xi);
-        const Vec<D> dv = vi - vel[j];
+        Vec<D> dv = vi - vel[j];
+        if constexpr (Periodic) dv -= rate.cwiseProduct(d);
         const AngVec<D> wj = omega[j];
         const Vec<D> h = history[k];
         for (int c = 0; c < D; ++c) {

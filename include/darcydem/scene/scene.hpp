@@ -60,6 +60,9 @@ enum class ProbeQuantity {
   inserted_mass,         ///< their mass, kg (2D: per metre)
   bonds,                 ///< contact bonds intact now
   broken_bonds,          ///< contact bonds broken so far
+  cell_length,           ///< the periodic cell's length along an axis, m
+  cell_strain_rate,      ///< its strain rate along an axis, 1/s (CellMotion)
+  cell_stress,           ///< a component of the contacts' mean stress over it, Pa (Simulation::cell_stress)
 };
 
 struct ProbeSpec {
@@ -138,8 +141,9 @@ struct Stage {
     double friction = 0.0;
   };
   std::vector<FrictionChange> frictions;
-  bool make_bonds = false;  ///< bond the pairs that can be bonded at the stage's start
-  double bond_gap = 0.0;    ///< m: and those less than this apart
+  std::optional<CellChange<D>> cell;  ///< the periodic cell's deformation from this stage on
+  bool make_bonds = false;            ///< bond the pairs that can be bonded at the stage's start
+  double bond_gap = 0.0;              ///< m: and those less than this apart
 };
 
 /// [analysis] kind = "seepage_column": the paper's 1D upward seepage check.

@@ -13,6 +13,7 @@
 
 #include "darcydem/contact/contact_laws.hpp"
 #include "darcydem/contact/material.hpp"
+#include "darcydem/core/cell_motion.hpp"
 #include "darcydem/core/periodic_cell.hpp"
 #include "darcydem/core/vec.hpp"
 #include "darcydem/neighbour/verlet_list.hpp"
@@ -84,6 +85,11 @@ class Simulation {
   /// partner's nearest image, and every list build puts the particles back
   /// into the period. Each period must exceed shortest_period().
   PeriodicCell<D> periodic;
+  /// The periodic cell's deformation (cell_motion.hpp): none by default.
+  /// Active, it needs every axis periodic and no walls, clumps, inlets,
+  /// domain, force field or energy budget; the grains' velocities are then
+  /// the fluctuations about the cell's homogeneous field.
+  CellMotion<D> cell_motion;
   /// The domain (PFC's domain with the condition "destroy"): when set, the
   /// particles whose centres have left the box [domain_lower, domain_upper]
   /// are removed from the run at the next list build, which comes before
@@ -197,6 +203,10 @@ class Simulation {
   /// area x 1 m). In a saturated bed the contacts carry the effective
   /// stress. Forces as in the last evaluation (src/contact_stress.cpp).
   [[nodiscard]] Moment contact_stress(const Vec<D>& lo, const Vec<D>& hi) const;
+  /// The mean stress of the contacts over the whole periodic cell (every
+  /// axis periodic), as contact_stress over the cell's box (Pa, compression
+  /// positive; 2D: per metre over 1 m).
+  [[nodiscard]] Moment cell_stress() const;
   /// Satake's fabric tensor of the contacts between grains of which at
   /// least one has its centre in the box [lo, hi] (as contact_stress
   /// selects them; contacts with walls left out, bonds whose grains are
@@ -231,6 +241,8 @@ class Simulation {
     ar(particles, walls, gravity, damping, skin, time_step, time, steps, list_, wall_list_, field_force_,
        block_sums_, removed_count, removed_mass, removed_volume, inserted_count, inserted_mass, broken_bonds,
        energy, force_gravity_, clumps);
+    // The cell as it has deformed (a deforming periodic cell), its motion.
+    ar(periodic.lower, periodic.length, periodic.inv_length, cell_motion, built_length_);
     if constexpr (Archive::loading) clumps.refresh(particles);
     // A stage may have changed the pairs' friction (Stage::frictions).
     std::vector<double> friction = contact_table.frictions();
@@ -268,6 +280,13 @@ class Simulation {
   /// `energy` (src/energy_budget.cpp), and with `drift` the drift after it;
   /// returns what kick_drift returns (0 without the drift).
   double tracked_kick(bool drift);
+  /// With a deforming periodic cell: a half kick of every particle and
+  /// with `drift` the drift after it, the cell's field included, and the
+  /// cell's stretch over it; returns what kick_drift returns.
+  double deforming_kick(bool drift);
+  /// -1/V sym(sum d (x) f) over the pairs' forces the present evaluation
+  /// recorded, at the positions it saw: the cell's stress for its servo.
+  [[nodiscard]] Moment recorded_cell_stress() const;
   /// Adds to `energy` the works of one particle's half kick from the
   /// velocities it had before (v, w).
   void account_kick(std::size_t i, const Vec<D>& v, const AngVec<D>& w, double half_dt,
@@ -319,6 +338,7 @@ class Simulation {
   std::uint64_t pair_force_step_ = ~std::uint64_t{0};         ///< the step that recorded pair_force_
   const ParticleForceField<D>* field_forces_from_ = nullptr;  ///< the field that gave field_force_
   std::vector<std::array<double, 2>> block_sums_;  ///< per force block: sum of |F| of contacts, count
+  Vec<D> built_length_ = Vec<D>::Zero();           ///< the periods at the last list build, m
 };
 
 }  // namespace darcydem

@@ -1,0 +1,37 @@
+#pragma once
+// Reading a stage's `periodic_cell`: the periodic cell's deformation from
+// that stage on, axis by axis a strain rate or a target stress held by a
+// servo (cell_motion.hpp). Documented in docs/SCENE.md.
+#include <string>
+#include <vector>
+
+#include "darcydem/core/cell_motion.hpp"
+#include "darcydem/scene/scene.hpp"
+#include "darcydem/scene/toml_reader.hpp"
+#include "darcydem/simulation/simulation.hpp"
+
+namespace darcydem {
+
+/// What the scene around the cell has that a deforming cell cannot take.
+struct CellNeighbours {
+  bool fluid = false;
+  bool inlets = false;
+};
+
+/// The stage's `periodic_cell` table (read through `stage`, the stage's
+/// reader), refused with the file, line and key if it is malformed or the
+/// scene cannot deform its cell. `planned` is the cell's motion as the
+/// stages before this one leave it; the change is applied to it.
+template <int D>
+CellChange<D> read_cell_change(TableReader& stage, const Simulation<D>& sim, const CellNeighbours& around,
+                               CellMotion<D>& planned);
+
+/// Refuses, at the stage's key, a strain rate or a servo's largest rate
+/// that stretches the cell by a thousandth or more in one time step
+/// (checked once the time step is known). `stages` is the scene's
+/// [[stage]] array, `read` what was read from it.
+template <int D>
+void check_cell_rates(const toml::array& stages, const std::vector<Stage<D>>& read, double time_step,
+                      const std::string& file);
+
+}  // namespace darcydem

@@ -1,0 +1,140 @@
+#include "darcydem/scene/scene_cell.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace darcydem {
+namespace {
+
+/// Refuses a cell that cannot deform: every axis must repeat, and nothing
+/// in the scene may stand in the period's way or keep its own account of it.
+template <int D>
+void check_deformable(TableReader& r, const Simulation<D>& sim, const CellNeighbours& around) {
+  for (int k = 0; k < D; ++k) {
+    if (!sim.periodic.periodic[k]) {
+      r.fail("periodic_cell",
+             fmt::format("deforms the periodic cell, which must repeat along every axis; [periodic] has no "
+                         "'{}' (allowed: a [periodic] table with {})",
+                         "xyz"[k], D == 2 ? "x and y" : "x, y and z"));
+    }
+  }
+  auto refuse = [&](bool has, const char* what) {
+    if (has) {
+      r.fail("periodic_cell",
+             fmt::format("deforms the periodic cell, which cannot be combined with {} (yet): the cell's "
+                         "stretch would carry the grains past them",
+                         what));
+    }
+  };
+  refuse(!sim.walls.empty(), "walls ([[wall]])");
+  refuse(around.fluid, "a pore fluid ([fluid]: its grid spans the period)");
+  refuse(around.inlets, "inlets ([[inlet]])");
+  refuse(!sim.clumps.empty(), "clumps");
+  refuse(sim.has_domain, "a [domain]");
+  if (sim.track_energy) {
+    r.fail("periodic_cell",
+           "deforms the periodic cell, whose work on the grains the energy budget does not count (yet): drop "
+           "the energy budget's probes (gravity_work, boundary_work, ...)");
+  }
+}
+
+}  // namespace
+
+template <int D>
+CellChange<D> read_cell_change(TableReader& stage, const Simulation<D>& sim, const CellNeighbours& around,
+                               CellMotion<D>& planned) {
+  const toml::table* t = stage.optional_table("periodic_cell");
+  if (t == nullptr) {
+    stage.fail("periodic_cell",
+               "must be a table, e.g. periodic_cell = { x = { stress = 1e5 }, y = { strain_rate = -0.01 }, "
+               "gain = 1e-6, max_strain_rate = 0.1 }");
+  }
+  check_deformable<D>(stage, sim, around);
+  TableReader r(*t, stage.where() + " periodic_cell", stage.file());
+  CellChange<D> change;
+  bool any = false;
+  for (int k = 0; k < D; ++k) {
+    const std::string axis(1, "xyz"[k]);
+    const toml::table* at = r.optional_table(axis);
+    if (at == nullptr) {
+      if (r.has(axis)) r.fail(axis, "must be a table: { strain_rate = 1/s } or { stress = Pa }");
+      continue;
+    }
+    TableReader ar(*at, fmt::format("{}.{}", r.where(), axis), r.file());
+    const bool rate = ar.has("strain_rate");
+    const bool stress = ar.has("stress");
+    if (rate == stress) {
+      ar.fail_table(
+          "needs either 'strain_rate' (1/s, negative: the cell shrinks along the axis) or 'stress' (Pa, "
+          "compression positive, held by the servo), not both");
+    }
+    auto finite = [](double v) { return std::isfinite(v); };
+    typename CellChange<D>::Axis a;
+    a.by_stress = stress;
+    a.value = stress ? ar.check("stress", ar.number("stress"), finite, "a finite number (Pa)")
+                     : ar.check("strain_rate", ar.number("strain_rate"), finite, "a finite number (1/s)");
+    ar.finish();
+    change.axes[k] = a;
+    any = true;
+  }
+  if (auto g = r.optional_number("gain"))
+    change.gain = r.check(
+        "gain", *g, [](double v) { return v > 0.0 && std::isfinite(v); }, "> 0 1/(Pa s)");
+  if (auto m = r.optional_number("max_strain_rate")) {
+    change.max_strain_rate = r.check(
+        "max_strain_rate", *m, [](double v) { return v > 0.0 && std::isfinite(v); }, "> 0 1/s");
+  }
+  r.finish();
+  if (!any && !change.gain && !change.max_strain_rate) {
+    r.fail_table("needs an axis ('x', 'y'" + std::string(D == 3 ? ", 'z'" : "") +
+                 ") = { strain_rate = 1/s } or { stress = Pa }, or the servo's 'gain' or 'max_strain_rate'");
+  }
+  change.apply(planned);
+  if (planned.any_by_stress()) {
+    if (planned.gain == 0.0) r.missing("gain", "the servo's gain, 1/(Pa s): rate = gain x (stress - target)");
+    if (planned.max_strain_rate == 0.0) r.missing("max_strain_rate", "the servo's largest strain rate, 1/s");
+  }
+  return change;
+}
+
+template <int D>
+void check_cell_rates(const toml::array& stages, const std::vector<Stage<D>>& read, double time_step,
+                      const std::string& file) {
+  // The drift stretches the cell by 1 + rate dt: a tenth of a percent per
+  // step is already far beyond a quasi-static test.
+  const double most = 1e-3 / time_step;
+  auto too_fast = [&](double rate) { return !(std::abs(rate) < most); };
+  const std::string allowed = fmt::format(
+      "below 1e-3 / time step = {} 1/s in magnitude (each step stretches the cell by 1 + rate x time step)",
+      TableReader::format_number(most));
+  for (std::size_t i = 0; i < read.size() && i < stages.size(); ++i) {
+    const auto& change = read[i].cell;
+    if (!change) continue;
+    TableReader stage(*stages[i].as_table(), fmt::format("[[stage]] #{}", i + 1), file);
+    TableReader r(*stage.optional_table("periodic_cell"), stage.where() + " periodic_cell", file);
+    if (change->max_strain_rate && too_fast(*change->max_strain_rate)) {
+      r.fail("max_strain_rate", fmt::format("must be {}, got {}", allowed,
+                                            TableReader::format_number(*change->max_strain_rate)));
+    }
+    for (int k = 0; k < D; ++k) {
+      const auto& a = change->axes[k];
+      if (!a || a->by_stress || !too_fast(a->value)) continue;
+      const std::string axis(1, "xyz"[k]);
+      TableReader ar(*r.optional_table(axis), fmt::format("{}.{}", r.where(), axis), file);
+      ar.fail("strain_rate",
+              fmt::format("must be {}, got {}", allowed, TableReader::format_number(a->value)));
+    }
+  }
+}
+
+template void check_cell_rates<2>(const toml::array&, const std::vector<Stage<2>>&, double,
+                                  const std::string&);
+template void check_cell_rates<3>(const toml::array&, const std::vector<Stage<3>>&, double,
+                                  const std::string&);
+template CellChange<2> read_cell_change<2>(TableReader&, const Simulation<2>&, const CellNeighbours&,
+                                           CellMotion<2>&);
+template CellChange<3> read_cell_change<3>(TableReader&, const Simulation<3>&, const CellNeighbours&,
+                                           CellMotion<3>&);
+
+}  // namespace darcydem
