@@ -46,6 +46,7 @@
 #include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/particles/grading.hpp"
 #include "darcydem/scene/scene.hpp"
+#include "darcydem/scene/scene_cell.hpp"
 #include "darcydem/scene/scene_clumps.hpp"
 #include "darcydem/scene/scene_overrides.hpp"
 #include "darcydem/scene/toml_reader.hpp"
@@ -227,6 +228,70 @@ class Model {
     for (const auto& in : scene_.inlets) allowed += (allowed.empty() ? "'" : ", '") + in.name + "'";
     throw py::value_error(fmt::format("set_inlet_active: no [[inlet]] '{}' (the scene's: {})", name,
                                       allowed.empty() ? "none" : allowed));
+  }
+
+  /// The periodic cell's motion changed between steps, as a stage's
+  /// `periodic_cell` does (YADE's PeriTriaxController goals, PFC's domain
+  /// strain rates): per axis {'strain_rate': 1/s} or {'stress': Pa}, the
+  /// servo's gain and max_strain_rate.
+  void set_cell(const py::object& x, const py::object& y, const py::object& z, const py::object& gain,
+                const py::object& max_strain_rate) {
+    const std::string why =
+        cell_deformation_obstacle(sim(), CellNeighbours{fluid() != nullptr, !scene_.inlets.empty()});
+    if (!why.empty()) throw py::value_error("set_cell: deforms the periodic cell, " + why);
+    const double most = 1e-3 / sim().time_step;  // a thousandth of stretch per step
+    auto rate_ok = [&](double v, const char* what) {
+      if (!std::isfinite(v) || !(std::abs(v) < most)) {
+        throw py::value_error(fmt::format(
+            "set_cell: {} must be below 1e-3 / time step = {} 1/s in magnitude (each step stretches the "
+            "cell by 1 + rate x time step), got {}",
+            what, most, v));
+      }
+      return v;
+    };
+    CellChange<D> change;
+    const std::array<const py::object*, 3> axes{&x, &y, &z};
+    for (int k = 0; k < 3; ++k) {
+      if (axes[k]->is_none()) continue;
+      if (k >= D) throw py::value_error("set_cell: a 2D scene has no z axis");
+      const std::string name(1, "xyz"[k]);
+      if (!py::isinstance<py::dict>(*axes[k]) || py::len(*axes[k]) != 1) {
+        throw py::value_error(fmt::format(
+            "set_cell: {} must be {{'strain_rate': 1/s}} or {{'stress': Pa}} (compression positive)", name));
+      }
+      const auto d = axes[k]->cast<py::dict>();
+      typename CellChange<D>::Axis a;
+      if (d.contains("strain_rate")) {
+        a.value = rate_ok(d["strain_rate"].cast<double>(), (name + "'s strain_rate").c_str());
+      } else if (d.contains("stress")) {
+        a.by_stress = true;
+        a.value = d["stress"].cast<double>();
+        if (!std::isfinite(a.value))
+          throw py::value_error(fmt::format("set_cell: {}'s stress must be finite, got {}", name, a.value));
+      } else {
+        throw py::value_error(fmt::format(
+            "set_cell: {} must be {{'strain_rate': 1/s}} or {{'stress': Pa}} (compression positive)", name));
+      }
+      change.axes[k] = a;
+    }
+    if (!gain.is_none()) {
+      const double g = gain.cast<double>();
+      if (!(g > 0.0) || !std::isfinite(g))
+        throw py::value_error(fmt::format("set_cell: gain must be finite and > 0 1/(Pa s), got {}", g));
+      change.gain = g;
+    }
+    if (!max_strain_rate.is_none()) {
+      const double m = rate_ok(max_strain_rate.cast<double>(), "max_strain_rate");
+      if (!(m > 0.0)) throw py::value_error(fmt::format("set_cell: max_strain_rate must be > 0, got {}", m));
+      change.max_strain_rate = m;
+    }
+    CellMotion<D> motion = sim().cell_motion;
+    change.apply(motion);
+    if (motion.any_by_stress() && (motion.gain == 0.0 || motion.max_strain_rate == 0.0)) {
+      throw py::value_error(
+          "set_cell: an axis held by stress needs the servo's gain (1/(Pa s)) and max_strain_rate (1/s)");
+    }
+    sim().cell_motion = motion;
   }
 
   /// A wall's motion changed between steps, as a stage's `walls.NAME`
@@ -1583,6 +1648,40 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
       .def(
           "gravitational_energy", [](const M& s) { return s.sim().gravitational_energy(); },
           "J, -sum m g.x, zero at the origin (the probe gravitational_energy)")
+      .def_property_readonly(
+          "cell",
+          [](const M& s) -> py::object {
+            const auto& sim = s.sim();
+            for (int k = 0; k < D; ++k) {
+              if (!sim.periodic.periodic[k]) return py::none();
+            }
+            const auto& m = sim.cell_motion;
+            py::dict d;
+            d["lower"] = as_tuple<D>(sim.periodic.lower);
+            d["length"] = as_tuple<D>(sim.periodic.length);
+            d["strain_rate"] = as_tuple<D>(m.strain_rate);
+            py::list controls;
+            for (int k = 0; k < D; ++k) controls.append(m.by_stress[k] ? "stress" : "strain_rate");
+            d["controls"] = controls;
+            d["target_stress"] = as_tuple<D>(m.target_stress);
+            d["gain"] = m.gain;
+            d["max_strain_rate"] = m.max_strain_rate;
+            const auto stress = sim.cell_stress();
+            py::list rows;
+            for (int k = 0; k < D; ++k) rows.append(as_tuple<D>(Vec<D>(stress.row(k).transpose())));
+            d["stress"] = rows;
+            return d;
+          },
+          "the periodic cell (None unless every axis repeats): lower and length (m), strain_rate (1/s, as "
+          "the last step took it), controls ('strain_rate' or 'stress' per axis), target_stress (Pa), gain "
+          "(1/(Pa s)), max_strain_rate (1/s), stress (the contacts' mean stress over the cell, rows of a "
+          "D x D tensor, Pa, compression positive: the probe cell_stress)")
+      .def("set_cell", &M::set_cell, py::arg("x") = py::none(), py::arg("y") = py::none(),
+           py::arg("z") = py::none(), py::arg("gain") = py::none(), py::arg("max_strain_rate") = py::none(),
+           "deforms the periodic cell from the next step on, as a stage's periodic_cell does: per axis "
+           "{'strain_rate': 1/s} (negative: it shrinks) or {'stress': Pa} (compression positive, held by the "
+           "servo, which needs gain, 1/(Pa s), and max_strain_rate, 1/s); axes not given keep theirs. The "
+           "cell must repeat along every axis, and the scene have no walls, fluid, inlets, clumps or domain")
       .def_property(
           "track_energy", [](const M& s) { return s.sim().track_energy; },
           [](M& s, bool on) { s.sim().track_energy = on; },

@@ -691,6 +691,14 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
               immersed, sim.particles.size());
         }
       }
+      if (sim.cell_motion.active() && options.log != nullptr) {
+        const Vec<D> stress = sim.cell_stress().diagonal();
+        *options.log << fmt::format(
+            "periodic cell: lengths {:.6g} m, strain rates {:.4g} 1/s, normal stresses "
+            "{:.6g} Pa (the contacts' mean over it)\n",
+            fmt::join(sim.periodic.length, ", "), fmt::join(sim.cell_motion.strain_rate, ", "),
+            fmt::join(stress, ", "));
+      }
       if (sim.energy.started && options.log != nullptr) *options.log << describe_energy(sim);
       if (summary.interrupted) break;
       summary.stages_completed.push_back(stage.name);

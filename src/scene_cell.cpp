@@ -7,39 +7,38 @@
 namespace darcydem {
 namespace {
 
-/// Refuses a cell that cannot deform: every axis must repeat, and nothing
-/// in the scene may stand in the period's way or keep its own account of it.
+/// Refuses a cell that cannot deform, at the stage's key.
 template <int D>
 void check_deformable(TableReader& r, const Simulation<D>& sim, const CellNeighbours& around) {
-  for (int k = 0; k < D; ++k) {
-    if (!sim.periodic.periodic[k]) {
-      r.fail("periodic_cell",
-             fmt::format("deforms the periodic cell, which must repeat along every axis; [periodic] has no "
-                         "'{}' (allowed: a [periodic] table with {})",
-                         "xyz"[k], D == 2 ? "x and y" : "x, y and z"));
-    }
-  }
-  auto refuse = [&](bool has, const char* what) {
-    if (has) {
-      r.fail("periodic_cell",
-             fmt::format("deforms the periodic cell, which cannot be combined with {} (yet): the cell's "
-                         "stretch would carry the grains past them",
-                         what));
-    }
-  };
-  refuse(!sim.walls.empty(), "walls ([[wall]])");
-  refuse(around.fluid, "a pore fluid ([fluid]: its grid spans the period)");
-  refuse(around.inlets, "inlets ([[inlet]])");
-  refuse(!sim.clumps.empty(), "clumps");
-  refuse(sim.has_domain, "a [domain]");
-  if (sim.track_energy) {
-    r.fail("periodic_cell",
-           "deforms the periodic cell, whose work on the grains the energy budget does not count (yet): drop "
-           "the energy budget's probes (gravity_work, boundary_work, ...)");
-  }
+  const std::string why = cell_deformation_obstacle(sim, around);
+  if (!why.empty()) r.fail("periodic_cell", "deforms the periodic cell, " + why);
 }
 
 }  // namespace
+
+template <int D>
+std::string cell_deformation_obstacle(const Simulation<D>& sim, const CellNeighbours& around) {
+  for (int k = 0; k < D; ++k) {
+    if (!sim.periodic.periodic[k]) {
+      return fmt::format(
+          "which must repeat along every axis; [periodic] has no '{}' (allowed: a [periodic] "
+          "table with {})",
+          "xyz"[k], D == 2 ? "x and y" : "x, y and z");
+    }
+  }
+  auto obstacle = [](const char* what) {
+    return fmt::format(
+        "which cannot be combined with {} (yet): the cell's stretch would carry the grains "
+        "past them",
+        what);
+  };
+  if (!sim.walls.empty()) return obstacle("walls ([[wall]])");
+  if (around.fluid) return obstacle("a pore fluid ([fluid]: its grid spans the period)");
+  if (around.inlets) return obstacle("inlets ([[inlet]])");
+  if (!sim.clumps.empty()) return obstacle("clumps");
+  if (sim.has_domain) return obstacle("a [domain]");
+  return "";
+}
 
 template <int D>
 CellChange<D> read_cell_change(TableReader& stage, const Simulation<D>& sim, const CellNeighbours& around,
@@ -132,6 +131,8 @@ template void check_cell_rates<2>(const toml::array&, const std::vector<Stage<2>
                                   const std::string&);
 template void check_cell_rates<3>(const toml::array&, const std::vector<Stage<3>>&, double,
                                   const std::string&);
+template std::string cell_deformation_obstacle<2>(const Simulation<2>&, const CellNeighbours&);
+template std::string cell_deformation_obstacle<3>(const Simulation<3>&, const CellNeighbours&);
 template CellChange<2> read_cell_change<2>(TableReader&, const Simulation<2>&, const CellNeighbours&,
                                            CellMotion<2>&);
 template CellChange<3> read_cell_change<3>(TableReader&, const Simulation<3>&, const CellNeighbours&,

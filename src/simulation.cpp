@@ -63,6 +63,12 @@ void Simulation<D>::advance(std::uint64_t count) {
   // deforming cell, whose servo reads the stress between the force
   // evaluation and the drift.
   const bool deforming = cell_motion.active();
+  // The budget takes the cell's work over each drift from the contacts'
+  // moments at both its ends: those of the evaluation before the first.
+  if (tracked && deforming && cell_moment_step_ != steps) {
+    cell_moment_ = -periodic.length.prod() * cell_stress().diagonal();
+    cell_moment_step_ = steps;
+  }
   double moved = tracked ? tracked_kick(true) : deforming ? deforming_kick(true) : kick_drift();
   std::vector<Wall<D>> walls_before;
   for (std::uint64_t s = 0; s < count; ++s) {
@@ -79,17 +85,18 @@ void Simulation<D>::advance(std::uint64_t count) {
     }
     time += time_step;
     rebuild_if_needed(moved);
-    const bool servo = deforming && cell_motion.any_by_stress();
-    recording_ = (record_contact_forces && s + 1 == count) || servo;
+    recording_ =
+        (record_contact_forces && s + 1 == count) || (deforming && (tracked || cell_motion.any_by_stress()));
     if (recording_) pair_force_.assign(list_.pair_count(), Vec<D>::Zero());
     if (tracked) {
       compute_forces(Finish::none);
+      if (deforming) cell_step(true);
       account_walls(walls_before);
       tracked_kick(false);
       moved = s + 1 < count ? tracked_kick(true) : 0.0;
     } else if (deforming) {
       compute_forces(Finish::none);
-      if (servo) cell_motion.servo(recorded_cell_stress().diagonal());
+      cell_step(false);
       deforming_kick(false);
       moved = s + 1 < count ? deforming_kick(true) : 0.0;
     } else {
@@ -412,52 +419,86 @@ double Simulation<D>::kick_drift() {
 }
 
 template <int D>
-double Simulation<D>::deforming_kick(bool drift) {
+double Simulation<D>::drift_group_in_field(std::size_t first, bool referenced) {
   auto& p = particles;
-  const double half_dt = 0.5 * time_step;
   const double dt = time_step;
-  const bool referenced = list_.reference().size() == p.size();
-  const Vec<D> rate = cell_motion.strain_rate;
+  const Vec<D>& rate = cell_motion.strain_rate;
   const Vec<D> centre = periodic.lower + 0.5 * periodic.length;
-  const auto groups = static_cast<std::int64_t>((p.size() + 3) / 4);
+  const std::size_t last = std::min<std::size_t>(first + 4, p.size());
+  double moved2 = 0.0;
+  for (std::size_t i = first; i < last; ++i) {
+    // Its own velocity and the field's at its place.
+    p.position[i] += (p.velocity[i] + rate.cwiseProduct(p.position[i] - centre)) * dt;
+    moved2 = std::max(moved2, referenced ? finite_or_inf((p.position[i] - list_.reference()[i]).squaredNorm())
+                                         : std::numeric_limits<double>::infinity());
+  }
+  return moved2;
+}
+
+template <int D>
+double Simulation<D>::deforming_kick(bool drift) {
+  const double half_dt = 0.5 * time_step;
+  const bool referenced = list_.reference().size() == particles.size();
+  const auto groups = static_cast<std::int64_t>((particles.size() + 3) / 4);
   auto one = [&](std::int64_t g) {
     const auto first = static_cast<std::size_t>(4 * g);
     kick_group(first, half_dt);
-    if (!drift) return 0.0;
-    const std::size_t last = std::min<std::size_t>(first + 4, p.size());
-    double moved2 = 0.0;
-    for (std::size_t i = first; i < last; ++i) {
-      // Its own velocity and the field's at its place.
-      p.position[i] += (p.velocity[i] + rate.cwiseProduct(p.position[i] - centre)) * dt;
-      moved2 =
-          std::max(moved2, referenced ? finite_or_inf((p.position[i] - list_.reference()[i]).squaredNorm())
-                                      : std::numeric_limits<double>::infinity());
-    }
-    return moved2;
+    return drift ? drift_group_in_field(first, referenced) : 0.0;
   };
   const double moved2 = max_over_index(groups, parallel_threshold / 4, one);
-  if (drift) cell_motion.stretch(periodic, dt);
+  if (drift) cell_motion.stretch(periodic, time_step);
   return std::sqrt(moved2);
 }
 
 template <int D>
-typename Simulation<D>::Moment Simulation<D>::recorded_cell_stress() const {
+void Simulation<D>::cell_step(bool tracked) {
+  if (!recording_) return;  // neither a servo nor the budget needs the stress
+  Vec<D> before = Vec<D>::Zero();
+  const Moment stress = recorded_cell_stress(tracked ? &before : nullptr);
+  if (tracked) {
+    // The cell's work on the contacts over the last drift: the field moved
+    // each pair's separation d by rate (x) d dt, d as it was before the
+    // drift, against the mean of the forces f (on the first grain) at its
+    // two ends: sum_k rate_k dt sum_c d_k (f_k + f'_k) / 2, positive while
+    // the cell shrinks against their push (the fluctuations' share is the
+    // contacts' work on the grains, which the kicks count).
+    const Vec<D> moment = -periodic.length.prod() * stress.diagonal();
+    energy.boundary_work += 0.5 * time_step * cell_motion.strain_rate.dot(cell_moment_ + before);
+    cell_moment_ = moment;
+    cell_moment_step_ = steps + 1;
+  }
+  if (cell_motion.any_by_stress()) cell_motion.servo(stress.diagonal());
+}
+
+template <int D>
+typename Simulation<D>::Moment Simulation<D>::recorded_cell_stress(Vec<D>* before_drift) const {
   const auto& p = particles;
   const auto& L = list_;
+  const double dt = time_step;
+  const Vec<D> stretch = Vec<D>::Ones() + dt * cell_motion.strain_rate;
   Moment sum = Moment::Zero();
+  Vec<D> before = Vec<D>::Zero();
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
       const Vec<D>& f = pair_force_[k];
       if (f == Vec<D>::Zero()) continue;
-      sum += periodic.shortest(p.position[L.neighbour[k]] - p.position[i]) * f.transpose();
+      const std::uint32_t j = L.neighbour[k];
+      const Vec<D> d = periodic.shortest(p.position[j] - p.position[i]);
+      sum += d * f.transpose();
+      // The drift moved d by (v_j - v_i) dt + rate (x) d dt, the velocities
+      // those of the half step it took (the present ones).
+      if (before_drift != nullptr)
+        before += (d - (p.velocity[j] - p.velocity[i]) * dt).cwiseQuotient(stretch).cwiseProduct(f);
     }
   }
+  if (before_drift != nullptr) *before_drift = before;
   return -0.5 * (sum + sum.transpose()) / periodic.length.prod();
 }
 
 template <int D>
 double Simulation<D>::tracked_kick(bool drift) {
   auto& p = particles;
+  const bool deforming = cell_motion.active();
   const double half_dt = 0.5 * time_step;
   const bool referenced = list_.reference().size() == p.size();
   const auto groups = static_cast<std::int64_t>((p.size() + 3) / 4);
@@ -477,9 +518,11 @@ double Simulation<D>::tracked_kick(bool drift) {
     for (std::size_t i = first; i < last; ++i) {
       account_kick(i, v[i - first], w[i - first], half_dt, group_works_[static_cast<std::size_t>(g)]);
     }
-    return drift ? drift_group(first, referenced) : 0.0;
+    if (!drift) return 0.0;
+    return deforming ? drift_group_in_field(first, referenced) : drift_group(first, referenced);
   };
   double moved2 = max_over_index(groups, parallel_threshold / 4, one);
+  if (drift && deforming) cell_motion.stretch(periodic, time_step);
   for (const auto& works : group_works_) energy.add(works);
   if (!clumps.empty()) {
     // The clumps' half kicks (their members' were skipped), each clump's

@@ -2048,5 +2048,98 @@ class Contacts(unittest.TestCase):
         self.check_newton(model, 2650.0)
 
 
+LATTICE = """
+[simulation]
+dimension = 2
+time_step = "auto"
+skin = 0.0002
+
+[periodic]
+x = [0.0, 0.01]
+y = [0.0, 0.01]
+
+[[material]]
+name = "m"
+density = 2650.0
+
+[[contact]]
+materials = ["m", "m"]
+law = "linear"
+normal_stiffness = 1e5
+restitution = 1.0
+
+[[particles]]
+generator = "lattice"
+material = "m"
+min = [0.0, 0.0]
+max = [0.01, 0.01]
+radius = 0.0005
+
+[[stage]]
+name = "rest"
+duration = 0.1
+"""
+
+
+class PeriodicCell(unittest.TestCase):
+    """A 10 x 10 square lattice of touching discs (r = 0.5 mm, k_n = 1e5 N/m)
+    in a periodic cell, deformed from Python as a stage's periodic_cell."""
+
+    def setUp(self):
+        self.folder = tempfile.mkdtemp()
+        self.model = darcydem.load(write_scene(self.folder, LATTICE))
+
+    def test_the_servo_brings_the_lattice_to_the_spacings_of_its_targets(self):
+        m = self.model
+        self.assertEqual(m.cell["controls"], ["strain_rate", "strain_rate"])
+        m.set_cell(x={"stress": 2000.0}, y={"stress": 1000.0}, gain=1e-3, max_strain_rate=0.2)
+        m.step(40000)
+        cell = m.cell
+        # The spacings a, b carrying the targets: k_n (2r - a) = 2000 b and
+        # k_n (2r - b) = 1000 a (one spring per disc along each axis over
+        # the area a b per disc), a linear system.
+        k, d = 1e5, 1e-3
+        a_star, b_star = np.linalg.solve([[k, 2000.0], [1000.0, k]], [d * k, d * k])
+        # 1e-9: the servo's time constant (about 1e-5 s) is far below the
+        # 0.5 s stepped, so what is left is round-off.
+        self.assertAlmostEqual(cell["length"][0] / 10 / a_star, 1.0, delta=1e-9)
+        self.assertAlmostEqual(cell["length"][1] / 10 / b_star, 1.0, delta=1e-9)
+        self.assertAlmostEqual(cell["stress"][0][0], 2000.0, delta=2e-3)
+        self.assertAlmostEqual(cell["stress"][1][1], 1000.0, delta=1e-3)
+        self.assertEqual(cell["controls"], ["stress", "stress"])
+        # Switched to a set rate along x: the cell follows (1 + rate dt)^n.
+        before = m.cell["length"][0]
+        m.set_cell(x={"strain_rate": -0.01})
+        m.step(1000)
+        self.assertAlmostEqual(m.cell["length"][0] / (before * (1 - 0.01 * m.time_step) ** 1000), 1.0,
+                               delta=1e-12)
+        self.assertEqual(m.cell["strain_rate"][0], -0.01)
+
+    def test_bad_motions_are_refused(self):
+        m = self.model
+        for kwargs, message in [
+            ({"x": {"stress": 1.0}}, "gain"),
+            ({"x": {"stress": 1.0, "strain_rate": 1.0}}, "must be {'strain_rate'"),
+            ({"x": 3.0}, "must be {'strain_rate'"),
+            ({"z": {"strain_rate": 1.0}}, "no z axis"),
+            ({"x": {"strain_rate": 1e9}}, "below 1e-3 / time step"),
+            ({"gain": -1.0}, "gain must be finite and > 0"),
+        ]:
+            with self.assertRaises(ValueError) as caught:
+                m.set_cell(**kwargs)
+            self.assertIn(message, str(caught.exception))
+        self.assertEqual(m.cell["controls"], ["strain_rate", "strain_rate"])
+        self.assertEqual(m.cell["strain_rate"], (0.0, 0.0))
+        # A scene that does not repeat along every axis has no cell to deform.
+        folder = tempfile.mkdtemp()
+        with open(os.path.join(folder, "one.csv"), "w") as f:
+            f.write("x,y,z,radius\n0.0,0.0,0.1,0.005\n")
+        one = darcydem.load(write_scene(folder, ONE_SPHERE))
+        self.assertIsNone(one.cell)
+        with self.assertRaises(ValueError) as caught:
+            one.set_cell(x={"strain_rate": -0.01})
+        self.assertIn("must repeat along every axis", str(caught.exception))
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

@@ -18,6 +18,11 @@ struct CellNeighbours {
   bool inlets = false;
 };
 
+/// Why the cell of `sim` cannot deform ("which must repeat along every
+/// axis; ..."), or "" if it can.
+template <int D>
+std::string cell_deformation_obstacle(const Simulation<D>& sim, const CellNeighbours& around);
+
 /// The stage's `periodic_cell` table (read through `stage`, the stage's
 /// reader), refused with the file, line and key if it is malformed or the
 /// scene cannot deform its cell. `planned` is the cell's motion as the

@@ -87,8 +87,9 @@ class Simulation {
   PeriodicCell<D> periodic;
   /// The periodic cell's deformation (cell_motion.hpp): none by default.
   /// Active, it needs every axis periodic and no walls, clumps, inlets,
-  /// domain, force field or energy budget; the grains' velocities are then
-  /// the fluctuations about the cell's homogeneous field.
+  /// domain or force field; the grains' velocities are then the
+  /// fluctuations about the cell's homogeneous field, and the energy
+  /// budget's boundary work holds the cell's work on the contacts.
   CellMotion<D> cell_motion;
   /// The domain (PFC's domain with the condition "destroy"): when set, the
   /// particles whose centres have left the box [domain_lower, domain_upper]
@@ -242,7 +243,8 @@ class Simulation {
        block_sums_, removed_count, removed_mass, removed_volume, inserted_count, inserted_mass, broken_bonds,
        energy, force_gravity_, clumps);
     // The cell as it has deformed (a deforming periodic cell), its motion.
-    ar(periodic.lower, periodic.length, periodic.inv_length, cell_motion, built_length_);
+    ar(periodic.lower, periodic.length, periodic.inv_length, cell_motion, built_length_, cell_moment_,
+       cell_moment_step_);
     if constexpr (Archive::loading) clumps.refresh(particles);
     // A stage may have changed the pairs' friction (Stage::frictions).
     std::vector<double> friction = contact_table.frictions();
@@ -284,9 +286,18 @@ class Simulation {
   /// with `drift` the drift after it, the cell's field included, and the
   /// cell's stretch over it; returns what kick_drift returns.
   double deforming_kick(bool drift);
+  /// The drift of drift_group with the cell's field: each particle also
+  /// moves by rate (x) (x - c) dt.
+  double drift_group_in_field(std::size_t first, bool referenced);
+  /// After a force evaluation with a deforming cell whose pair forces were
+  /// recorded: with `tracked` the cell's work over the last drift into the
+  /// budget's boundary work, and the servo's new rates.
+  void cell_step(bool tracked);
   /// -1/V sym(sum d (x) f) over the pairs' forces the present evaluation
   /// recorded, at the positions it saw: the cell's stress for its servo.
-  [[nodiscard]] Moment recorded_cell_stress() const;
+  /// With `before_drift`, also the diagonal of sum d0 (x) f, d0 each
+  /// pair's separation before the last drift (N m).
+  [[nodiscard]] Moment recorded_cell_stress(Vec<D>* before_drift = nullptr) const;
   /// Adds to `energy` the works of one particle's half kick from the
   /// velocities it had before (v, w).
   void account_kick(std::size_t i, const Vec<D>& v, const AngVec<D>& w, double half_dt,
@@ -339,6 +350,10 @@ class Simulation {
   const ParticleForceField<D>* field_forces_from_ = nullptr;  ///< the field that gave field_force_
   std::vector<std::array<double, 2>> block_sums_;  ///< per force block: sum of |F| of contacts, count
   Vec<D> built_length_ = Vec<D>::Zero();           ///< the periods at the last list build, m
+  /// The diagonal of sum d (x) f over the pairs at the evaluation of step
+  /// cell_moment_step_ (N m): one end of the cell's work over a drift.
+  Vec<D> cell_moment_ = Vec<D>::Zero();
+  std::uint64_t cell_moment_step_ = ~std::uint64_t{0};
 };
 
 }  // namespace darcydem
