@@ -10,7 +10,8 @@
 // checkpoint of the stack (BM_Checkpoint), the stack cemented by
 // contact bonds (BM_BondedPacking), with the energy budget tracked
 // (BM_EnergyTracking), in a box of triangle meshes instead of planes
-// (BM_MeshBox), and paired into rigid dumbbells (BM_ClumpPacking). Write
+// (BM_MeshBox), paired into rigid dumbbells (BM_ClumpPacking), and in a
+// periodic cell, fixed or deforming (BM_PeriodicCell). Write
 // JSON with
 //   bench_dense_packing --benchmark_out=bench/results/dense_packing.json
 #include <benchmark/benchmark.h>
@@ -271,6 +272,57 @@ void BM_ClumpPacking(benchmark::State& state) {
   for (auto _ : state) sim.advance(kStepsPerIteration);
   report(state, sim, threads, builds0);
 }
+
+/// The FCC stack in a cell periodic along x, y and z (m^3 cubic cells of
+/// 4 spheres), no walls or gravity, the spheres pressed together by a
+/// thousandth of a diameter (every sphere's 12 contacts loaded).
+Simulation<3> make_periodic_packing(std::int64_t target) {
+  Simulation<3> sim = bench::grain_simulation();
+  const double d = 1e-3;
+  const double a = std::sqrt(2.0) * d * 0.999;  // FCC cube edge, 0.1 % closer than touching
+  const int m = std::max(3, static_cast<int>(std::lround(std::cbrt(static_cast<double>(target) / 4.0))));
+  const Vec<3> basis[4] = {Vec<3>(0, 0, 0), Vec<3>(0.5 * a, 0.5 * a, 0), Vec<3>(0.5 * a, 0, 0.5 * a),
+                           Vec<3>(0, 0.5 * a, 0.5 * a)};
+  for (int k = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i)
+        for (const auto& b : basis)
+          sim.particles.add(Vec<3>(0.25 * a + i * a, 0.25 * a + j * a, 0.25 * a + k * a) + b, 0.5 * d, 2650.0,
+                            0, false);
+  for (int k = 0; k < 3; ++k) sim.periodic.set_axis(k, 0.0, m * a);
+  sim.damping.local = 0.7;
+  sim.time_step = 0.2 * sim.critical_time_step();
+  sim.measure_contact_forces = false;
+  sim.prepare();
+  return sim;
+}
+
+// The periodic stack with its cell fixed (range(2) = 0: the fused step),
+// strained at -0.01 /s along each axis (1: the deforming cell's step, the
+// field in every drift and contact), or held by the servo at 1 kPa along
+// each axis (2: also each pair's force recorded and the cell's stress
+// summed every step): what a deforming cell costs a step.
+void BM_PeriodicCell(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(1));
+  omp_set_num_threads(threads);
+  auto sim = make_periodic_packing(state.range(0));
+  if (state.range(2) == 1) sim.cell_motion.strain_rate = Vec<3>::Constant(-0.01);
+  if (state.range(2) == 2) {
+    sim.cell_motion.by_stress = {true, true, true};
+    sim.cell_motion.target_stress = Vec<3>::Constant(1e3);
+    sim.cell_motion.gain = 1e-6;
+    sim.cell_motion.max_strain_rate = 0.01;
+  }
+  const auto builds0 = sim.list_builds();
+  for (auto _ : state) sim.advance(kStepsPerIteration);
+  report(state, sim, threads, builds0);
+}
+
+BENCHMARK(BM_PeriodicCell)
+    ->ArgsProduct({{100'000}, {1, 2}, {0, 1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
 
 BENCHMARK(BM_ClumpPacking)
     ->ArgsProduct({{100'000}, {1, 2}, {0, 1}})

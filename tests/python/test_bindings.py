@@ -2048,7 +2048,7 @@ class Contacts(unittest.TestCase):
         self.check_newton(model, 2650.0)
 
 
-LATTICE = """
+PERIODIC_LATTICE = """
 [simulation]
 dimension = 2
 time_step = "auto"
@@ -2087,7 +2087,7 @@ class PeriodicCell(unittest.TestCase):
 
     def setUp(self):
         self.folder = tempfile.mkdtemp()
-        self.model = darcydem.load(write_scene(self.folder, LATTICE))
+        self.model = darcydem.load(write_scene(self.folder, PERIODIC_LATTICE))
 
     def test_the_servo_brings_the_lattice_to_the_spacings_of_its_targets(self):
         m = self.model
