@@ -233,10 +233,10 @@ void Simulation<D>::rebuild() {
     for (int k = 0; k < D; ++k) {
       if (periodic.length[k] > shortest_period()) continue;
       throw std::runtime_error(fmt::format(
-          "the periodic cell has shrunk along {} to {:.6g} m at t = {} s, below 2 x (2 x the largest radius "
-          "+ skin) = {:.6g} m, where a grain would meet two images of a neighbour: use more grains across "
-          "the cell or stop the compression sooner",
-          "xyz"[k], periodic.length[k], time, shortest_period()));
+          "the periodic cell has shrunk along {} to {:.6g} m, below 2 x (2 x the largest radius + skin) = "
+          "{:.6g} m, where a grain would meet two images of a neighbour: use more grains across the cell or "
+          "stop the compression sooner",
+          "xyz"[k], periodic.length[k], shortest_period()));
     }
   }
   built_length_ = periodic.length;
@@ -476,22 +476,31 @@ typename Simulation<D>::Moment Simulation<D>::recorded_cell_stress(Vec<D>* befor
   const auto& L = list_;
   const double dt = time_step;
   const Vec<D> stretch = Vec<D>::Ones() + dt * cell_motion.strain_rate;
-  Moment sum = Moment::Zero();
-  Vec<D> before = Vec<D>::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i) {
+  const bool before = before_drift != nullptr;
+  // Columns 0..D-1: sum d (x) f; column D: the diagonal of sum d0 (x) f.
+  using Sums = Eigen::Matrix<double, D, D + 1>;
+  auto row = [&](std::int64_t i) {
+    Sums sum = Sums::Zero();
     for (std::uint32_t k = L.row_offset[i]; k < L.row_offset[i + 1]; ++k) {
       const Vec<D>& f = pair_force_[k];
       if (f == Vec<D>::Zero()) continue;
       const std::uint32_t j = L.neighbour[k];
       const Vec<D> d = periodic.shortest(p.position[j] - p.position[i]);
-      sum += d * f.transpose();
+      for (int b = 0; b < D; ++b) {
+        for (int a = 0; a < D; ++a) sum(a, b) += d[a] * f[b];
+      }
       // The drift moved d by (v_j - v_i) dt + rate (x) d dt, the velocities
       // those of the half step it took (the present ones).
-      if (before_drift != nullptr)
-        before += (d - (p.velocity[j] - p.velocity[i]) * dt).cwiseQuotient(stretch).cwiseProduct(f);
+      if (before) {
+        const Vec<D> dv = p.velocity[j] - p.velocity[i];
+        for (int a = 0; a < D; ++a) sum(a, D) += (d[a] - dv[a] * dt) / stretch[a] * f[a];
+      }
     }
-  }
-  if (before_drift != nullptr) *before_drift = before;
+    return sum;
+  };
+  const Sums sums = deterministic_sum(static_cast<std::int64_t>(p.size()), Sums(Sums::Zero()), row);
+  if (before) *before_drift = sums.col(D);
+  const Moment sum = sums.template leftCols<D>();
   return -0.5 * (sum + sum.transpose()) / periodic.length.prod();
 }
 

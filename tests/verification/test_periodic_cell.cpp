@@ -493,3 +493,39 @@ TEST(PeriodicCell, ResumedBiaxialTestWritesTheSameFiles) {
   EXPECT_GT(compared, 3U);
   std::filesystem::remove_all(dir);
 }
+
+// A cell shrunk below twice the contacts' reach (where a grain would meet
+// two images of a neighbour) stops the run with a message, its output kept.
+TEST(PeriodicCell, ACellShrunkTooFarStopsTheRunKeepingItsOutput) {
+  const std::string dir = temp_dir("cell_shrunk");
+  // Four discs 2 mm apart, the cell shrinking at 0.9 /s from 10 mm: below
+  // 2 (2 r + skin) = 2.4 mm after ln(10 / 2.4) / 0.9 = 1.59 s.
+  Scene<2> scene = scene_from_text<2>(
+      dir, "shrink.toml",
+      text_variant(lattice, {{"max = [0.01, 0.01]\nradius = 0.0005",
+                              "max = [0.004, 0.004]\nradius = 0.0005\n"
+                              "spacing = 0.002"},
+                             {"particle = 7\ncomponent = \"x\"", "particle = 3\ncomponent = \"x\""},
+                             {"particle = 7\ncomponent = \"y\"", "particle = 3\ncomponent = \"y\""},
+                             {"duration = 0.2", "duration = 3.0"},
+                             {"x = { strain_rate = -0.02 }, y = { strain_rate = -0.01 }",
+                              "x = { strain_rate = -0.9 }, y = { strain_rate = -0.9 }"}}));
+  RunOptions options;
+  options.out_dir = dir + "/out";
+  std::string message;
+  try {
+    run_scene<2>(scene, options);
+  } catch (const std::runtime_error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("the periodic cell has shrunk along x to"), std::string::npos) << message;
+  EXPECT_NE(message.find("output written so far is kept"), std::string::npos) << message;
+  const auto probes = read_probes(options.out_dir + "/probes.csv");
+  ASSERT_FALSE(probes.at("time").empty());
+  // It stopped at the first list build once the period was below 2.4 mm,
+  // at about 1.59 s (the builds come every skin / (2 x 0.9 /s x 1.2 mm),
+  // about 0.1 s, apart at the end).
+  EXPECT_NEAR(probes.at("time").back(), std::log(10.0 / 2.4) / 0.9, 0.1);
+  EXPECT_LT(probes.at("Lx").back(), 2.4e-3);
+  std::filesystem::remove_all(dir);
+}
