@@ -9,9 +9,8 @@
 // The grains' velocities are the fluctuations about the homogeneous field
 // v = rate (x) (x - c) (componentwise; c the cell's centre, which stays
 // put); each drift moves a grain by its own velocity and by the field's over
-// the step, and the cell's lengths by
-// the same factor (1 + rate dt), so a grain at rest in the field keeps its
-// place relative to the cell. Contacts see the field too: the relative
+// the step, and the cell's lengths by the same factor (1 + rate dt), so a
+// grain at rest in the field keeps its place relative to the cell. Contacts see the field too: the relative
 // velocity of j's image against i takes rate (x) d on top of the grains'
 // own, d = x_j - x_i the separation.
 #include <algorithm>
