@@ -300,8 +300,8 @@ Simulation<3> make_periodic_packing(std::int64_t target) {
 // The periodic stack with its cell fixed (range(2) = 0: the fused step),
 // strained at -0.01 /s along each axis (1: the deforming cell's step, the
 // field in every drift and contact), or held by the servo at 1 kPa along
-// each axis (2: also each pair's force recorded and the cell's stress
-// summed every step): what a deforming cell costs a step.
+// each axis (2: also the pairs' moments summed in the force pass and the
+// cell's stress added up every step): what a deforming cell costs a step.
 void BM_PeriodicCell(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(1));
   omp_set_num_threads(threads);

@@ -239,13 +239,10 @@ class Model {
     const std::string why =
         cell_deformation_obstacle(sim(), CellNeighbours{fluid() != nullptr, !scene_.inlets.empty()});
     if (!why.empty()) throw py::value_error("set_cell: deforms the periodic cell, " + why);
-    const double most = 1e-3 / sim().time_step;  // a thousandth of stretch per step
     auto rate_ok = [&](double v, const char* what) {
-      if (!std::isfinite(v) || !(std::abs(v) < most)) {
-        throw py::value_error(fmt::format(
-            "set_cell: {} must be below 1e-3 / time step = {} 1/s in magnitude (each step stretches the "
-            "cell by 1 + rate x time step), got {}",
-            what, most, v));
+      if (!CellMotion<D>::rate_allowed(v, sim().time_step)) {
+        throw py::value_error(
+            fmt::format("set_cell: {} must be {}, got {}", what, cell_rate_rule(sim().time_step), v));
       }
       return v;
     };
@@ -287,7 +284,7 @@ class Model {
     }
     CellMotion<D> motion = sim().cell_motion;
     change.apply(motion);
-    if (motion.any_by_stress() && (motion.gain == 0.0 || motion.max_strain_rate == 0.0)) {
+    if (motion.servo_incomplete()) {
       throw py::value_error(
           "set_cell: an axis held by stress needs the servo's gain (1/(Pa s)) and max_strain_rate (1/s)");
     }

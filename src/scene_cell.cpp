@@ -16,6 +16,13 @@ void check_deformable(TableReader& r, const Simulation<D>& sim, const CellNeighb
 
 }  // namespace
 
+std::string cell_rate_rule(double time_step) {
+  static_assert(CellMotion<3>::largest_stretch == 1e-3, "the rule's text gives the limit");
+  return fmt::format(
+      "below 1e-3 / time step = {} 1/s in magnitude (each step stretches the cell by 1 + rate x time step)",
+      TableReader::format_number(CellMotion<3>::largest_stretch / time_step));
+}
+
 template <int D>
 std::string cell_deformation_obstacle(const Simulation<D>& sim, const CellNeighbours& around) {
   for (int k = 0; k < D; ++k) {
@@ -90,7 +97,7 @@ CellChange<D> read_cell_change(TableReader& stage, const Simulation<D>& sim, con
                  ") = { strain_rate = 1/s } or { stress = Pa }, or the servo's 'gain' or 'max_strain_rate'");
   }
   change.apply(planned);
-  if (planned.any_by_stress()) {
+  if (planned.servo_incomplete()) {
     if (planned.gain == 0.0) r.missing("gain", "the servo's gain, 1/(Pa s): rate = gain x (stress - target)");
     if (planned.max_strain_rate == 0.0) r.missing("max_strain_rate", "the servo's largest strain rate, 1/s");
   }
@@ -100,13 +107,8 @@ CellChange<D> read_cell_change(TableReader& stage, const Simulation<D>& sim, con
 template <int D>
 void check_cell_rates(const toml::array& stages, const std::vector<Stage<D>>& read, double time_step,
                       const std::string& file) {
-  // The drift stretches the cell by 1 + rate dt: a tenth of a percent per
-  // step is already far beyond a quasi-static test.
-  const double most = 1e-3 / time_step;
-  auto too_fast = [&](double rate) { return !(std::abs(rate) < most); };
-  const std::string allowed = fmt::format(
-      "below 1e-3 / time step = {} 1/s in magnitude (each step stretches the cell by 1 + rate x time step)",
-      TableReader::format_number(most));
+  auto too_fast = [&](double rate) { return !CellMotion<D>::rate_allowed(rate, time_step); };
+  const std::string allowed = cell_rate_rule(time_step);
   for (std::size_t i = 0; i < read.size() && i < stages.size(); ++i) {
     const auto& change = read[i].cell;
     if (!change) continue;

@@ -85,9 +85,12 @@ void Simulation<D>::advance(std::uint64_t count) {
     }
     time += time_step;
     rebuild_if_needed(moved);
-    recording_ =
-        (record_contact_forces && s + 1 == count) || (deforming && (tracked || cell_motion.any_by_stress()));
+    // The budget needs each pair's force; a servo alone only the normal
+    // stresses, which the force pass sums row by row as it goes.
+    recording_ = (record_contact_forces && s + 1 == count) || (deforming && tracked);
+    summing_moments_ = deforming && !tracked && cell_motion.any_by_stress();
     if (recording_) pair_force_.assign(list_.pair_count(), Vec<D>::Zero());
+    if (summing_moments_) pair_moment_.resize(particles.size());
     if (tracked) {
       compute_forces(Finish::none);
       if (deforming) cell_step(true);
@@ -452,21 +455,27 @@ double Simulation<D>::deforming_kick(bool drift) {
 
 template <int D>
 void Simulation<D>::cell_step(bool tracked) {
-  if (!recording_) return;  // neither a servo nor the budget needs the stress
-  Vec<D> before = Vec<D>::Zero();
-  const Moment stress = recorded_cell_stress(tracked ? &before : nullptr);
-  if (tracked) {
-    // The cell's work on the contacts over the last drift: the field moved
-    // each pair's separation d by rate (x) d dt, d as it was before the
-    // drift, against the mean of the forces f (on the first grain) at its
-    // two ends: sum_k rate_k dt sum_c d_k (f_k + f'_k) / 2, positive while
-    // the cell shrinks against their push (the fluctuations' share is the
-    // contacts' work on the grains, which the kicks count).
-    const Vec<D> moment = -periodic.length.prod() * stress.diagonal();
-    energy.boundary_work += 0.5 * time_step * cell_motion.strain_rate.dot(cell_moment_ + before);
-    cell_moment_ = moment;
-    cell_moment_step_ = steps + 1;
+  if (!tracked) {
+    if (!summing_moments_) return;  // no servo: the rates are set
+    // -1/V diag(sum d (x) f): the rows' sums added in fixed blocks (the
+    // same whatever the thread count).
+    const Vec<D> sum = deterministic_sum(static_cast<std::int64_t>(particles.size()), Vec<D>(Vec<D>::Zero()),
+                                         [&](std::int64_t i) { return pair_moment_[i]; });
+    cell_motion.servo(-sum / periodic.length.prod());
+    return;
   }
+  // The cell's work on the contacts over the last drift: the field moved
+  // each pair's separation d by rate (x) d dt, d as it was before the
+  // drift, against the mean of the forces f (on the first grain) at its
+  // two ends: sum_k rate_k dt sum_c d_k (f_k + f'_k) / 2, positive while
+  // the cell shrinks against their push (the fluctuations' share is the
+  // contacts' work on the grains, which the kicks count).
+  Vec<D> before = Vec<D>::Zero();
+  const Moment stress = recorded_cell_stress(&before);
+  const Vec<D> moment = -periodic.length.prod() * stress.diagonal();
+  energy.boundary_work += 0.5 * time_step * cell_motion.strain_rate.dot(cell_moment_ + before);
+  cell_moment_ = moment;
+  cell_moment_step_ = steps + 1;
   if (cell_motion.any_by_stress()) cell_motion.servo(stress.diagonal());
 }
 
@@ -593,6 +602,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
   const double dt = time_step;
   const bool measure = measure_contact_forces;
   const bool recording = recording_;
+  const bool row_moments = summing_moments_;
   const bool bonds = !L.bonded.empty();
   // One material: every pair has the same parameters.
   const PairParameters* uniform = materials.size() == 1 ? &contact_table(0, 0) : nullptr;
@@ -648,6 +658,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
       p.force[i].setZero();
       p.torque[i].setZero();
     }
+    if (row_moments) std::fill(pair_moment_.begin() + lo, pair_moment_.begin() + hi, Vec<D>::Zero());
   };
 
   // Pass 1, block by block (verlet_list.hpp): every pair once, j's share added
@@ -683,6 +694,7 @@ double Simulation<D>::compute_forces_with(Finish finish) {
           if (measure) magnitude_sum += std::sqrt(c.force_on_i.squaredNorm());
           touching += 1.0;
           if (recording) pair_force_[k] = c.force_on_i;
+          if (row_moments) pair_moment_[i] += d.cwiseProduct(c.force_on_i);
           if (is_cross) {
             L.cross_force[slot] = -c.force_on_i;
             L.cross_torque[slot] = c.torque_j;
@@ -793,6 +805,11 @@ double Simulation<D>::compute_forces_with(Finish finish) {
         force[i] += fq;
         torque[i] += tiq;
         if (recording) pair_force_[k] = fq;
+        if (row_moments) {
+          Vec<D> dq;
+          for (int c = 0; c < D; ++c) dq[c] = batch.d[c][q];
+          pair_moment_[i] += dq.cwiseProduct(fq);
+        }
         if (measure) magnitude_sum += std::sqrt(fq.squaredNorm());
         Vec<D>* fj = cross ? cross_force + slot : force + j;
         AngVec<D>* tj = cross ? cross_torque + slot : torque + j;

@@ -5,6 +5,7 @@
 // a random packing whose lateral stress the servo holds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -459,6 +460,61 @@ TEST(PeriodicCell, ServoHoldsTheLateralStressOfABiaxialTest) {
   EXPECT_GT(peak, 1500.0);
   std::filesystem::remove_all(dir);
 }
+
+// The servo's stress, summed pair by pair inside the force pass, against
+// the same stress from each pair's recorded force (the path the energy
+// budget takes, which the lattice tests check against the closed form):
+// a random packing compressed by the servo, and every 500 steps a copy of
+// it takes one step with the budget while it takes one without. Each row
+// adds its pairs in the same order and the rows are added in the same
+// fixed blocks, so the two agree to round-off. Both force passes: the
+// batched one of linear contacts, and the general one (rolling resistance).
+class ServoStressPaths : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ServoStressPaths, SummedInTheForcePassItIsTheRecordedForcesOne) {
+  const std::string dir = temp_dir("cell_row_sums");
+  const std::string text =
+      GetParam()
+          ? text_variant(biaxial, {{"friction = 0.5\n\n", "friction = 0.5\nrolling_friction = 0.1\n\n"}})
+          : biaxial;
+  Scene<2> scene = scene_from_text<2>(dir, "biaxial.toml", text);
+  ASSERT_TRUE(scene.stages.at(0).cell.has_value());
+  Simulation<2>& sim = scene.simulation;
+  scene.stages[0].cell->apply(sim.cell_motion);
+  double largest = 0.0;
+  int compared = 0;
+  for (int step = 0; step < 20000; ++step) {
+    if (step % 500 != 499) {
+      sim.advance(1);
+      continue;
+    }
+    Simulation<2> recorded = sim;
+    recorded.track_energy = true;
+    sim.advance(1);
+    recorded.advance(1);
+    // The servo's rate is gain x (stress - target): a relative 1e-12 of
+    // the stress is far above the round-off of a sum of a few hundred
+    // terms (1e-14) and far below one pair missed or counted twice (one
+    // pair of 300 is some 3e-3).
+    for (int k = 0; k < 2; ++k) {
+      const double s = recorded.cell_motion.stress[k];
+      EXPECT_NEAR(sim.cell_motion.stress[k], s, 1e-12 * std::abs(s)) << "axis " << k << " at step " << step;
+      const double r = recorded.cell_motion.strain_rate[k];
+      EXPECT_NEAR(sim.cell_motion.strain_rate[k], r, 1e-12 * std::abs(r))
+          << "axis " << k << " at step " << step;
+    }
+    largest = std::max(largest, std::abs(recorded.cell_motion.stress.x()));
+    ++compared;
+  }
+  EXPECT_EQ(compared, 40);
+  // The servo has had something to do: the packing reached its target's
+  // order (1 kPa) and pushed back.
+  EXPECT_GT(largest, 500.0);
+  std::filesystem::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(PeriodicCell, ServoStressPaths, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "RollingResistance" : "LinearBatched"; });
 
 // Stopped while the servo compresses the cell and resumed from the
 // checkpoint, the run writes the same files byte for byte as the run that

@@ -33,6 +33,19 @@ struct CellMotion {
   double max_strain_rate = 0.0;           ///< 1/s, the servo's largest rate (magnitude)
   Vec<D> stress = Vec<D>::Zero();         ///< Pa: the normal stresses the servo last saw
 
+  /// The most a step may stretch the cell, |rate| dt: a tenth of a percent
+  /// per step is already far beyond a quasi-static test.
+  static constexpr double largest_stretch = 1e-3;
+  /// Whether a strain rate (1/s) keeps within largest_stretch per step of dt.
+  [[nodiscard]] static bool rate_allowed(double rate, double dt) {
+    return std::isfinite(rate) && std::abs(rate) * dt < largest_stretch;
+  }
+  /// Whether an axis is held by stress without the servo's gain or its
+  /// largest rate.
+  [[nodiscard]] bool servo_incomplete() const {
+    return any_by_stress() && !(gain > 0.0 && max_strain_rate > 0.0);
+  }
+
   /// Whether the cell moves or may move (a rate, or a servo on an axis).
   [[nodiscard]] bool active() const {
     for (int k = 0; k < D; ++k) {

@@ -18,6 +18,10 @@ struct CellNeighbours {
   bool inlets = false;
 };
 
+/// What CellMotion::rate_allowed allows with time step `time_step`, for
+/// messages: "below 1e-3 / time step = ... 1/s in magnitude (...)".
+std::string cell_rate_rule(double time_step);
+
 /// Why the cell of `sim` cannot deform ("which must repeat along every
 /// axis; ..."), or "" if it can.
 template <int D>

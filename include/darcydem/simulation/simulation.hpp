@@ -289,12 +289,14 @@ class Simulation {
   /// The drift of drift_group with the cell's field: each particle also
   /// moves by rate (x) (x - c) dt.
   double drift_group_in_field(std::size_t first, bool referenced);
-  /// After a force evaluation with a deforming cell whose pair forces were
-  /// recorded: with `tracked` the cell's work over the last drift into the
-  /// budget's boundary work, and the servo's new rates.
+  /// After a force evaluation with a deforming cell: with `tracked` (the
+  /// pair forces recorded) the cell's work over the last drift into the
+  /// budget's boundary work; the servo's new rates, from the recorded
+  /// forces or, untracked, from the moments the force pass summed.
   void cell_step(bool tracked);
   /// -1/V sym(sum d (x) f) over the pairs' forces the present evaluation
-  /// recorded, at the positions it saw: the cell's stress for its servo.
+  /// recorded, at the positions it saw: the cell's stress for the budget
+  /// (and its servo) on the tracked path.
   /// With `before_drift`, also the diagonal of sum d0 (x) f, d0 each
   /// pair's separation before the last drift (N m).
   [[nodiscard]] Moment recorded_cell_stress(Vec<D>* before_drift = nullptr) const;
@@ -346,7 +348,9 @@ class Simulation {
   Vec<D> force_gravity_ = Vec<D>::Zero();  ///< the gravity in the last force evaluation (the budget's split)
   bool recording_ = false;                 ///< this force evaluation stores pair_force_
   std::vector<Vec<D>> pair_force_;         ///< force on i of each pair, as recorded
-  std::uint64_t pair_force_step_ = ~std::uint64_t{0};         ///< the step that recorded pair_force_
+  std::uint64_t pair_force_step_ = ~std::uint64_t{0};  ///< the step that recorded pair_force_
+  bool summing_moments_ = false;     ///< this force evaluation sums pair_moment_ (a servo-held cell)
+  std::vector<Vec<D>> pair_moment_;  ///< per grain: the diagonal of sum d (x) f over its row of pairs, N m
   const ParticleForceField<D>* field_forces_from_ = nullptr;  ///< the field that gave field_force_
   std::vector<std::array<double, 2>> block_sums_;  ///< per force block: sum of |F| of contacts, count
   Vec<D> built_length_ = Vec<D>::Zero();           ///< the periods at the last list build, m
