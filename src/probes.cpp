@@ -173,6 +173,8 @@ double evaluate_probe(const ProbeSpec& probe, const Simulation<D>& sim, const Po
       return sim.periodic.length[probe.component];
     case ProbeQuantity::cell_strain_rate:
       return sim.cell_motion.strain_rate[probe.component];
+    case ProbeQuantity::cell_strain:
+      return sim.cell_motion.strain(sim.periodic, probe.component);
     case ProbeQuantity::cell_stress: {
       const auto s = sim.cell_stress();
       return probe.tensor[0] < 0 ? s.trace() / D : s(probe.tensor[0], probe.tensor[1]);

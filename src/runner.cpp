@@ -281,6 +281,7 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
   if (stage.viscous_damping) sim.damping.viscous = *stage.viscous_damping;
   for (const auto& c : stage.frictions) sim.contact_table.set_friction(c.first, c.second, c.friction);
   if (stage.cell) stage.cell->apply(sim.cell_motion);
+  sim.cell_motion.reference_length = sim.periodic.length;  // cell_strain counts from here
   for (const auto& c : stage.walls) {
     auto& w = sim.walls[c.wall];
     w.motion = c.motion;
@@ -406,6 +407,7 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       std::any_of(scene.output.probes.begin(), scene.output.probes.end(),
                   [](const auto& p) { return p.quantity == ProbeQuantity::unbalanced_force; });
   sim.prepare();
+  sim.cell_motion.reference_length = sim.periodic.length;  // the probes before the first stage
   if (options.resume) {
     // The scene built and prepared as at the start, then the state of the
     // interrupted run loaded over it; output goes on where it stopped.
@@ -693,10 +695,14 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
       }
       if (sim.cell_motion.active() && options.log != nullptr) {
         const Vec<D> stress = sim.cell_stress().diagonal();
+        Vec<D> strain;
+        for (int k = 0; k < D; ++k) strain[k] = sim.cell_motion.strain(sim.periodic, k);
         *options.log << fmt::format(
-            "periodic cell: lengths {:.6g} m, strain rates {:.4g} 1/s, normal stresses "
-            "{:.6g} Pa (the contacts' mean over it)\n",
-            fmt::join(sim.periodic.length, ", "), fmt::join(sim.cell_motion.strain_rate, ", "),
+            "periodic cell: lengths {:.6g} m, strains {:.6g} over the stage (volumetric {:.6g}), strain "
+            "rates "
+            "{:.4g} 1/s, normal stresses {:.6g} Pa (the contacts' mean over it)\n",
+            fmt::join(sim.periodic.length, ", "), fmt::join(strain, ", "),
+            sim.cell_motion.strain(sim.periodic, -1), fmt::join(sim.cell_motion.strain_rate, ", "),
             fmt::join(stress, ", "));
       }
       if (sim.energy.started && options.log != nullptr) *options.log << describe_energy(sim);

@@ -1583,6 +1583,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                                                 "broken_bonds",
                                                 "cell_length",
                                                 "cell_strain_rate",
+                                                "cell_strain",
                                                 "cell_stress"});
     r.allow({"particle", "component", "wall", "position", "side", "from", "to", "points", "min", "max"});
     if (q == "inserted_particles" || q == "inserted_mass") {
@@ -1611,7 +1612,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       return;
     }
     if (r.has("inlet")) r.fail("inlet", fmt::format("does not apply to quantity \"{}\"", q));
-    if (q == "cell_length" || q == "cell_strain_rate" || q == "cell_stress") {
+    if (q == "cell_length" || q == "cell_strain_rate" || q == "cell_strain" || q == "cell_stress") {
       for (int k = 0; k < D; ++k) {
         if (!sim.periodic.periodic[k]) {
           r.fail("quantity",
@@ -1626,6 +1627,12 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       if (q == "cell_stress") {
         p.quantity = ProbeQuantity::cell_stress;
         p.tensor = tensor_component<D>(r, "component", true);
+      } else if (q == "cell_strain") {
+        p.quantity = ProbeQuantity::cell_strain;
+        const std::string c =
+            r.choice("component", D == 2 ? std::vector<std::string>{"x", "y", "volumetric"}
+                                         : std::vector<std::string>{"x", "y", "z", "volumetric"});
+        p.component = c == "volumetric" ? -1 : c[0] - 'x';
       } else {
         p.quantity = q == "cell_length" ? ProbeQuantity::cell_length : ProbeQuantity::cell_strain_rate;
         p.component = static_cast<int>(axis_component<D>(r, "component", false));

@@ -32,6 +32,9 @@ struct CellMotion {
   double gain = 0.0;                      ///< 1/(Pa s): rate = gain (stress - target)
   double max_strain_rate = 0.0;           ///< 1/s, the servo's largest rate (magnitude)
   Vec<D> stress = Vec<D>::Zero();         ///< Pa: the normal stresses the servo last saw
+  /// m: the periods when the run's present stage began, from which the
+  /// cell_strain probe counts (the runner sets them).
+  Vec<D> reference_length = Vec<D>::Zero();
 
   /// The most a step may stretch the cell, |rate| dt: a tenth of a percent
   /// per step is already far beyond a quasi-static test.
@@ -70,6 +73,16 @@ struct CellMotion {
       strain_rate[k] = std::isnan(r) ? 0.0 : std::clamp(r, -max_strain_rate, max_strain_rate);
     }
   }
+  /// The logarithmic strain ln(L / L_ref) along axis k since the stage
+  /// began (the sum of ln(1 + rate dt) over its drifts: negative while
+  /// the cell shrinks, as the strain rate), or with k < 0 the volumetric
+  /// strain ln(V / V_ref), the sum over the axes.
+  [[nodiscard]] double strain(const PeriodicCell<D>& cell, int k) const {
+    if (k >= 0) return std::log(cell.length[k] / reference_length[k]);
+    double sum = 0.0;
+    for (int a = 0; a < D; ++a) sum += std::log(cell.length[a] / reference_length[a]);
+    return sum;
+  }
   /// The cell after a drift of dt at the present rate: each length times
   /// (1 + rate dt), about the cell's centre, which stays where it is (the
   /// field's fixed point).
@@ -85,7 +98,7 @@ struct CellMotion {
 
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(by_stress, strain_rate, target_stress, gain, max_strain_rate, stress);
+    ar(by_stress, strain_rate, target_stress, gain, max_strain_rate, stress, reference_length);
   }
 };
 

@@ -62,6 +62,7 @@ enum class ProbeQuantity {
   broken_bonds,          ///< contact bonds broken so far
   cell_length,           ///< the periodic cell's length along an axis, m
   cell_strain_rate,      ///< its strain rate along an axis, 1/s (CellMotion)
+  cell_strain,           ///< ln(L / L at the stage's start) along an axis, or the volumetric sum
   cell_stress,           ///< a component of the contacts' mean stress over it, Pa (Simulation::cell_stress)
 };
 
