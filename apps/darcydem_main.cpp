@@ -18,6 +18,7 @@
 #include "darcydem/output/checkpoint_archive.hpp"
 #include "darcydem/particles/grading.hpp"
 #include "darcydem/scene/scene.hpp"
+#include "darcydem/scene/scene_cell.hpp"
 #include "darcydem/scene/scene_overrides.hpp"
 #include "darcydem/scene/toml_reader.hpp"
 #include "darcydem/simulation/describe_walls.hpp"
@@ -61,7 +62,8 @@ int run(const toml::table& root, const std::string& file, const std::string& tex
     for (const auto& set : scene.overrides) std::cout << "  set: " << set << '\n';
     for (const auto& note : scene.notes) std::cout << "  note: " << note << '\n';
     {
-      std::istringstream lines(darcydem::describe_wall_motions(scene));
+      std::istringstream lines(darcydem::describe_wall_motions(scene) +
+                               darcydem::describe_cell_motions(scene));
       for (std::string line; std::getline(lines, line);) std::cout << "  " << line << '\n';
     }
     if (scene.fluid) {

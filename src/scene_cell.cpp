@@ -24,6 +24,35 @@ std::string cell_rate_rule(double time_step) {
 }
 
 template <int D>
+std::string describe_cell_motions(const Scene<D>& scene) {
+  std::string out;
+  CellMotion<D> motion;
+  for (const auto& stage : scene.stages) {
+    if (!stage.cell) continue;
+    stage.cell->apply(motion);
+    std::string axes;
+    for (int k = 0; k < D; ++k) {
+      const std::string sep = axes.empty() ? "" : ", ";
+      if (motion.by_stress[k]) {
+        axes += fmt::format("{}{} held at {:.6g} Pa", sep, "xyz"[k], motion.target_stress[k]);
+      } else if (motion.strain_rate[k] != 0.0) {
+        axes += fmt::format(
+            "{}{} strained at {:.6g} 1/s (ln strain {:.4g} over the stage's {:.6g} s if it runs to "
+            "its end)",
+            sep, "xyz"[k], motion.strain_rate[k], motion.strain_rate[k] * stage.duration, stage.duration);
+      }
+    }
+    if (axes.empty()) axes = "fixed";
+    if (motion.any_by_stress()) {
+      axes += fmt::format("; servo gain {:.6g} 1/(Pa s), at most {:.6g} 1/s", motion.gain,
+                          motion.max_strain_rate);
+    }
+    out += fmt::format("stage {}: periodic cell {}\n", stage.name, axes);
+  }
+  return out;
+}
+
+template <int D>
 std::string cell_deformation_obstacle(const Simulation<D>& sim, const CellNeighbours& around) {
   for (int k = 0; k < D; ++k) {
     if (!sim.periodic.periodic[k]) {
@@ -133,6 +162,8 @@ template void check_cell_rates<2>(const toml::array&, const std::vector<Stage<2>
                                   const std::string&);
 template void check_cell_rates<3>(const toml::array&, const std::vector<Stage<3>>&, double,
                                   const std::string&);
+template std::string describe_cell_motions<2>(const Scene<2>&);
+template std::string describe_cell_motions<3>(const Scene<3>&);
 template std::string cell_deformation_obstacle<2>(const Simulation<2>&, const CellNeighbours&);
 template std::string cell_deformation_obstacle<3>(const Simulation<3>&, const CellNeighbours&);
 template CellChange<2> read_cell_change<2>(TableReader&, const Simulation<2>&, const CellNeighbours&,
