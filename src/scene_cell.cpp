@@ -31,18 +31,27 @@ std::string describe_cell_motions(const Scene<D>& scene) {
     if (!stage.cell) continue;
     stage.cell->apply(motion);
     std::string axes;
+    std::string strains;
     for (int k = 0; k < D; ++k) {
       const std::string sep = axes.empty() ? "" : ", ";
       if (motion.by_stress[k]) {
         axes += fmt::format("{}{} held at {:.6g} Pa", sep, "xyz"[k], motion.target_stress[k]);
       } else if (motion.strain_rate[k] != 0.0) {
-        axes += fmt::format(
-            "{}{} strained at {:.6g} 1/s (ln strain {:.4g} over the stage's {:.6g} s if it runs to "
-            "its end)",
-            sep, "xyz"[k], motion.strain_rate[k], motion.strain_rate[k] * stage.duration, stage.duration);
+        axes += fmt::format("{}{} strained at {:.6g} 1/s", sep, "xyz"[k], motion.strain_rate[k]);
+        strains += fmt::format("{}{} {:.4g}", strains.empty() ? "" : ", ", "xyz"[k],
+                               motion.strain_rate[k] * stage.duration);
       }
     }
     if (axes.empty()) axes = "fixed";
+    // Every axis at a set rate: the volume's strain too (0: an undrained
+    // test at constant volume).
+    if (!motion.any_by_stress() && !strains.empty()) {
+      strains += fmt::format(", volumetric {:.4g}", motion.strain_rate.sum() * stage.duration);
+    }
+    if (!strains.empty()) {
+      axes += fmt::format(" (ln strains over the stage's {:.6g} s if it runs to its end: {})", stage.duration,
+                          strains);
+    }
     if (motion.any_by_stress()) {
       axes += fmt::format("; servo gain {:.6g} 1/(Pa s), at most {:.6g} 1/s", motion.gain,
                           motion.max_strain_rate);

@@ -678,22 +678,36 @@ TEST(PeriodicCell, ACellShrunkTooFarStopsTheRunKeepingItsOutput) {
   std::filesystem::remove_all(dir);
 }
 
+namespace {
+
+/// The probes of an example of examples/dem_cases run whole, its shear
+/// stopped at `below` of axial strain instead of `stop` (its three stages
+/// completed).
+auto run_example_shear(const std::string& name, const std::string& stop, const std::string& below) {
+  const std::string dir = temp_dir("cell_example");
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/" + name;
+  std::ofstream(path) << darcydem::testing::scene_variant("examples/dem_cases/" + name,
+                                                          {{"below = " + stop, "below = " + below}});
+  Scene<3> scene = darcydem::testing::load_scene_file<3>(path);
+  RunOptions options;
+  options.out_dir = dir + "/out";
+  const RunSummary summary = run_scene<3>(scene, options);
+  EXPECT_EQ(summary.stages_completed.size(), 3U);
+  auto probes = read_probes(options.out_dir + "/probes.csv");
+  std::filesystem::remove_all(dir);
+  return probes;
+}
+
+}  // namespace
+
 // examples/dem_cases/periodic_triaxial.toml, its shear cut to 0.01 s (1 %
 // of axial strain): compressed to 100 kPa and settled, the three normal
 // stresses are the target's; shortened along z, its axial stress climbs
 // while the servo holds the lateral ones.
 TEST(PeriodicCell, TriaxialExampleReachesItsConfinementAndLoadsAxially) {
-  const std::string dir = temp_dir("cell_triaxial");
-  std::filesystem::create_directories(dir);
-  const std::string path = dir + "/periodic_triaxial.toml";
-  std::ofstream(path) << darcydem::testing::scene_variant("examples/dem_cases/periodic_triaxial.toml",
-                                                          {{"below = -0.1", "below = -0.01"}});
-  Scene<3> scene = darcydem::testing::load_scene_file<3>(path);
-  RunOptions options;
-  options.out_dir = dir + "/out";
-  const RunSummary summary = run_scene<3>(scene, options);
-  ASSERT_EQ(summary.stages_completed.size(), 3U);
-  auto probes = read_probes(options.out_dir + "/probes.csv");
+  auto probes = run_example_shear("periodic_triaxial.toml", "-0.1", "-0.01");
+  ASSERT_GT(probes["time"].size(), 3U);
   const auto& lz = probes["Lz"];
   // The shear takes the last 0.01 s; the last row 0.0105 s before the end
   // is the settled sample, held at 100 kPa for the 0.02 s before.
@@ -715,5 +729,43 @@ TEST(PeriodicCell, TriaxialExampleReachesItsConfinementAndLoadsAxially) {
   EXPECT_LT(probes["ez"].back(), -0.01);
   EXPECT_GT(probes["ez"].back(), -0.01 - 1e-4);
   EXPECT_NEAR(probes["ez"].back(), std::log(lz.back() / lz[settled]), 1e-8);
-  std::filesystem::remove_all(dir);
+}
+
+// The constant-volume (undrained) example, its shear cut to 1 % of axial
+// strain: the volume stays put while the cell shortens along z and widens
+// along x and y, and the effective stresses take a frictional packing's
+// undrained path.
+TEST(PeriodicCell, UndrainedExampleShearsAtConstantVolume) {
+  auto probes = run_example_shear("periodic_undrained.toml", "-0.05", "-0.01");
+  const auto& t = probes["time"];
+  // The shear's rows: those after the settled state, where ez has begun
+  // to fall (the settle stage's own strains are the servo's, below 1e-4).
+  std::size_t shear = t.size();
+  for (std::size_t r = t.size(); r-- > 0;) {
+    if (probes["ez"][r] > -1e-3) break;
+    shear = r;
+  }
+  ASSERT_LT(shear + 3, t.size());
+  // Constant volume through the shear: the rates sum to zero, so each
+  // step's volume changes by (1 + 0.5 dt)^2 (1 - dt), -0.75 dt^2, 1e-8
+  // over the stage; 1e-7 leaves room for the ten printed digits. A rate
+  // off by a tenth along one axis gives 5e-4.
+  for (std::size_t r = shear; r < t.size(); ++r) ASSERT_NEAR(probes["ev"][r], 0.0, 1e-7) << "t = " << t[r];
+  EXPECT_LT(probes["ez"].back(), -0.01);
+  EXPECT_GT(probes["ez"].back(), -0.01 - 1e-4);
+  // The lateral axes are strained alike: their stresses within 15 % of
+  // each other (400 grains: the fabric is not quite isotropic; 5 % at the
+  // end of the measured run).
+  const double sxx = probes["sxx"].back();
+  const double syy = probes["syy"].back();
+  const double szz = probes["szz"].back();
+  EXPECT_NEAR(sxx / syy, 1.0, 0.15);
+  // The effective stress ratio q / p' has climbed to a frictional
+  // packing's: M = 6 sin(phi) / (3 - sin(phi)) is 0.77 to 1.2 for friction
+  // angles of 20 to 30 degrees, those of sphere packings with a contact
+  // friction of 0.5 (the drained example peaks at 24.5 degrees).
+  const double p = (sxx + syy + szz) / 3.0;
+  const double q = szz - 0.5 * (sxx + syy);
+  EXPECT_GT(q / p, 0.77);
+  EXPECT_LT(q / p, 1.2);
 }

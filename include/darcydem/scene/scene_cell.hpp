@@ -24,8 +24,8 @@ std::string cell_rate_rule(double time_step);
 
 /// For `darcydem check`: one line per stage with a `periodic_cell`, the
 /// cell's whole motion from that stage on ("stage NAME: periodic cell x
-/// held at 1e+05 Pa, z strained at -1 1/s (ln strain -0.2 over the
-/// stage's 0.2 s if it runs to its end); servo gain ..., at most ... 1/s");
+/// held at 100000 Pa, z strained at -1 1/s (ln strains over the stage's
+/// 0.2 s if it runs to its end: z -0.2); servo gain ..., at most ... 1/s");
 /// "" for a scene whose cell never deforms.
 template <int D>
 std::string describe_cell_motions(const Scene<D>& scene);
