@@ -221,7 +221,7 @@ periodic_cell = { x = { strain_rate = 0.03 }, y = { strain_rate = 0.0 } }
   // The run log gives each stage's strains at its end, rate x its length
   // (six digits; the seventh of these is far from a rounding's edge).
   const double t2 = std::round(0.1 / dt) * dt;
-  for (const std::string line :
+  for (const std::string& line :
        {fmt::format("strains {:.6g}, {:.6g} over the stage (volumetric {:.6g})", -0.02 * t1, -0.01 * t1,
                     -0.03 * t1),
         fmt::format("strains {:.6g}, 0 over the stage (volumetric {:.6g})", 0.03 * t2, 0.03 * t2)}) {
