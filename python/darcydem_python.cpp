@@ -236,8 +236,7 @@ class Model {
   /// servo's gain and max_strain_rate.
   void set_cell(const py::object& x, const py::object& y, const py::object& z, const py::object& gain,
                 const py::object& max_strain_rate) {
-    const std::string why =
-        cell_deformation_obstacle(sim(), CellNeighbours{fluid() != nullptr, !scene_.inlets.empty()});
+    const std::string why = cell_deformation_obstacle(sim(), cell_neighbours(scene_));
     if (!why.empty()) throw py::value_error("set_cell: deforms the periodic cell, " + why);
     auto rate_ok = [&](double v, const char* what) {
       if (!CellMotion<D>::rate_allowed(v, sim().time_step)) {

@@ -60,6 +60,7 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles, const std::vecto
     inv_spacing_[k] = grid.graded(k) ? std::numeric_limits<double>::quiet_NaN() : 1.0 / grid.spacing[k];
   }
   build_geometry();
+  volume_old_ = uniform_volume_;
   for (int a = 0; a < D; ++a) {
     std::size_t stride = 1;
     for (int k = 0; k < D; ++k) {
@@ -94,6 +95,25 @@ void PoreFluid<D>::initialize(const ParticleData<D>& particles, const std::vecto
   compute_face_fields(0.0);
   solution_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
   initialized_ = true;
+}
+
+template <int D>
+void PoreFluid<D>::follow_cell(const PeriodicCell<D>& cell) {
+  for (int k = 0; k < D; ++k) {
+    if (!grid.periodic[k] || grid.graded(k))
+      throw std::logic_error(
+          "PoreFluid::follow_cell: the grid must be uniform and periodic along every axis");
+    grid.origin[k] = cell.lower[k];
+    grid.spacing[k] = cell.length[k] / grid.cells[k];
+  }
+  take_spacing();
+}
+
+template <int D>
+void PoreFluid<D>::take_spacing() {
+  for (int k = 0; k < D; ++k) inv_spacing_[k] = 1.0 / grid.spacing[k];
+  uniform_volume_ = grid.cell_volume();
+  for (auto& w : wrap_faces_) w.area = grid.face_area(w.axis);
 }
 
 template <int D>
@@ -621,6 +641,9 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     wrap_carried_[w] = dt * (v_mix * area - section_flux);
     if (!face_open_[k].empty()) wrap_carried_[w] *= wrap_open(f);
   }
+  // The cells' growth since the last fluid step (a grid that follows a
+  // deforming cell): pore volume gained, as solid lost would be.
+  const double growth = grid.any_graded() ? 0.0 : uniform_volume_ - volume_old_;
   // Per cell, into the grid's stencil (GridOperator): the storage and the
   // conductances of its faces on the diagonal; the stored pressure, the
   // Biot source and what its faces carry in on the right-hand side. A
@@ -640,7 +663,8 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     for (std::size_t c = begin; c < end; ++c) {
       const double storage = storage_of(c);
       diag[c] = storage;
-      rhs[c] = storage * pressure_[c] + (solid_[c] - solid_old_[c]) + (wall_solid_[c] - wall_solid_old_[c]);
+      rhs[c] = storage * pressure_[c] + (solid_[c] - solid_old_[c]) + (wall_solid_[c] - wall_solid_old_[c]) -
+               growth;
     }
     for (int k = 0; k < D; ++k) {
       const std::size_t s = grid.stride(k);
@@ -668,10 +692,10 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
     rhs_[f.low] -= wrap_carried_[w];
     rhs_[f.high] += wrap_carried_[w];
   }
-  double solid_change = 0.0;
-  double solid_moved = 0.0;  // sum of |dVs|, for the balance's gross flow
+  double solid_change = 0.0;  // the pore volume lost
+  double solid_moved = 0.0;   // sum of its magnitudes per cell, for the balance's gross flow
   for (std::size_t c = 0; c < n; ++c) {
-    const double d_solid = (solid_[c] - solid_old_[c]) + (wall_solid_[c] - wall_solid_old_[c]);
+    const double d_solid = (solid_[c] - solid_old_[c]) + (wall_solid_[c] - wall_solid_old_[c]) - growth;
     solid_change += d_solid;
     solid_moved += std::abs(d_solid);
   }
@@ -809,6 +833,7 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   total_.pore_change += b.pore_change;
   solid_old_ = solid_;
   wall_solid_old_ = wall_solid_;
+  volume_old_ = uniform_volume_;
   time_ = time;
   ++updates_;
   last_times_.fields = lap();

@@ -12,14 +12,15 @@ namespace darcydem {
 namespace {
 
 constexpr const char* checkpoint_magic = "darcydem checkpoint";
-constexpr std::uint32_t format = 21;  // 2: the pore fluid's patches; 3: the walls' series; 4: the contacts'
+constexpr std::uint32_t format = 22;  // 2: the pore fluid's patches; 3: the walls' series; 4: the contacts'
 // series; 5: the particles removed outside the domain; 6: inlets; 7: contact bonds; 8: bonds' moments; 9:
 // bonds' strengths; 10: the walls' spin and torque, stress servos, the pairs' friction a stage set;
 // 11: the cylinders' radius servo and radial_velocity; 12: turning planes and boxes (axis, axes, pivot);
 // 13: walls that oscillate; 14: servo targets in time (schedule, cycle); 15: the fluid's sources; 16: sources
 // that hold a pressure; 17: mesh walls' facets in the wall contacts, clumps; 18: particles' volume_scale
 // (clumps of overlapping members); 19: the sources' series; 20: the periodic cell's lengths and motion; 21:
-// the periodic cell's lengths at the stage's start (cell_strain)
+// the periodic cell's lengths at the stage's start (cell_strain); 22: the fluid grid's origin and spacing
+// and its cells' volume at the last fluid step (a grid that follows a deforming cell)
 constexpr const char* end_mark = "end of checkpoint";
 
 /// The header: what a reader must share with the writer.

@@ -2037,8 +2037,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
                       TableReader::format_number(skin)));
     }
     if (r.has("periodic_cell")) {
-      s.cell = read_cell_change<D>(r, sim, CellNeighbours{scene.fluid != nullptr, !scene.inlets.empty()},
-                                   planned_cell);
+      s.cell = read_cell_change<D>(r, sim, cell_neighbours(scene), planned_cell);
     }
     if (const toml::table* it = r.optional_table("inlets")) {
       for (const auto& [name, node] : *it) {

@@ -62,6 +62,15 @@ std::string describe_cell_motions(const Scene<D>& scene) {
 }
 
 template <int D>
+CellNeighbours cell_neighbours(const Scene<D>& scene) {
+  CellNeighbours around;
+  around.fluid_sources = scene.fluid != nullptr && !scene.fluid->sources.empty();
+  around.fluid_barriers = scene.fluid != nullptr && !scene.fluid->barriers.empty();
+  around.inlets = !scene.inlets.empty();
+  return around;
+}
+
+template <int D>
 std::string cell_deformation_obstacle(const Simulation<D>& sim, const CellNeighbours& around) {
   for (int k = 0; k < D; ++k) {
     if (!sim.periodic.periodic[k]) {
@@ -78,7 +87,8 @@ std::string cell_deformation_obstacle(const Simulation<D>& sim, const CellNeighb
         what);
   };
   if (!sim.walls.empty()) return obstacle("walls ([[wall]])");
-  if (around.fluid) return obstacle("a pore fluid ([fluid]: its grid spans the period)");
+  if (around.fluid_sources) return obstacle("the pore fluid's sources ([[fluid.source]])");
+  if (around.fluid_barriers) return obstacle("the pore fluid's barriers ([[fluid.barrier]])");
   if (around.inlets) return obstacle("inlets ([[inlet]])");
   if (!sim.clumps.empty()) return obstacle("clumps");
   if (sim.has_domain) return obstacle("a [domain]");
@@ -173,6 +183,8 @@ template void check_cell_rates<3>(const toml::array&, const std::vector<Stage<3>
                                   const std::string&);
 template std::string describe_cell_motions<2>(const Scene<2>&);
 template std::string describe_cell_motions<3>(const Scene<3>&);
+template CellNeighbours cell_neighbours<2>(const Scene<2>&);
+template CellNeighbours cell_neighbours<3>(const Scene<3>&);
 template std::string cell_deformation_obstacle<2>(const Simulation<2>&, const CellNeighbours&);
 template std::string cell_deformation_obstacle<3>(const Simulation<3>&, const CellNeighbours&);
 template CellChange<2> read_cell_change<2>(TableReader&, const Simulation<2>&, const CellNeighbours&,

@@ -449,8 +449,14 @@ double Simulation<D>::deforming_kick(bool drift) {
     return drift ? drift_group_in_field(first, referenced) : 0.0;
   };
   const double moved2 = max_over_index(groups, parallel_threshold / 4, one);
-  if (drift) cell_motion.stretch(periodic, time_step);
+  if (drift) stretch_cell();
   return std::sqrt(moved2);
+}
+
+template <int D>
+void Simulation<D>::stretch_cell() {
+  cell_motion.stretch(periodic, time_step);
+  if (force_field != nullptr) force_field->follow_cell(periodic);
 }
 
 template <int D>
@@ -540,7 +546,7 @@ double Simulation<D>::tracked_kick(bool drift) {
     return deforming ? drift_group_in_field(first, referenced) : drift_group(first, referenced);
   };
   double moved2 = max_over_index(groups, parallel_threshold / 4, one);
-  if (drift && deforming) cell_motion.stretch(periodic, time_step);
+  if (drift && deforming) stretch_cell();
   for (const auto& works : group_works_) energy.add(works);
   if (!clumps.empty()) {
     // The clumps' half kicks (their members' were skipped), each clump's

@@ -159,6 +159,12 @@ class PoreFluid final : public ParticleForceField<D> {
 
   void particle_forces(const ParticleData<D>& particles, const Vec<D>& gravity,
                        std::vector<Vec<D>>& force) const override;
+  /// A grid periodic along every axis, without graded axes, stretched to
+  /// span the deforming cell as it is now: its cells keep their count and
+  /// take the period's share. The next update counts the cells' change of
+  /// volume, as a change of their pore volume, into the Biot term and the
+  /// balance. Throws std::logic_error on any other grid.
+  void follow_cell(const PeriodicCell<D>& cell) override;
   /// With hold_forces: true if `force` is what the last particle_forces
   /// call wrote, for as many particles under the same gravity, and no fluid
   /// step (or new pressure) has come since.
@@ -193,7 +199,10 @@ class PoreFluid final : public ParticleForceField<D> {
        porosity_, solid_, solid_old_, wall_solid_, wall_solid_old_, porosity_used_, solid_flux_,
        solid_velocity_, kappa_, cell_drag_, blend_atan_, n_power_, face_lambda_, carried_, face_gq_,
        solid_face_flux_, face_open_, face_covered_, side_inflow_, last_solve_, last_, total_, updates_, time_,
-       initialized_, wrap_lambda_, wrap_carried_, boundary_carried_);
+       initialized_, wrap_lambda_, wrap_carried_, boundary_carried_, grid.origin, grid.spacing, volume_old_);
+    if constexpr (Archive::loading) {
+      if (!grid.any_graded()) take_spacing();
+    }
     checkpoint_each(ar, patches, "boundary patches");
     ar(patch_inflow_);
     checkpoint_each(ar, sources, "sources");
@@ -565,6 +574,9 @@ class PoreFluid final : public ParticleForceField<D> {
   /// and the weight of cell a in the harmonic mean of the permeabilities,
   /// h_a / (h_a + h_b).
   void build_geometry();
+  /// The uniform grid's spacing into what follows from it: the inverse
+  /// spacing, the cells' volume, the periodic ends' face areas.
+  void take_spacing();
 
   /// An interior face in the stored matrix (Cholesky solver only; the hot
   /// loops go over FluidGrid::face_run).
@@ -633,7 +645,10 @@ class PoreFluid final : public ParticleForceField<D> {
       face_gq_;                          ///< (grad, flux) side by side: one load per corner
   Vec<D> inv_spacing_ = Vec<D>::Ones();  ///< NaN along graded axes
   double uniform_volume_ = 1.0;          ///< the cells' volume without graded axes
-  std::vector<double> volume_;           ///< per cell, with graded axes (build_geometry)
+  /// The cells' volume at the last fluid step (without graded axes): it
+  /// changes while the grid follows a deforming cell (follow_cell).
+  double volume_old_ = 1.0;
+  std::vector<double> volume_;  ///< per cell, with graded axes (build_geometry)
   std::array<std::vector<double>, D> face_area_, face_inv_distance_, face_weight_;  ///< (build_geometry)
   /// Per graded axis, per layer of cells: the centre's coordinate, 1/width
   /// and 1/(distance to the next centre) (build_geometry, stencil_graded).

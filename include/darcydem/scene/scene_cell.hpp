@@ -14,9 +14,14 @@ namespace darcydem {
 
 /// What the scene around the cell has that a deforming cell cannot take.
 struct CellNeighbours {
-  bool fluid = false;
+  bool fluid_sources = false;   ///< [[fluid.source]]: fixed places in the grid
+  bool fluid_barriers = false;  ///< [[fluid.barrier]]: fixed planes in the grid
   bool inlets = false;
 };
+
+/// The scene's CellNeighbours (its fluid and inlets as built so far).
+template <int D>
+CellNeighbours cell_neighbours(const Scene<D>& scene);
 
 /// What CellMotion::rate_allowed allows with time step `time_step`, for
 /// messages: "below 1e-3 / time step = ... 1/s in magnitude (...)".

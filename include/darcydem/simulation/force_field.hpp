@@ -5,6 +5,7 @@
 // (forces_current). The pore fluid is one; user fields can be others.
 #include <vector>
 
+#include "darcydem/core/periodic_cell.hpp"
 #include "darcydem/core/vec.hpp"
 #include "darcydem/particles/particle_data.hpp"
 
@@ -25,6 +26,11 @@ class ParticleForceField {
                                             const std::vector<Vec<D>>& /*force*/) const {
     return false;
   }
+  /// Called after each drift that stretched a deforming periodic cell
+  /// (Simulation::cell_motion), with the cell as it is now: a field laid
+  /// on a grid that spans the period (the pore fluid's) stretches it
+  /// along. By default nothing.
+  virtual void follow_cell(const PeriodicCell<D>& /*cell*/) {}
 };
 
 }  // namespace darcydem

@@ -115,7 +115,7 @@ class Simulation {
   /// list builds).
   std::uint64_t broken_bonds = 0;
   /// Optional body-force field (the pore fluid), evaluated every step; not owned.
-  const ParticleForceField<D>* force_field = nullptr;
+  ParticleForceField<D>* force_field = nullptr;
   /// Track the energy budget (energy_budget.hpp) from the next advance() on:
   /// each half kick then splits the change of kinetic energy into the works
   /// of gravity, contacts, the force field, damping and moving boundaries
@@ -294,6 +294,8 @@ class Simulation {
   /// budget's boundary work; the servo's new rates, from the recorded
   /// forces or, untracked, from the moments the force pass summed.
   void cell_step(bool tracked);
+  /// The cell's stretch over a drift, which the force field follows.
+  void stretch_cell();
   /// -1/V sym(sum d (x) f) over the pairs' forces the present evaluation
   /// recorded, at the positions it saw: the cell's stress for the budget
   /// (and its servo) on the tracked path.
