@@ -581,6 +581,11 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   last_times_.properties = lap();
   pressure_older_.swap(pressure_old_);
   pressure_old_ = pressure_;
+  if (drained) {
+    drain_freely(time);
+    last_times_.fields = lap();
+    return;
+  }
 
   // Darcy conductances and the fluid carried by the moving skeleton on the
   // interior faces, axis by axis over the runs of faces
@@ -826,6 +831,12 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   }
   b.gross += solid_moved;
   b.gross += std::abs(b.stored);
+  close_step(b, time);
+  last_times_.fields = lap();
+}
+
+template <int D>
+void PoreFluid<D>::close_step(const FluidBalance& b, double time) {
   last_ = b;
   total_.gross += b.gross;
   total_.inflow += b.inflow;
@@ -836,7 +847,46 @@ void PoreFluid<D>::update(const ParticleData<D>& particles, double dt, double ti
   volume_old_ = uniform_volume_;
   time_ = time;
   ++updates_;
-  last_times_.fields = lap();
+}
+
+template <int D>
+void PoreFluid<D>::drain_freely(double time) {
+  const std::size_t n = grid.size();
+  const double growth = grid.any_graded() ? 0.0 : uniform_volume_ - volume_old_;
+  FluidBalance b;
+  for (std::size_t c = 0; c < n; ++c) {
+    const double lost = (solid_[c] - solid_old_[c]) + (wall_solid_[c] - wall_solid_old_[c]) - growth;
+    b.pore_change -= lost;
+    b.gross += std::abs(lost);
+    b.stored -= storage_of(c) * pressure_old_[c];  // the water the pressure's release lets go
+  }
+  // What flows in: the pore volume gained and the water the stored
+  // pressure held.
+  b.inflow = b.stored + b.pore_change;
+  b.gross += std::abs(b.stored) + std::abs(b.inflow);
+  pressure_.assign(n, 0.0);
+  side_inflow_.fill(0.0);
+  std::fill(patch_inflow_.begin(), patch_inflow_.end(), 0.0);
+  std::fill(source_inflow_.begin(), source_inflow_.end(), 0.0);
+  for (auto& carried : carried_) std::fill(carried.begin(), carried.end(), 0.0);
+  std::fill(wrap_carried_.begin(), wrap_carried_.end(), 0.0);
+  std::fill(boundary_carried_.begin(), boundary_carried_.end(), 0.0);
+  last_solve_ = {};
+  last_times_.assembly = 0.0;
+  last_times_.solve = 0.0;
+  compute_face_fields(time);
+  close_step(b, time);
+}
+
+template <int D>
+double PoreFluid<D>::mean_pressure() const {
+  double sum = 0.0;
+  double volume = 0.0;
+  for (std::size_t c = 0; c < pressure_.size(); ++c) {
+    sum += pressure_[c] * volume_of(c);
+    volume += volume_of(c);
+  }
+  return volume > 0.0 ? sum / volume : 0.0;
 }
 
 template <int D>

@@ -260,6 +260,7 @@ void apply_stage(Simulation<D>& sim, PoreFluid<D>* fluid, const Stage<D>& stage)
     if (stage.freeze_permeability) fluid->permeability_frozen = *stage.freeze_permeability;
     if (stage.fluid_steps_per_update) fluid->steps_per_update = *stage.fluid_steps_per_update;
     if (stage.fluid_hold_forces) fluid->hold_forces = *stage.fluid_hold_forces;
+    if (stage.fluid_drained) fluid->drained = *stage.fluid_drained;
     for (const auto& [side, b] : stage.fluid_sides) {
       fluid->sides[side] = b;
       fluid->sides[side].value.start = sim.time;
@@ -700,10 +701,12 @@ RunSummary run_scene(Scene<D>& scene, const RunOptions& options) {
         *options.log << fmt::format(
             "periodic cell: lengths {:.6g} m, strains {:.6g} over the stage (volumetric {:.6g}), strain "
             "rates "
-            "{:.4g} 1/s, normal stresses {:.6g} Pa (the contacts' mean over it)\n",
+            "{:.4g} 1/s, normal stresses {:.6g} Pa (the contacts' mean over it){}\n",
             fmt::join(sim.periodic.length, ", "), fmt::join(strain, ", "),
             sim.cell_motion.strain(sim.periodic, -1), fmt::join(sim.cell_motion.strain_rate, ", "),
-            fmt::join(stress, ", "));
+            fmt::join(stress, ", "),
+            fluid != nullptr ? fmt::format(", mean excess pore pressure {:.6g} Pa", fluid->mean_pressure())
+                             : "");
       }
       if (sim.energy.started && options.log != nullptr) *options.log << describe_energy(sim);
       if (summary.interrupted) break;

@@ -2074,6 +2074,7 @@ Scene<D> build_scene(const toml::table& root, const std::string& file, const std
       if (fr.has("freeze_permeability")) s.freeze_permeability = fr.boolean_or("freeze_permeability", false);
       if (fr.has("steps_per_update")) s.fluid_steps_per_update = read_steps_per_update(fr);
       if (fr.has("hold_forces")) s.fluid_hold_forces = fr.boolean_or("hold_forces", false);
+      if (fr.has("drained")) s.fluid_drained = fr.boolean_or("drained", false);
       fr.finish();
     }
     scene.stages.push_back(s);

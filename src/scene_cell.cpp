@@ -53,8 +53,9 @@ std::string describe_cell_motions(const Scene<D>& scene) {
                           strains);
     }
     if (motion.any_by_stress()) {
-      axes += fmt::format("; servo gain {:.6g} 1/(Pa s), at most {:.6g} 1/s", motion.gain,
-                          motion.max_strain_rate);
+      axes += fmt::format("; servo gain {:.6g} 1/(Pa s), at most {:.6g} 1/s, holding the {}", motion.gain,
+                          motion.max_strain_rate,
+                          motion.total_stress ? "total stress (contacts + pore water)" : "contacts' stress");
     }
     out += fmt::format("stage {}: periodic cell {}\n", stage.name, axes);
   }
@@ -64,6 +65,7 @@ std::string describe_cell_motions(const Scene<D>& scene) {
 template <int D>
 CellNeighbours cell_neighbours(const Scene<D>& scene) {
   CellNeighbours around;
+  around.fluid = scene.fluid != nullptr;
   around.fluid_sources = scene.fluid != nullptr && !scene.fluid->sources.empty();
   around.fluid_barriers = scene.fluid != nullptr && !scene.fluid->barriers.empty();
   around.inlets = !scene.inlets.empty();
@@ -139,10 +141,19 @@ CellChange<D> read_cell_change(TableReader& stage, const Simulation<D>& sim, con
     change.max_strain_rate = r.check(
         "max_strain_rate", *m, [](double v) { return v > 0.0 && std::isfinite(v); }, "> 0 1/s");
   }
+  if (r.has("load")) {
+    change.total_stress = r.optional_choice("load", {"grains", "total"}) == "total";
+    if (*change.total_stress && !around.fluid) {
+      r.fail("load",
+             "\"total\" adds the pore water's mean pressure to the contacts' stress, which needs a [fluid]; "
+             "give \"grains\", the default");
+    }
+  }
   r.finish();
-  if (!any && !change.gain && !change.max_strain_rate) {
+  if (!any && !change.gain && !change.max_strain_rate && !change.total_stress) {
     r.fail_table("needs an axis ('x', 'y'" + std::string(D == 3 ? ", 'z'" : "") +
-                 ") = { strain_rate = 1/s } or { stress = Pa }, or the servo's 'gain' or 'max_strain_rate'");
+                 ") = { strain_rate = 1/s } or { stress = Pa }, or the servo's 'gain', 'max_strain_rate' or "
+                 "'load'");
   }
   change.apply(planned);
   if (planned.servo_incomplete()) {

@@ -467,7 +467,7 @@ void Simulation<D>::cell_step(bool tracked) {
     // same whatever the thread count).
     const Vec<D> sum = deterministic_sum(static_cast<std::int64_t>(particles.size()), Vec<D>(Vec<D>::Zero()),
                                          [&](std::int64_t i) { return pair_moment_[i]; });
-    cell_motion.servo(-sum / periodic.length.prod());
+    cell_motion.servo(servo_stress(-sum / periodic.length.prod()));
     return;
   }
   // The cell's work on the contacts over the last drift: the field moved
@@ -482,7 +482,13 @@ void Simulation<D>::cell_step(bool tracked) {
   energy.boundary_work += 0.5 * time_step * cell_motion.strain_rate.dot(cell_moment_ + before);
   cell_moment_ = moment;
   cell_moment_step_ = steps + 1;
-  if (cell_motion.any_by_stress()) cell_motion.servo(stress.diagonal());
+  if (cell_motion.any_by_stress()) cell_motion.servo(servo_stress(stress.diagonal()));
+}
+
+template <int D>
+Vec<D> Simulation<D>::servo_stress(const Vec<D>& contacts) const {
+  if (!cell_motion.total_stress || force_field == nullptr) return contacts;
+  return contacts + Vec<D>::Constant(force_field->mean_pressure());
 }
 
 template <int D>

@@ -408,6 +408,11 @@ TEST(PeriodicCell, BadCellsAreRefusedWithFileLineAndKey) {
           "key 'periodic_cell': must be a table");
   refused(text_variant(lattice, {{rates, "periodic_cell = { z = { strain_rate = 1.0 } }"}}),
           "unknown key 'z'");
+  // The total stress needs pore water to add.
+  refused(
+      text_variant(lattice, {{rates, "periodic_cell = { x = { strain_rate = -0.02 }, load = \"total\" }"}}),
+      "periodic_cell key 'load': \"total\" adds the pore water's mean pressure to the contacts' stress, "
+      "which needs a [fluid]");
   // cell_strain: an axis the scene has, or volumetric.
   const std::string strain_probe = "[[probe]]\nname = \"ez\"\nquantity = \"cell_strain\"\ncomponent = ";
   refused(text_variant(lattice, {{"[[stage]]", strain_probe + "\"z\"\n\n[[stage]]"}}),

@@ -31,7 +31,11 @@ struct CellMotion {
   Vec<D> target_stress = Vec<D>::Zero();  ///< Pa, compression positive, on the axes held by stress
   double gain = 0.0;                      ///< 1/(Pa s): rate = gain (stress - target)
   double max_strain_rate = 0.0;           ///< 1/s, the servo's largest rate (magnitude)
-  Vec<D> stress = Vec<D>::Zero();         ///< Pa: the normal stresses the servo last saw
+  /// The servo holds the total stress: the contacts' plus the pore
+  /// water's mean excess pressure (an undrained test with the water
+  /// itself); false: the contacts' alone, the effective stress.
+  bool total_stress = false;
+  Vec<D> stress = Vec<D>::Zero();  ///< Pa: the normal stresses the servo last saw
   /// m: the periods when the run's present stage began, from which the
   /// cell_strain probe counts (the runner sets them).
   Vec<D> reference_length = Vec<D>::Zero();
@@ -98,7 +102,7 @@ struct CellMotion {
 
   template <class Archive>
   void checkpoint(Archive& ar) {
-    ar(by_stress, strain_rate, target_stress, gain, max_strain_rate, stress, reference_length);
+    ar(by_stress, strain_rate, target_stress, gain, max_strain_rate, stress, reference_length, total_stress);
   }
 };
 
@@ -113,6 +117,7 @@ struct CellChange {
   std::array<std::optional<Axis>, D> axes{};
   std::optional<double> gain;
   std::optional<double> max_strain_rate;
+  std::optional<bool> total_stress;
 
   void apply(CellMotion<D>& m) const {
     for (int k = 0; k < D; ++k) {
@@ -126,6 +131,7 @@ struct CellChange {
     }
     if (gain) m.gain = *gain;
     if (max_strain_rate) m.max_strain_rate = *max_strain_rate;
+    if (total_stress) m.total_stress = *total_stress;
   }
 };
 

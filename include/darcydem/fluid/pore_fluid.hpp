@@ -129,6 +129,12 @@ class PoreFluid final : public ParticleForceField<D> {
   /// Count the pore fluid carried across faces by the moving skeleton, so
   /// that Darcy's flux is relative to the grains (false: the paper's scheme).
   bool carry_with_solid = true;
+  /// Every cell open to water at zero excess pressure: the pore volume's
+  /// change flows in or out where it happens, and no pressure builds (a
+  /// drained stage of a sample whose drainage the grid does not hold, as a
+  /// periodic cell's: the consolidation before an undrained shear). The
+  /// balance counts that flow as inflow.
+  bool drained = false;
   /// Keep each cell's permeability as it is (a stage can freeze it, e.g. to
   /// compare with a closed form that assumes a constant k).
   bool permeability_frozen = false;
@@ -165,6 +171,9 @@ class PoreFluid final : public ParticleForceField<D> {
   /// volume, as a change of their pore volume, into the Biot term and the
   /// balance. Throws std::logic_error on any other grid.
   void follow_cell(const PeriodicCell<D>& cell) override;
+  /// The excess pressure's mean over the grid, by cell volume, Pa: what a
+  /// periodic cell's total-stress servo adds to the contacts' stress.
+  [[nodiscard]] double mean_pressure() const override;
   /// With hold_forces: true if `force` is what the last particle_forces
   /// call wrote, for as many particles under the same gravity, and no fluid
   /// step (or new pressure) has come since.
@@ -195,11 +204,12 @@ class PoreFluid final : public ParticleForceField<D> {
   }
   template <class Archive>
   void checkpoint(Archive& ar, const std::vector<Vec<D>>* held_output) {
-    ar(steps_per_update, hold_forces, sides, permeability_frozen, pressure_, pressure_old_, pressure_older_,
-       porosity_, solid_, solid_old_, wall_solid_, wall_solid_old_, porosity_used_, solid_flux_,
-       solid_velocity_, kappa_, cell_drag_, blend_atan_, n_power_, face_lambda_, carried_, face_gq_,
-       solid_face_flux_, face_open_, face_covered_, side_inflow_, last_solve_, last_, total_, updates_, time_,
-       initialized_, wrap_lambda_, wrap_carried_, boundary_carried_, grid.origin, grid.spacing, volume_old_);
+    ar(steps_per_update, hold_forces, sides, permeability_frozen, drained, pressure_, pressure_old_,
+       pressure_older_, porosity_, solid_, solid_old_, wall_solid_, wall_solid_old_, porosity_used_,
+       solid_flux_, solid_velocity_, kappa_, cell_drag_, blend_atan_, n_power_, face_lambda_, carried_,
+       face_gq_, solid_face_flux_, face_open_, face_covered_, side_inflow_, last_solve_, last_, total_,
+       updates_, time_, initialized_, wrap_lambda_, wrap_carried_, boundary_carried_, grid.origin,
+       grid.spacing, volume_old_);
     if constexpr (Archive::loading) {
       if (!grid.any_graded()) take_spacing();
     }
@@ -399,6 +409,11 @@ class PoreFluid final : public ParticleForceField<D> {
   void close_barrier_faces(std::array<std::vector<double>, D>& per_cell_below);
   void close_barrier_fields();
   void compute_face_fields(double time);
+  /// The fluid step of a drained grid: the pressure back to zero, the
+  /// pore volume's change and the water released as inflow.
+  void drain_freely(double time);
+  /// The last fluid step's balance into the run's, and the step counted.
+  void close_step(const FluidBalance& b, double time);
   [[nodiscard]] double side_lambda(int axis, std::size_t cell) const;
   /// grad u and the Darcy flux at x together (the per-grain hot path):
   /// for the component along an axis, linear between the two faces of the

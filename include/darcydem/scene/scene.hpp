@@ -129,10 +129,11 @@ struct Stage {
   std::vector<std::pair<int, FluidBoundary>> fluid_sides;    ///< changes of the fluid's sides
   std::vector<std::pair<int, FluidBoundary>> fluid_patches;  ///< and of its patches (index in patches)
   std::vector<FluidSourceChange> fluid_sources;              ///< and of its sources
-  std::optional<bool> freeze_permeability;                   ///< hold (true) or resume updating k
-  std::optional<int> fluid_steps_per_update;                 ///< a new coupling interval M
-  std::optional<bool> fluid_hold_forces;                     ///< hold the grains' fluid forces, or not
-  std::vector<std::pair<std::size_t, bool>> inlets;          ///< inlets (index) switched on or off
+  std::optional<bool> fluid_drained;                 ///< every cell at zero excess pressure (true) or not
+  std::optional<bool> freeze_permeability;           ///< hold (true) or resume updating k
+  std::optional<int> fluid_steps_per_update;         ///< a new coupling interval M
+  std::optional<bool> fluid_hold_forces;             ///< hold the grains' fluid forces, or not
+  std::vector<std::pair<std::size_t, bool>> inlets;  ///< inlets (index) switched on or off
   /// New Coulomb coefficients: the two materials (indices) and mu, e.g.
   /// none while a sample is compacted and the sand's for the test (YADE's
   /// compaction friction, PFC's contact property changes).

@@ -14,6 +14,7 @@ namespace darcydem {
 
 /// What the scene around the cell has that a deforming cell cannot take.
 struct CellNeighbours {
+  bool fluid = false;           ///< [fluid]: its pressure can add to the servo's stress
   bool fluid_sources = false;   ///< [[fluid.source]]: fixed places in the grid
   bool fluid_barriers = false;  ///< [[fluid.barrier]]: fixed planes in the grid
   bool inlets = false;

@@ -31,6 +31,10 @@ class ParticleForceField {
   /// on a grid that spans the period (the pore fluid's) stretches it
   /// along. By default nothing.
   virtual void follow_cell(const PeriodicCell<D>& /*cell*/) {}
+  /// The mean pressure of the field's medium over the cell, Pa (the pore
+  /// water's excess pressure), which a deforming cell's servo on the total
+  /// stress adds to the contacts' stress. By default 0.
+  [[nodiscard]] virtual double mean_pressure() const { return 0.0; }
 };
 
 }  // namespace darcydem

@@ -296,6 +296,10 @@ class Simulation {
   void cell_step(bool tracked);
   /// The cell's stretch over a drift, which the force field follows.
   void stretch_cell();
+  /// The normal stresses the cell's servo holds, from the contacts' (Pa,
+  /// compression positive): with CellMotion::total_stress the force
+  /// field's mean pressure added (the pore water's).
+  [[nodiscard]] Vec<D> servo_stress(const Vec<D>& contacts) const;
   /// -1/V sym(sum d (x) f) over the pairs' forces the present evaluation
   /// recorded, at the positions it saw: the cell's stress for the budget
   /// (and its servo) on the tracked path.
