@@ -14,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "periodic_discs.hpp"
 #include "run_output.hpp"
 #include "scene_loading.hpp"
 
@@ -427,37 +428,7 @@ namespace {
 // 150 discs (r = 0.4-0.6 mm) in a periodic 17 mm square, compressed by the
 // servo to 1 kPa with low friction, then sheared biaxially: shortened along
 // y at 0.5 /s with x held at 1 kPa. Shared with the checkpoint test.
-const std::string biaxial = R"(
-[simulation]
-dimension = 2
-time_step = "auto"
-
-[periodic]
-x = [0.0, 0.017]
-y = [0.0, 0.017]
-
-[[material]]
-name = "sand"
-density = 2650.0
-
-[[contact]]
-materials = ["sand", "sand"]
-law = "linear"
-normal_stiffness = 1e5
-restitution = 0.3
-friction = 0.5
-
-[[particles]]
-generator = "random"
-material = "sand"
-min = [0.0, 0.0]
-max = [0.017, 0.017]
-count = 150
-radius_min = 0.0004
-radius_max = 0.0006
-seed = 2
-
-[output]
+const std::string biaxial = darcydem::testing::periodic_discs + R"([output]
 probe_interval = 0.002
 
 [[probe]]

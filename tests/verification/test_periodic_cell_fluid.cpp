@@ -11,6 +11,7 @@
 #include <numbers>
 #include <string>
 
+#include "periodic_discs.hpp"
 #include "run_output.hpp"
 #include "scene_loading.hpp"
 
@@ -214,37 +215,7 @@ namespace {
 // stress is raised to 1.5 kPa on both axes, with the water sealed in
 // (`drained` off, the servo holding the total stress) or, for the twin,
 // still drained.
-const std::string skempton = R"(
-[simulation]
-dimension = 2
-time_step = "auto"
-
-[periodic]
-x = [0.0, 0.017]
-y = [0.0, 0.017]
-
-[[material]]
-name = "sand"
-density = 2650.0
-
-[[contact]]
-materials = ["sand", "sand"]
-law = "linear"
-normal_stiffness = 1e5
-restitution = 0.3
-friction = 0.5
-
-[[particles]]
-generator = "random"
-material = "sand"
-min = [0.0, 0.0]
-max = [0.017, 0.017]
-count = 150
-radius_min = 0.0004
-radius_max = 0.0006
-seed = 2
-
-[fluid]
+const std::string skempton = darcydem::testing::periodic_discs + R"([fluid]
 density = 1000.0
 viscosity = 1.0e-3
 bulk_modulus = 1e4
