@@ -46,6 +46,9 @@ scene="$src/examples/column_settling/column.toml"
 "$exe" check "$src/examples/dem_cases/periodic_undrained.toml" \
   | grep -q "^  stage shear: periodic cell x strained at 0.5 1/s, y strained at 0.5 1/s, z strained at -1 1/s (ln strains over the stage's 0.2 s if it runs to its end: x 0.1, y 0.1, z -0.2, volumetric 0)$" \
   && ok "check gives the volume's strain of a cell strained along every axis (0: constant volume)" || bad "check: constant volume"
+"$exe" check "$src/examples/fluid_cases/periodic_undrained_water.toml" \
+  | grep -q "^  stage shear: periodic cell x held at 100000 Pa, y held at 100000 Pa, z strained at -1 1/s (ln strains over the stage's 0.2 s if it runs to its end: z -0.2); servo gain 0.0002 1/(Pa s), at most 5 1/s, holding the total stress (contacts + pore water)$" \
+  && ok "check says a cell's servo holds the total stress" || bad "check: total stress servo"
 "$exe" check "$src/examples/dem_cases/rotating_drum.toml" | grep -q "OK (3D, 450 particles, 1 wall, 2 stages" \
   && ok "check counts one wall in the singular" || bad "check: one wall"
 "$exe" check "$src/examples/dem_cases/conical_hopper.toml" \
