@@ -235,7 +235,7 @@ class Model {
   /// strain rates): per axis {'strain_rate': 1/s} or {'stress': Pa}, the
   /// servo's gain and max_strain_rate.
   void set_cell(const py::object& x, const py::object& y, const py::object& z, const py::object& gain,
-                const py::object& max_strain_rate) {
+                const py::object& max_strain_rate, const py::object& load) {
     const std::string why = cell_deformation_obstacle(sim(), cell_neighbours(scene_));
     if (!why.empty()) throw py::value_error("set_cell: deforms the periodic cell, " + why);
     auto rate_ok = [&](double v, const char* what) {
@@ -280,6 +280,18 @@ class Model {
       const double m = rate_ok(max_strain_rate.cast<double>(), "max_strain_rate");
       if (!(m > 0.0)) throw py::value_error(fmt::format("set_cell: max_strain_rate must be > 0, got {}", m));
       change.max_strain_rate = m;
+    }
+    if (!load.is_none()) {
+      const auto l = load.cast<std::string>();
+      if (l != "grains" && l != "total")
+        throw py::value_error(fmt::format("set_cell: load must be 'grains' or 'total', got '{}'", l));
+      if (l == "total" && fluid() == nullptr) {
+        throw py::value_error(
+            "set_cell: load 'total' adds the pore water's mean pressure to the contacts' stress, which needs "
+            "a "
+            "[fluid]");
+      }
+      change.total_stress = l == "total";
     }
     CellMotion<D> motion = sim().cell_motion;
     change.apply(motion);
@@ -1674,10 +1686,25 @@ void bind_model(py::module_& m, const char* model_name, const char* fluid_name) 
           "D x D tensor, Pa, compression positive: the probe cell_stress)")
       .def("set_cell", &M::set_cell, py::arg("x") = py::none(), py::arg("y") = py::none(),
            py::arg("z") = py::none(), py::arg("gain") = py::none(), py::arg("max_strain_rate") = py::none(),
+           py::arg("load") = py::none(),
            "deforms the periodic cell from the next step on, as a stage's periodic_cell does: per axis "
            "{'strain_rate': 1/s} (negative: it shrinks) or {'stress': Pa} (compression positive, held by the "
-           "servo, which needs gain, 1/(Pa s), and max_strain_rate, 1/s); axes not given keep theirs. The "
-           "cell must repeat along every axis, and the scene have no walls, fluid, inlets, clumps or domain")
+           "servo, which needs gain, 1/(Pa s), and max_strain_rate, 1/s); axes not given keep theirs; load "
+           "'total' makes the servo hold the contacts' stress plus the pore water's mean pressure, 'grains' "
+           "the contacts' alone. The cell must repeat along every axis, and the scene have no walls, fluid "
+           "sources or barriers, inlets, clumps or domain")
+      .def_property(
+          "fluid_drained",
+          [](M& s) {
+            if (s.fluid() == nullptr) throw py::value_error("fluid_drained: the scene has no [fluid]");
+            return s.fluid()->drained;
+          },
+          [](M& s, bool on) {
+            if (s.fluid() == nullptr) throw py::value_error("fluid_drained: the scene has no [fluid]");
+            s.fluid()->drained = on;
+          },
+          "every cell open to water at zero excess pressure from the next fluid step on, as a stage's "
+          "fluid.drained: the pore volume's change flows in or out where it happens")
       .def_property(
           "track_energy", [](const M& s) { return s.sim().track_energy; },
           [](M& s, bool on) { s.sim().track_energy = on; },

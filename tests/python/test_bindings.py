@@ -2115,9 +2115,50 @@ class PeriodicCell(unittest.TestCase):
                                delta=1e-12)
         self.assertEqual(m.cell["strain_rate"][0], -0.01)
 
+    def test_the_servo_holds_the_total_stress_with_pore_water(self):
+        # The lattice with pore water (2 x 2 cells spanning the period,
+        # K_f = 10 kPa), held at a total stress of 1500 Pa along both axes:
+        # the springs' stress plus the water's pressure. (A square lattice
+        # of frictionless discs has no shear stiffness: the water's small
+        # differences of pressure between cells put it out of line, and the
+        # water ends up carrying most of the load.)
+        fluid = (
+            '[fluid]\ndensity = 1000.0\nviscosity = 1.0e-3\nbulk_modulus = 1e4\ndrag = "darcy"\n'
+            '[fluid.grid]\norigin = [0.0, 0.0]\ncells = [2, 2]\nsize = [0.005, 0.005]\n'
+            '[fluid.permeability]\nmodel = "constant"\nhydraulic_conductivity = [0.1, 0.1]\n\n')
+        m = darcydem.load(write_scene(tempfile.mkdtemp(), PERIODIC_LATTICE.replace("[[stage]]", fluid + "[[stage]]")))
+        self.assertFalse(m.fluid_drained)
+        m.set_cell(x={"stress": 1500.0}, y={"stress": 1500.0}, gain=1e-3, max_strain_rate=0.2, load="total")
+        m.step(120000)
+        cell = m.cell
+        u = float(np.mean(m.fluid.pressure))
+        # 1 Pa: the proportional servo lags by its rate / gain (0.1 Pa at
+        # the end).
+        self.assertAlmostEqual(cell["stress"][0][0] + u, 1500.0, delta=1.0)
+        self.assertAlmostEqual(cell["stress"][1][1] + u, 1500.0, delta=1.0)
+        self.assertGreater(u, 100.0)
+        # The water's pressure is Biot's law over the strain, K_f ln(A_p0 /
+        # A_p), A_p the cell's area less the discs'. 1e-3: each backward
+        # Euler step adds the square of its pore strain, and the servo
+        # swings the cell to and fro (measured: 1.4e-4).
+        solid = 100 * np.pi * 5e-4 ** 2
+        length = cell["length"]
+        biot = 1e4 * np.log((1e-4 - solid) / (length[0] * length[1] - solid))
+        self.assertAlmostEqual(u / biot, 1.0, delta=1e-3)
+        # Drained from Python: the pressure is released and the contacts
+        # take the whole load.
+        m.fluid_drained = True
+        m.step(60000)
+        self.assertTrue(m.fluid_drained)
+        self.assertEqual(float(np.max(np.abs(m.fluid.pressure))), 0.0)
+        self.assertAlmostEqual(m.cell["stress"][0][0], 1500.0, delta=1.0)
+        self.assertAlmostEqual(m.cell["stress"][1][1], 1500.0, delta=1.0)
+
     def test_bad_motions_are_refused(self):
         m = self.model
         for kwargs, message in [
+            ({"load": "total"}, "needs a [fluid]"),
+            ({"load": "water"}, "load must be 'grains' or 'total'"),
             ({"x": {"stress": 1.0}}, "gain"),
             ({"x": {"stress": 1.0, "strain_rate": 1.0}}, "must be {'strain_rate'"),
             ({"x": 3.0}, "must be {'strain_rate'"),
