@@ -318,9 +318,10 @@ TEST(PeriodicCellFluid, SealedLoadingSharesTheLoadAsSkemptonsB) {
   // constants).
   EXPECT_NEAR(undrained.mean_stress + undrained.pressure, 1500.0, 1.0);
   // The water's pressure is Biot's, K_f ln(V_p0 / V_p) over the load: to
-  // 1e-3, for the cells' pressures differ by some 1e-4 while the load
-  // comes on in milliseconds (the water evens them out in 1e-4 s), and the
-  // mean by volume is not quite the mean by pore volume (measured: 2.5e-4).
+  // 1e-3, for each backward Euler step adds the square of its pore strain
+  // to the log's sum, and the servo swings the cell to and fro as the load
+  // comes on; the cells' pressures differ by some 1e-4 besides (measured:
+  // 2.5e-4).
   EXPECT_NEAR(undrained.pressure, undrained.biot_pressure, 1e-3 * undrained.biot_pressure);
   // Skempton's B against the drained twin's skeleton. The skeleton is not
   // linear: the twin's effective stress rises by 500 Pa, the sealed
